@@ -1,0 +1,173 @@
+// spp: command-line tool. parse -> options -> validate -> run -> write (atomically).
+// Exit codes: 0 success, 1 invalid input or failed run (message on stderr), 2 usage error (CLI11).
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "spp/generators.hpp"
+#include "spp/io.hpp"
+#include "spp/modal.hpp"
+#include "spp/solver.hpp"
+
+namespace {
+
+std::vector<double> parse_list(const std::string& s, const char* opt) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      size_t pos = 0;
+      v.push_back(std::stod(item, &pos));
+      if (pos != item.size()) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + s + "\"");
+    }
+  }
+  if (v.empty()) throw std::invalid_argument(std::string(opt) + ": expected at least one number");
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"spp: periodic orbits with one lasting contact phase per period (SPPs) of vibro-impact systems"};
+  app.require_subcommand(1);
+
+  // solve
+  auto* solve = app.add_subcommand("solve", "find every SPP whose half-durations lie in a window");
+  std::string sys_path, json_out, csv_out;
+  spp::SolveOptions opt;
+  bool quiet = false;
+  solve->add_option("system", sys_path, "system JSON file")->required();
+  solve->add_option("--t1-max", opt.t1_max, "largest flight half-duration t1")->required();
+  solve->add_option("--t2-max", opt.t2_max, "largest contact half-duration t2")->required();
+  solve->add_option("--t1-min", opt.t1_min, "smallest t1 (default: 1e-4 pi / (2 omega_max))");
+  solve->add_option("--t2-min", opt.t2_min, "smallest t2 (default: 1e-4 pi / (2 d_max))");
+  solve->add_option("--json", json_out, "write the result as JSON");
+  solve->add_option("--csv", csv_out, "write the solutions as CSV");
+  solve->add_flag("--admissible-only", opt.admissible_only, "keep only admissible SPPs");
+  solve->add_flag("--quiet", quiet, "print only the one-line summary");
+
+  // trajectory
+  auto* traj = app.add_subcommand("trajectory", "sample one period of an SPP: t, x, v, gap, force");
+  std::string traj_sys, traj_csv, traj_result;
+  double t1 = 0, t2 = 0;
+  int samples = 1001, solution_index = -1;
+  traj->add_option("system", traj_sys, "system JSON file")->required();
+  auto* o_t1 = traj->add_option("--t1", t1, "flight half-duration (refined to the nearest SPP)");
+  auto* o_t2 = traj->add_option("--t2", t2, "contact half-duration (refined to the nearest SPP)");
+  auto* o_res = traj->add_option("--result", traj_result, "result JSON of spp solve");
+  traj->add_option("--solution", solution_index, "index of the solution in --result");
+  traj->add_option("--csv", traj_csv, "output CSV")->required();
+  traj->add_option("--samples", samples, "number of samples over one period")->check(CLI::Range(2, 10000000));
+  o_t1->needs(o_t2);
+  o_t2->needs(o_t1);
+  o_res->excludes(o_t1);
+
+  // generate
+  auto* gen = app.add_subcommand("generate", "write a system JSON for one of the paper's models");
+  gen->require_subcommand(1);
+  std::string gen_out;
+  auto* gchain = gen->add_subcommand("chain", "spring-mass chain fixed at one end (paper §5.2)");
+  int cn = 5, cdof = 0;
+  std::string cmass = "1", cstiff = "1", cside = "upper";
+  double cg0 = 1.0;
+  gchain->add_option("--n", cn, "number of masses")->check(CLI::Range(1, 100000));
+  gchain->add_option("--masses", cmass, "one value or n comma-separated values");
+  gchain->add_option("--stiffnesses", cstiff, "one value or n comma-separated values (k1 ties mass 1 to ground)");
+  gchain->add_option("--contact-dof", cdof, "1-based dof that meets the obstacle (default: the last)");
+  gchain->add_option("--side", cside, "obstacle above (upper: g = g0 - x) or below (lower: g = g0 + x)")
+      ->check(CLI::IsMember({"upper", "lower"}));
+  gchain->add_option("--g0", cg0, "gap at rest");
+  gchain->add_option("--out", gen_out, "output JSON")->required();
+  auto* grod = gen->add_subcommand("rod", "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b");
+  double ra = -0.25, rb = 0.25;
+  grod->add_option("--a", ra, "slope of the obstacle line");
+  grod->add_option("--b", rb, "intercept of the obstacle line");
+  grod->add_option("--out", gen_out, "output JSON")->required();
+  auto* g2 = gen->add_subcommand("two-dof", "2-dof system of paper §2.3");
+  double m1 = 1, m2 = 1, k1 = 1, k2 = 1, g2g0 = 1;
+  g2->add_option("--m1", m1);
+  g2->add_option("--m2", m2);
+  g2->add_option("--k1", k1);
+  g2->add_option("--k2", k2);
+  g2->add_option("--g0", g2g0);
+  g2->add_option("--out", gen_out, "output JSON")->required();
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (*solve) {
+      opt.validate();
+      const spp::System sys = spp::load_system(sys_path);
+      const spp::SolveResult res = spp::solve(sys, opt);
+      // prepare every output before writing any
+      const std::string json_text = json_out.empty() ? "" : spp::result_to_json(sys, res).dump(2) + "\n";
+      const std::string csv_text = csv_out.empty() ? "" : spp::result_to_csv(res);
+      if (sys.w_input_norm() != 1.0)
+        std::cerr << "note: w was normalised (|w| = " << sys.w_input_norm() << "); g0 divided by it: g0 = "
+                  << sys.g0() << "\n";
+      if (!quiet) std::cout << spp::result_table(res);
+      std::cout << res.brief_report() << "\n";
+      for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
+      if (!json_out.empty()) spp::write_file_atomic(json_out, json_text);
+      if (!csv_out.empty()) spp::write_file_atomic(csv_out, csv_text);
+      return 0;
+    }
+    if (*traj) {
+      const spp::System sys = spp::load_system(traj_sys);
+      if (!traj_result.empty()) {
+        if (solution_index < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
+        nlohmann::json r;
+        try {
+          r = nlohmann::json::parse(spp::read_file(traj_result));
+        } catch (const nlohmann::json::parse_error& e) {
+          throw std::invalid_argument(traj_result + ": malformed JSON: " + e.what());
+        }
+        if (!r.contains("solutions") || !r["solutions"].is_array())
+          throw std::invalid_argument(traj_result + ": missing field \"solutions\" (expected a result of spp solve)");
+        const auto& sols = r["solutions"];
+        if (static_cast<size_t>(solution_index) >= sols.size())
+          throw std::invalid_argument(traj_result + ": --solution " + std::to_string(solution_index) +
+                                      " out of range, the file has " + std::to_string(sols.size()) + " solutions");
+        t1 = sols[static_cast<size_t>(solution_index)].at("t1").get<double>();
+        t2 = sols[static_cast<size_t>(solution_index)].at("t2").get<double>();
+      } else if (o_t1->count() == 0) {
+        throw std::invalid_argument("trajectory: give --t1 and --t2, or --result and --solution");
+      }
+      spp::SolveOptions o;
+      o.compute_return_error = false;
+      const spp::Solution s = spp::solution_at(sys, t1, t2, o);
+      const spp::ModalForm md(sys);
+      spp::write_file_atomic(traj_csv, spp::trajectory_csv(md, s.orbit, samples));
+      std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period
+                << ", " << (s.admissible ? "admissible" : "not admissible") << ") written to " << traj_csv
+                << "\n";
+      return 0;
+    }
+    if (*gen) {
+      spp::System sys = [&]() {
+        if (*gchain) {
+          const int dof = cdof == 0 ? cn - 1 : cdof - 1;
+          return spp::chain(cn, parse_list(cmass, "--masses"), parse_list(cstiff, "--stiffnesses"), dof,
+                            cside == "upper" ? spp::ContactSide::Upper : spp::ContactSide::Lower, cg0);
+        }
+        if (*grod) return spp::rod_with_slip(ra, rb);
+        return spp::two_dof(m1, m2, k1, k2, g2g0);
+      }();
+      spp::write_file_atomic(gen_out, spp::system_to_json(sys).dump(2) + "\n");
+      std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ") to " << gen_out << "\n";
+      return 0;
+    }
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "spp: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "spp: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

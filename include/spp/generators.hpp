@@ -1,0 +1,28 @@
+#pragma once
+// The paper's models as Systems (same file format as any other system once written with system_to_json).
+
+#include <vector>
+
+#include "spp/system.hpp"
+
+namespace spp {
+
+enum class ContactSide {
+  Upper,  ///< obstacle above the dof: g = g0 - x_c (paper §5.2: w = -e_c)
+  Lower,  ///< obstacle below the dof: g = x_c + g0
+};
+
+/// Spring-mass chain fixed at its first end (paper fig. 3, eq. 5.4): spring k_1 ties mass 1 to the ground,
+/// spring k_i ties masses i-1 and i. masses, stiffnesses: one value (all equal) or n values.
+/// contact_dof is 0-based. Throws std::invalid_argument on bad sizes or values.
+System chain(int n, const std::vector<double>& masses, const std::vector<double>& stiffnesses, int contact_dof,
+             ContactSide side, double g0);
+
+/// 4-dof finite-element rod with slip (paper §5.3, eqs. 5.6-5.7), obstacle line y = a x + b:
+/// w = (0, a, -1, 0) / sqrt(1 + a^2), g0 = b / sqrt(1 + a^2) as printed in eq. (5.7).
+System rod_with_slip(double a, double b);
+
+/// 2-dof system of paper §2.3 (eq. 2.5), obstacle on the second mass: g = g0 - x2.
+System two_dof(double m1, double m2, double k1, double k2, double g0);
+
+}  // namespace spp

@@ -1,0 +1,35 @@
+#pragma once
+// Files: the system JSON (dense, or M/K from Matrix Market), result JSON and CSV, trajectory CSV.
+// Every writer goes through write_file_atomic: a temporary file renamed over the target, so that a failure
+// never leaves a half-written output.
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "spp/solver.hpp"
+#include "spp/system.hpp"
+
+namespace spp {
+
+/// Reads {"name", "M", "K", "w", "g0"}; "M"/"K" may be {"matrix_market": "file.mtx"} (relative to the JSON).
+/// Throws std::invalid_argument naming the file and the field.
+System load_system(const std::string& path);
+System system_from_json(const nlohmann::json& j, const std::string& where, const std::string& base_dir = ".");
+nlohmann::json system_to_json(const System& system);
+
+/// Matrix Market "matrix array|coordinate real|integer general|symmetric".
+Eigen::MatrixXd read_matrix_market(const std::string& path);
+
+nlohmann::json result_to_json(const System& system, const SolveResult& result);
+std::string result_to_csv(const SolveResult& result);
+/// Human-readable table (t1, t2, period, admissible, min gap, min force).
+std::string result_table(const SolveResult& result);
+
+/// Samples one period of an orbit: t, x1..xn, v1..vn, gap, force.
+std::string trajectory_csv(const ModalForm& modal, const Orbit& orbit, int samples);
+
+void write_file_atomic(const std::string& path, const std::string& content);
+std::string read_file(const std::string& path);
+
+}  // namespace spp

@@ -1,0 +1,55 @@
+#pragma once
+// One potential SPP as a trajectory: initial conditions (eqs. 5.2a-b), the flows of both phases (eq. 3.12),
+// gap, contact force (eq. 2.7) and admissibility (ineqs. 5.3). Time origin at the onset of contact, as in the
+// paper: contact on [0, 2 t2], flight on [2 t2, T] (= [-2 t1, 0] shifted by one period T = 2 t1 + 2 t2).
+
+#include <Eigen/Dense>
+
+#include "spp/modal.hpp"
+
+namespace spp {
+
+struct Orbit {
+  double t1 = 0.0, t2 = 0.0;
+  Eigen::VectorXd a;            ///< modal p at mid-flight (t = -t1), scaled so that the gap closes at t = 0
+  Eigen::VectorXd c;            ///< modal p at mid-contact (t = t2)
+  Eigen::VectorXd p0, p0dot;    ///< modal p, p' at contact onset
+  Eigen::VectorXd x0, v0;       ///< physical x(0), x'(0)
+  double closure_ratio = 0.0;   ///< |u^T W^-1 p0| / |W^-1 p0|: near 0, the gap cannot close at g0 != 0
+  double energy = 0.0;          ///< 1/2 v^T M v + 1/2 x^T K x (conserved in both phases)
+  double period() const { return 2.0 * (t1 + t2); }
+};
+
+/// Builds the orbit from the null vector a of N(t1, t2); a's scale is irrelevant. Throws std::invalid_argument
+/// if the gap cannot be closed (u^T W^-1 p0 = 0 exactly) or g0 = 0.
+Orbit make_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a);
+
+struct OrbitState {
+  Eigen::VectorXd x, v;
+  double gap = 0.0, force = 0.0;
+};
+
+/// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight).
+OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
+
+struct Admissibility {
+  bool admissible = false;
+  double min_gap = 0.0;          ///< smallest gap over the whole flight (0 at its tangent ends), certified
+  double min_force = 0.0;        ///< smallest normal force over the whole contact phase, certified
+  double mid_flight_gap = 0.0;   ///< gap at t = -t1
+  double mid_contact_force = 0.0;///< force at t = t2
+  double onset_force_rate = 0.0; ///< lambda'(0+): must be >= 0 (equals minus the gap jerk times a positive factor)
+  bool ends_ok = false;          ///< leading Taylor terms at the phase ends have the admissible sign
+  bool certified = false;        ///< both minima certified to tolerance
+};
+
+/// Checks ineqs. (5.3) with a certified global minimum of each cosine sum; rel_tol scales the tolerance on
+/// the amplitude of each sum.
+Admissibility check_admissibility(const ModalForm& modal, const Orbit& orbit, double rel_tol = 1e-9);
+
+/// Relative periodicity error |X(T) - X(0)| / |X(0)| of (x0, v0) after one period, propagated with the
+/// physical first-order flows exp(t A) of M x'' + K x = 0 and M x'' + K~ x = 0 (paper's eqs. 3.9-3.13),
+/// independently of the modal form.
+double return_error(const System& system, const Orbit& orbit);
+
+}  // namespace spp

@@ -1,0 +1,90 @@
+#pragma once
+// Every SPP in a window (t1, t2) in (t1_min, t1_max] x (t2_min, t2_max]: the paper's algorithm (§5.1) done
+// completely with the modal form's counting (shared design note §3, §3b):
+//  - pole lines of tan(W t1) and tan(D t2) cut the window into rectangles; inside one, every eigenvalue of H
+//    is non-decreasing in t1 and t2 (strictly along (1,1)), so the zero curves of det H crossing it are
+//    exactly the indices k with lambda_k(bottom-left) < 0 < lambda_k(top-right) (Sylvester inertia);
+//  - each such curve is traced by its index k, one 1-D solve per anti-diagonal t2 - t1 = s, never by
+//    following a numerical branch; the signed g = z^T b / |z| (b the null vector, orientation kept
+//    continuous) changes sign exactly at the SPPs; steps are limited by the turn of b and checked with a
+//    Hermite model of g so that two close roots cannot hide in one step;
+//  - the thin strips left around pole lines are checked by pairing the curves across each line;
+//  - each root is polished by Newton on the pole-free bordered system N(t1,t2) a = 0, z^T cos(W t1) a = 0.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "spp/orbit.hpp"
+#include "spp/system.hpp"
+
+namespace spp {
+
+struct SolveOptions {
+  double t1_max = 0.0;  ///< upper end of the flight half-duration window (required, > 0)
+  double t2_max = 0.0;  ///< upper end of the contact half-duration window (required, > 0)
+  /// Lower ends: t1 -> 0 and t2 -> 0 are limits (pure contact or pure flight oscillations), not SPPs.
+  /// 0 selects 1e-4 * pi / (2 * largest frequency of the phase). Roots that polish to t1 < 2 t1_min (or
+  /// t2 < 2 t2_min) are the limits at the axes and are dropped.
+  double t1_min = 0.0;
+  double t2_min = 0.0;
+  double pole_margin = 1e-6;        ///< distance kept from pole lines, relative to the neighbouring cell width
+  double max_turn = 0.1;            ///< largest angle (rad) of the null vector b between two trace points
+  double min_step = 1e-13;          ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
+  double admissibility_tol = 1e-9;  ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
+  bool admissible_only = false;     ///< keep only admissible SPPs in the result
+  bool compute_return_error = true; ///< propagate each SPP over one period with the physical flows
+
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void validate() const;
+};
+
+enum class SolveStatus {
+  NotRun,      ///< default: solve() has not filled this result
+  Success,     ///< every check of completeness passed
+  Incomplete,  ///< a check could not be certified: see warnings (near-double roots, unpaired strip crossings)
+};
+const char* to_string(SolveStatus s);
+
+struct Solution {
+  double t1 = 0.0, t2 = 0.0, period = 0.0;
+  bool admissible = false;
+  double min_gap = 0.0, min_force = 0.0, energy = 0.0;
+  double residual = 0.0;      ///< relative residual of N a = 0 and z^T p0 = 0 (eqs. 5.1a-b)
+  double return_error = -1.0; ///< relative periodicity error after one period (-1: not computed)
+  Orbit orbit;
+  Admissibility admissibility;
+  std::vector<std::string> flags;  ///< e.g. "near_double_root", "near_pole_line", "decoupled_mode_resonant"
+};
+
+struct SolveStats {
+  int flight_pole_lines = 0, contact_pole_lines = 0;
+  long rectangles = 0, curve_pieces = 0, roots = 0;
+  long evaluations = 0;       ///< symmetric eigen-decompositions of H
+  long strip_pairs = 0;       ///< curves paired across pole lines
+  long unpaired_crossings = 0;
+  long near_double_roots = 0;
+  double seconds = 0.0;
+};
+
+struct SolveResult {
+  SolveStatus status = SolveStatus::NotRun;
+  std::vector<Solution> solutions;  ///< sorted by period
+  SolveStats stats;
+  double t1_min = 0.0, t2_min = 0.0, t1_max = 0.0, t2_max = 0.0;  ///< the window actually searched
+  int decoupled_modes = 0, repeated_groups = 0;
+  std::vector<std::string> warnings;
+  /// One line: status, counts, time.
+  std::string brief_report() const;
+};
+
+/// Finds every potential SPP in the window, builds its initial conditions and checks admissibility.
+/// Throws std::invalid_argument for invalid options or g0 = 0 (the zero-gap case needs a parameter).
+SolveResult solve(const System& system, const SolveOptions& options);
+
+/// The SPP nearest to (t1, t2): Newton on the bordered pole-free system from that point, then initial
+/// conditions and admissibility. Throws std::invalid_argument if Newton does not converge to a root within
+/// 1e-3 (t1 + t2) of the given point.
+Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options = {});
+
+}  // namespace spp

@@ -1,0 +1,43 @@
+#pragma once
+// The mechanical system of the paper (Thorin, Delezoide, Legrand 2017, eqs. 1.1-1.2):
+//   M x'' + K x = w lambda,  g(x) = w^T x + g0 >= 0,  lambda >= 0,  g lambda = 0.
+// An immutable value, validated once when built.
+
+#include <Eigen/Dense>
+#include <string>
+
+namespace spp {
+
+/// A linear n-dof system with one affine unilateral constraint; w is stored unit-length.
+class System {
+ public:
+  /// Validates and stores the system; w and g0 are divided by |w| (the gap keeps its sign and zero set).
+  /// Throws std::invalid_argument naming the field and the rule on any invalid input.
+  System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, std::string name = "");
+
+  int n() const { return static_cast<int>(M_.rows()); }
+  const Eigen::MatrixXd& M() const { return M_; }
+  const Eigen::MatrixXd& K() const { return K_; }
+  const Eigen::VectorXd& w() const { return w_; }  ///< unit contact direction
+  double g0() const { return g0_; }                 ///< gap at rest, in the units of x (after normalising w)
+  double w_input_norm() const { return w_input_norm_; }  ///< |w| as given; 1 means w was already unit
+  const std::string& name() const { return name_; }
+
+  /// K~ of Theorem 2.1, eq. (2.4): the stiffness that mimics the contact phase.
+  Eigen::MatrixXd contact_stiffness() const;
+
+  /// Gap g(x) = w^T x + g0 and normal contact force of eq. (2.7) during contact.
+  double gap(const Eigen::VectorXd& x) const { return w_.dot(x) + g0_; }
+
+ private:
+  Eigen::MatrixXd M_, K_;
+  Eigen::VectorXd w_;
+  double g0_ = 0.0;
+  double w_input_norm_ = 1.0;
+  std::string name_;
+};
+
+/// Relative tolerance used to accept M and K as symmetric: |A - A^T|_max <= tol * |A|_max.
+inline constexpr double kSymmetryTolerance = 1e-10;
+
+}  // namespace spp

@@ -1,0 +1,71 @@
+#include "spp/generators.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace spp {
+
+namespace {
+std::vector<double> expand(const std::vector<double>& v, int n, const char* name) {
+  if (v.size() == 1) return std::vector<double>(static_cast<size_t>(n), v[0]);
+  if (v.size() != static_cast<size_t>(n)) {
+    std::ostringstream os;
+    os << "chain: " << name << " must have 1 or n = " << n << " values, got " << v.size();
+    throw std::invalid_argument(os.str());
+  }
+  return v;
+}
+}  // namespace
+
+System chain(int n, const std::vector<double>& masses, const std::vector<double>& stiffnesses, int contact_dof,
+             ContactSide side, double g0) {
+  if (n < 1) throw std::invalid_argument("chain: n must be >= 1, got " + std::to_string(n));
+  if (contact_dof < 0 || contact_dof >= n) {
+    std::ostringstream os;
+    os << "chain: contact dof must be in [1, " << n << "], got " << contact_dof + 1;
+    throw std::invalid_argument(os.str());
+  }
+  const auto m = expand(masses, n, "masses"), k = expand(stiffnesses, n, "stiffnesses");
+  for (int i = 0; i < n; ++i)
+    if (!(m[i] > 0) || !(k[i] > 0)) {
+      std::ostringstream os;
+      os << "chain: masses and stiffnesses must be positive, got m" << i + 1 << " = " << m[i] << ", k" << i + 1
+         << " = " << k[i];
+      throw std::invalid_argument(os.str());
+    }
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    M(i, i) = m[i];
+    K(i, i) += k[i];
+    if (i > 0) {
+      K(i - 1, i - 1) += k[i];
+      K(i - 1, i) -= k[i];
+      K(i, i - 1) -= k[i];
+    }
+  }
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+  w(contact_dof) = side == ContactSide::Upper ? -1.0 : 1.0;
+  return System(M, K, w, g0, "chain" + std::to_string(n));
+}
+
+System rod_with_slip(double a, double b) {
+  Eigen::MatrixXd M(4, 4), K(4, 4);
+  M << 4, 1, 0, 0, 1, 2, 0, 0, 0, 0, 3, 1.5, 0, 0, 1.5, 6;      // eq. (5.6)
+  K << 2, -1, 0, 0, -1, 1, 0, 0, 0, 0, 2.5, -2.5, 0, 0, -2.5, 5;
+  const double s = std::sqrt(1.0 + a * a);
+  Eigen::VectorXd w(4);
+  w << 0, a / s, -1 / s, 0;  // eq. (5.7)
+  return System(M, K, w, b / s, "rod4");
+}
+
+System two_dof(double m1, double m2, double k1, double k2, double g0) {
+  Eigen::MatrixXd M(2, 2), K(2, 2);
+  M << m1, 0, 0, m2;  // eq. (2.5)
+  K << k1 + k2, -k2, -k2, k2;
+  Eigen::VectorXd w(2);
+  w << 0, -1;
+  return System(M, K, w, g0, "two_dof");
+}
+
+}  // namespace spp

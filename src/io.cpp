@@ -1,0 +1,289 @@
+#include "spp/io.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace spp {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+[[noreturn]] void fail(const std::string& s) { throw std::invalid_argument(s); }
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << std::setprecision(17) << v;
+  return os.str();
+}
+
+Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir) {
+  if (!j.contains(key)) fail(where + ": missing field \"" + key + "\"");
+  const json& v = j.at(key);
+  if (v.is_object()) {
+    if (!v.contains("matrix_market") || !v.at("matrix_market").is_string())
+      fail(where + ": field \"" + key + "\" must be a list of rows or {\"matrix_market\": \"file.mtx\"}");
+    fs::path p = v.at("matrix_market").get<std::string>();
+    if (p.is_relative()) p = fs::path(dir) / p;
+    return read_matrix_market(p.string());
+  }
+  if (!v.is_array() || v.empty())
+    fail(where + ": field \"" + key + "\" must be a non-empty list of rows, got " + std::string(v.type_name()));
+  const size_t rows = v.size();
+  if (!v[0].is_array()) fail(where + ": field \"" + key + "\" row 0 must be a list of numbers");
+  const size_t cols = v[0].size();
+  Eigen::MatrixXd A(rows, cols);
+  for (size_t i = 0; i < rows; ++i) {
+    if (!v[i].is_array() || v[i].size() != cols) {
+      std::ostringstream os;
+      os << where << ": field \"" << key << "\" row " << i << " must have " << cols << " entries like row 0, got "
+         << (v[i].is_array() ? std::to_string(v[i].size()) + " entries" : std::string(v[i].type_name()));
+      fail(os.str());
+    }
+    for (size_t c = 0; c < cols; ++c) {
+      if (!v[i][c].is_number()) {
+        std::ostringstream os;
+        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got "
+           << v[i][c].dump();
+        fail(os.str());
+      }
+      A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) = v[i][c].get<double>();
+    }
+  }
+  return A;
+}
+}  // namespace
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cannot open \"" + path + "\" for reading");
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+System system_from_json(const json& j, const std::string& where, const std::string& dir) {
+  if (!j.is_object()) fail(where + ": expected a JSON object with fields M, K, w, g0");
+  Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
+  Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
+  if (!j.contains("w")) fail(where + ": missing field \"w\"");
+  const json& jw = j.at("w");
+  if (!jw.is_array() || jw.empty()) fail(where + ": field \"w\" must be a non-empty list of numbers");
+  Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
+  for (size_t i = 0; i < jw.size(); ++i) {
+    if (!jw[i].is_number()) fail(where + ": field \"w\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
+    w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
+  }
+  if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
+  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + j.at("g0").dump());
+  std::string name = j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+  try {
+    return System(std::move(M), std::move(K), std::move(w), j.at("g0").get<double>(), name);
+  } catch (const std::invalid_argument& e) {
+    fail(where + ": " + e.what());
+  }
+}
+
+System load_system(const std::string& path) {
+  const std::string text = read_file(path);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    fail(path + ": malformed JSON: " + e.what());
+  }
+  const std::string dir = fs::path(path).parent_path().string();
+  return system_from_json(j, path, dir.empty() ? "." : dir);
+}
+
+json system_to_json(const System& s) {
+  auto mat = [](const Eigen::MatrixXd& A) {
+    json rows = json::array();
+    for (Eigen::Index i = 0; i < A.rows(); ++i) {
+      json r = json::array();
+      for (Eigen::Index c = 0; c < A.cols(); ++c) r.push_back(A(i, c));
+      rows.push_back(r);
+    }
+    return rows;
+  };
+  json j;
+  j["name"] = s.name();
+  j["M"] = mat(s.M());
+  j["K"] = mat(s.K());
+  j["w"] = std::vector<double>(s.w().data(), s.w().data() + s.w().size());
+  j["g0"] = s.g0();
+  return j;
+}
+
+Eigen::MatrixXd read_matrix_market(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail("cannot open Matrix Market file \"" + path + "\"");
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("%%MatrixMarket", 0) != 0)
+    fail(path + ": line 1 must start with %%MatrixMarket");
+  std::istringstream hs(line);
+  std::string banner, object, format, field, symmetry;
+  hs >> banner >> object >> format >> field >> symmetry;
+  for (auto* s : {&object, &format, &field, &symmetry})
+    for (auto& ch : *s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (object != "matrix") fail(path + ": expected object \"matrix\", got \"" + object + "\"");
+  if (format != "coordinate" && format != "array")
+    fail(path + ": expected format coordinate or array, got \"" + format + "\"");
+  if (field != "real" && field != "integer" && field != "double")
+    fail(path + ": expected field real or integer, got \"" + field + "\"");
+  if (symmetry != "general" && symmetry != "symmetric")
+    fail(path + ": expected symmetry general or symmetric, got \"" + symmetry + "\"");
+  int lineno = 1;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (!line.empty() && line[0] != '%') break;
+  }
+  std::istringstream ss(line);
+  long rows = 0, cols = 0, nnz = 0;
+  ss >> rows >> cols;
+  if (format == "coordinate") ss >> nnz;
+  if (!ss || rows <= 0 || cols <= 0 || nnz < 0) fail(path + ":" + std::to_string(lineno) + ": bad size line \"" + line + "\"");
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
+  const bool sym = symmetry == "symmetric";
+  if (format == "coordinate") {
+    for (long e = 0; e < nnz; ++e) {
+      if (!std::getline(in, line)) fail(path + ": expected " + std::to_string(nnz) + " entries, got " + std::to_string(e));
+      ++lineno;
+      std::istringstream es(line);
+      long i = 0, j = 0;
+      double v = 0;
+      es >> i >> j >> v;
+      if (!es || i < 1 || i > rows || j < 1 || j > cols)
+        fail(path + ":" + std::to_string(lineno) + ": bad entry \"" + line + "\"");
+      A(i - 1, j - 1) = v;
+      if (sym) A(j - 1, i - 1) = v;
+    }
+  } else {
+    for (long j = 0; j < cols; ++j)
+      for (long i = sym ? j : 0; i < rows; ++i) {
+        double v = 0;
+        if (!(in >> v)) fail(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ")");
+        A(i, j) = v;
+        if (sym) A(j, i) = v;
+      }
+  }
+  return A;
+}
+
+json result_to_json(const System& s, const SolveResult& r) {
+  json j;
+  auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  j["system"] = {{"name", s.name()}, {"n", s.n()}, {"g0", s.g0()}, {"w", vec(s.w())},
+                 {"w_normalized", s.w_input_norm() != 1.0}, {"w_input_norm", s.w_input_norm()}};
+  j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
+  j["status"] = to_string(r.status);
+  j["warnings"] = r.warnings;
+  j["stats"] = {{"flight_pole_lines", r.stats.flight_pole_lines},
+                {"contact_pole_lines", r.stats.contact_pole_lines},
+                {"rectangles", r.stats.rectangles},
+                {"curve_pieces", r.stats.curve_pieces},
+                {"roots", r.stats.roots},
+                {"evaluations", r.stats.evaluations},
+                {"strip_pairs", r.stats.strip_pairs},
+                {"unpaired_crossings", r.stats.unpaired_crossings},
+                {"near_double_roots", r.stats.near_double_roots},
+                {"decoupled_modes", r.decoupled_modes},
+                {"repeated_frequency_groups", r.repeated_groups},
+                {"seconds", r.stats.seconds}};
+  json sols = json::array();
+  for (const Solution& x : r.solutions) {
+    json o = {{"t1", x.t1}, {"t2", x.t2}, {"period", x.period}, {"admissible", x.admissible},
+              {"min_gap", x.min_gap}, {"min_force", x.min_force}, {"x0", vec(x.orbit.x0)}, {"v0", vec(x.orbit.v0)},
+              {"energy", x.energy}, {"residual", x.residual}, {"return_error", x.return_error},
+              {"mid_flight_gap", x.admissibility.mid_flight_gap},
+              {"mid_contact_force", x.admissibility.mid_contact_force},
+              {"onset_force_rate", x.admissibility.onset_force_rate},
+              {"admissibility_certified", x.admissibility.certified}, {"flags", x.flags}};
+    sols.push_back(o);
+  }
+  j["solutions"] = sols;
+  return j;
+}
+
+std::string result_to_csv(const SolveResult& r) {
+  std::ostringstream os;
+  os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error";
+  const int n = r.solutions.empty() ? 0 : static_cast<int>(r.solutions[0].orbit.x0.size());
+  for (int i = 1; i <= n; ++i) os << ",x0_" << i;
+  for (int i = 1; i <= n; ++i) os << ",v0_" << i;
+  os << "\n";
+  for (const Solution& x : r.solutions) {
+    os << num(x.t1) << "," << num(x.t2) << "," << num(x.period) << "," << (x.admissible ? 1 : 0) << ","
+       << num(x.min_gap) << "," << num(x.min_force) << "," << num(x.energy) << "," << num(x.residual) << ","
+       << num(x.return_error);
+    for (int i = 0; i < n; ++i) os << "," << num(x.orbit.x0(i));
+    for (int i = 0; i < n; ++i) os << "," << num(x.orbit.v0(i));
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string result_table(const SolveResult& r) {
+  std::ostringstream os;
+  os << std::setw(4) << "#" << std::setw(14) << "t1" << std::setw(14) << "t2" << std::setw(14) << "period"
+     << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force" << "\n";
+  int i = 0;
+  for (const Solution& x : r.solutions) {
+    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1 << std::setw(14) << x.t2
+       << std::setw(14) << x.period << std::setw(12) << (x.admissible ? "yes" : "no") << std::setprecision(3)
+       << std::setw(14) << x.min_gap << std::setw(14) << x.min_force;
+    for (const auto& f : x.flags) os << "  [" << f << "]";
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string trajectory_csv(const ModalForm& md, const Orbit& o, int samples) {
+  std::ostringstream os;
+  const int n = md.n();
+  os << "t";
+  for (int i = 1; i <= n; ++i) os << ",x" << i;
+  for (int i = 1; i <= n; ++i) os << ",v" << i;
+  os << ",gap,force\n";
+  const double T = o.period();
+  for (int k = 0; k < samples; ++k) {
+    const double t = T * k / (samples - 1);
+    const OrbitState st = orbit_state(md, o, t);
+    os << num(t);
+    for (int i = 0; i < n; ++i) os << "," << num(st.x(i));
+    for (int i = 0; i < n; ++i) os << "," << num(st.v(i));
+    os << "," << num(st.gap) << "," << num(st.force) << "\n";
+  }
+  return os.str();
+}
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir)) fail("cannot write \"" + path + "\": directory \"" + dir.string() + "\" does not exist");
+  const fs::path tmp = dir / (".tmp." + target.filename().string() + "." + std::to_string(::getpid()));
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) fail("cannot write \"" + path + "\": cannot create a temporary file in \"" + dir.string() + "\"");
+    out << content;
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      fail("cannot write \"" + path + "\": write failed");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    fail("cannot write \"" + path + "\": rename failed");
+  }
+}
+
+}  // namespace spp

@@ -1,0 +1,158 @@
+#include "spp/modal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace spp {
+
+ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) : n_(system.n()) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(system.K(), system.M());
+  Eigen::VectorXd omega_all = ges.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  Eigen::MatrixXd Phi_all = ges.eigenvectors();  // M-normalised
+  const Eigen::VectorXd& w = system.w();
+
+  // Repeated frequencies: rotate each group (Householder) so that only its first mode couples to w.
+  const int n = n_;
+  for (int i = 0; i < n;) {
+    int j = i + 1;
+    while (j < n && omega_all(j) - omega_all(i) <= repeat_tol * omega_all(j)) ++j;
+    if (j - i > 1) {
+      Eigen::MatrixXd V = Phi_all.middleCols(i, j - i);
+      Eigen::VectorXd c = V.transpose() * w;
+      if (c.norm() > 0.0) {
+        Eigen::VectorXd e = Eigen::VectorXd::Zero(j - i);
+        e(0) = c.norm();
+        Eigen::VectorXd v = c - e;
+        if (v.norm() > 1e-14 * c.norm()) {
+          v.normalize();
+          Eigen::MatrixXd Hh = Eigen::MatrixXd::Identity(j - i, j - i) - 2.0 * v * v.transpose();
+          Phi_all.middleCols(i, j - i) = V * Hh;
+        }
+      }
+      const double wmean = omega_all.segment(i, j - i).mean();
+      omega_all.segment(i, j - i).setConstant(wmean);
+      ++repeated_groups_;
+    }
+    i = j;
+  }
+
+  Eigen::VectorXd b = Phi_all.transpose() * w;  // |b|^2 = w^T M^{-1} w
+  beta_ = b.norm();
+  g0_ = system.g0();
+  std::vector<int> act, dec;
+  for (int k = 0; k < n; ++k) (std::abs(b(k)) > decoupling_tol * beta_ ? act : dec).push_back(k);
+
+  const int m = static_cast<int>(act.size());
+  omega_.resize(m);
+  u_.resize(m);
+  Phi_.resize(n, m);
+  for (int k = 0; k < m; ++k) {
+    omega_(k) = omega_all(act[k]);
+    u_(k) = b(act[k]) / beta_;
+    Phi_.col(k) = Phi_all.col(act[k]);
+  }
+  u_.normalize();
+  omega_dec_.resize(static_cast<Eigen::Index>(dec.size()));
+  Phi_dec_.resize(n, static_cast<Eigen::Index>(dec.size()));
+  for (size_t k = 0; k < dec.size(); ++k) {
+    omega_dec_(static_cast<Eigen::Index>(k)) = omega_all(dec[k]);
+    Phi_dec_.col(static_cast<Eigen::Index>(k)) = Phi_all.col(dec[k]);
+  }
+
+  // Contact phase: S = W^2 - z z^T, PSD with a single zero eigenvalue (eigenvector W^{-1} u).
+  z_ = omega_.cwiseProduct(u_);
+  Eigen::MatrixXd S = Eigen::MatrixXd(omega_.array().square().matrix().asDiagonal()) - z_ * z_.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
+  d_ = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  G_ = es.eigenvectors();
+  if (m > 0) {
+    d_(0) = 0.0;  // exact: the constrained direction
+    Eigen::VectorXd g = u_.cwiseQuotient(omega_).normalized();
+    if (g.dot(G_.col(0)) < 0) g = -g;
+    G_.col(0) = g;
+  }
+}
+
+Eigen::VectorXd ModalForm::flight_part(double t1) const {
+  return (omega_.array() * (omega_.array() * t1).tan()).matrix();
+}
+
+Eigen::VectorXd ModalForm::dflight_dt1(double t1) const {
+  return (omega_.array().square() / (omega_.array() * t1).cos().square()).matrix();
+}
+
+Eigen::MatrixXd ModalForm::contact_part(double t2) const {
+  const Eigen::VectorXd e = (d_.array() * (d_.array() * t2).tan()).matrix();
+  return G_ * e.asDiagonal() * G_.transpose();
+}
+
+Eigen::MatrixXd ModalForm::dcontact_dt2(double t2) const {
+  const Eigen::VectorXd e = (d_.array().square() / (d_.array() * t2).cos().square()).matrix();
+  return G_ * e.asDiagonal() * G_.transpose();
+}
+
+Eigen::MatrixXd ModalForm::H(double t1, double t2) const {
+  Eigen::MatrixXd Hm = contact_part(t2);
+  Hm.diagonal() += flight_part(t1);
+  return Hm;
+}
+
+Eigen::MatrixXd ModalForm::contact_cos(double t) const {
+  const Eigen::VectorXd e = (d_.array() * t).cos().matrix();
+  return G_ * e.asDiagonal() * G_.transpose();
+}
+
+Eigen::MatrixXd ModalForm::contact_sinc(double t) const {
+  Eigen::VectorXd e(d_.size());
+  for (Eigen::Index j = 0; j < d_.size(); ++j) e(j) = d_(j) > 0 ? std::sin(d_(j) * t) / d_(j) : t;
+  return G_ * e.asDiagonal() * G_.transpose();
+}
+
+Eigen::MatrixXd ModalForm::contact_msin(double t) const {
+  const Eigen::VectorXd e = (d_.array() * (d_.array() * t).sin()).matrix();
+  return G_ * e.asDiagonal() * G_.transpose();
+}
+
+Eigen::MatrixXd ModalForm::N(double t1, double t2) const {
+  const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
+  return contact_msin(t2) * c1.matrix().asDiagonal() +
+         contact_cos(t2) * (omega_.array() * s1).matrix().asDiagonal();
+}
+
+Eigen::MatrixXd ModalForm::dN_dt1(double t1, double t2) const {
+  const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
+  return -contact_msin(t2) * (omega_.array() * s1).matrix().asDiagonal() +
+         contact_cos(t2) * (omega_.array().square() * c1).matrix().asDiagonal();
+}
+
+Eigen::MatrixXd ModalForm::dN_dt2(double t1, double t2) const {
+  const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
+  const Eigen::VectorXd e2 = (d_.array().square() * (d_.array() * t2).cos()).matrix();
+  const Eigen::MatrixXd SC = G_ * e2.asDiagonal() * G_.transpose();  // S cos(S^1/2 t2)
+  return SC * c1.matrix().asDiagonal() - contact_msin(t2) * (omega_.array() * s1).matrix().asDiagonal();
+}
+
+std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi) {
+  std::vector<double> poles;
+  for (Eigen::Index k = 0; k < freqs.size(); ++k) {
+    const double f = freqs(k);
+    if (!(f > 0)) continue;
+    const double kmin = std::max(0.0, std::ceil(lo * f / std::numbers::pi - 0.5));
+    for (double j = kmin;; j += 1.0) {
+      const double t = (j + 0.5) * std::numbers::pi / f;
+      if (t >= hi) break;
+      if (t > lo) poles.push_back(t);
+    }
+  }
+  std::sort(poles.begin(), poles.end());
+  std::vector<double> merged;
+  for (double t : poles)
+    if (merged.empty() || t - merged.back() > 1e-12 * t) merged.push_back(t);
+  return merged;
+}
+
+std::vector<double> ModalForm::flight_poles(double lo, double hi) const { return tangent_poles(omega_, lo, hi); }
+std::vector<double> ModalForm::contact_poles(double lo, double hi) const { return tangent_poles(d_, lo, hi); }
+
+}  // namespace spp

@@ -1,0 +1,594 @@
+#include "spp/solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "spp/detail/brent.hpp"
+#include "spp/modal.hpp"
+
+namespace spp {
+
+const char* to_string(SolveStatus s) {
+  switch (s) {
+    case SolveStatus::NotRun: return "not_run";
+    case SolveStatus::Success: return "success";
+    case SolveStatus::Incomplete: return "incomplete";
+  }
+  return "unknown";
+}
+
+void SolveOptions::validate() const {
+  auto positive_finite = [](double v, const char* name) {
+    if (!(std::isfinite(v) && v > 0.0)) {
+      std::ostringstream os;
+      os << "options: " << name << " must be positive and finite, got " << v;
+      throw std::invalid_argument(os.str());
+    }
+  };
+  positive_finite(t1_max, "t1_max");
+  positive_finite(t2_max, "t2_max");
+  auto lower = [](double v, double hi, const char* name, const char* hiname) {
+    if (!(std::isfinite(v) && v >= 0.0 && v < hi)) {
+      std::ostringstream os;
+      os << "options: " << name << " must be >= 0 and < " << hiname << " = " << hi << " (0 = automatic), got "
+         << v;
+      throw std::invalid_argument(os.str());
+    }
+  };
+  lower(t1_min, t1_max, "t1_min", "t1_max");
+  lower(t2_min, t2_max, "t2_min", "t2_max");
+  auto in_open = [](double v, double lo, double hi, const char* name) {
+    if (!(v > lo && v < hi)) {
+      std::ostringstream os;
+      os << "options: " << name << " must be in (" << lo << ", " << hi << "), got " << v;
+      throw std::invalid_argument(os.str());
+    }
+  };
+  in_open(pole_margin, 0.0, 0.1, "pole_margin");
+  in_open(max_turn, 0.0, 1.0, "max_turn");
+  in_open(min_step, 0.0, 1e-3, "min_step");
+  in_open(admissibility_tol, 0.0, 1e-2, "admissibility_tol");
+}
+
+std::string SolveResult::brief_report() const {
+  std::ostringstream os;
+  long adm = std::count_if(solutions.begin(), solutions.end(), [](const Solution& s) { return s.admissible; });
+  os << "spp: " << to_string(status) << ", " << solutions.size() << " SPPs (" << adm << " admissible) in ("
+     << t1_min << ", " << t1_max << "] x (" << t2_min << ", " << t2_max << "]; " << stats.rectangles
+     << " rectangles, " << stats.curve_pieces << " curve pieces, " << stats.evaluations << " evaluations, "
+     << stats.seconds << " s";
+  return os.str();
+}
+
+namespace {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+
+struct EigAt {
+  double t1 = 0, t2 = 0;
+  Vec lam;
+  Mat V;
+};
+
+// A point on curve k: position, oriented null vector, signed g and dg/ds along s = t2 - t1.
+struct TracePoint {
+  double s = 0, t1 = 0, t2 = 0, g = 0, dg = 0;
+  Vec b;
+};
+
+struct EdgeHit {
+  double pos = 0;  // coordinate along the pole line (t2 on a vertical line, t1 on a horizontal one)
+  double t1 = 0, t2 = 0, g = 0;
+  Vec b;
+};
+
+struct Candidate {
+  double t1, t2;
+  bool near_double = false, near_pole = false;
+};
+
+class Search {
+ public:
+  Search(const ModalForm& md, const SolveOptions& opt, SolveStats& st) : md_(md), opt_(opt), st_(st) {
+    zhat_ = md_.z().normalized();
+    d2_ = md_.d().array().square();
+  }
+
+  // ---- evaluations ----
+  EigAt eig(double t1, double t2) {
+    if (t2 != cached_t2_) {
+      C_ = md_.contact_part(t2);
+      cached_t2_ = t2;
+    }
+    Mat Hm = C_;
+    Hm.diagonal() += md_.flight_part(t1);
+    Eigen::SelfAdjointEigenSolver<Mat> es(Hm);
+    ++st_.evaluations;
+    return {t1, t2, es.eigenvalues(), es.eigenvectors()};
+  }
+
+  // b^T dH/dt1 b and b^T dH/dt2 b (both >= 0).
+  std::pair<double, double> grads(const Vec& b, double t1, double t2) const {
+    const double l1 = (md_.dflight_dt1(t1).array() * b.array().square()).sum();
+    const Vec y = md_.G().transpose() * b;
+    const double l2 = (d2_ / (md_.d().array() * t2).cos().square() * y.array().square()).sum();
+    return {l1, l2};
+  }
+
+  TracePoint point(const EigAt& e, int k, const Vec* ref) const {
+    TracePoint p;
+    p.t1 = e.t1;
+    p.t2 = e.t2;
+    p.s = e.t2 - e.t1;
+    const Vec b0 = e.V.col(k);
+    const double sign = (ref && b0.dot(*ref) < 0) ? -1.0 : 1.0;
+    const auto [l1, l2] = grads(b0, e.t1, e.t2);
+    const double tp = -l2 / (l1 + l2);  // dtau/ds on the curve
+    const Vec y = md_.G().transpose() * b0;
+    const Vec e2 = (d2_ / (md_.d().array() * e.t2).cos().square()).matrix();
+    const Vec dHb = tp * md_.dflight_dt1(e.t1).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
+    // first-order perturbation of the eigenvector: db = -sum_{j != k} v_j (v_j^T dH b) / (lam_j - lam_k)
+    const Vec proj = e.V.transpose() * dHb, zv = e.V.transpose() * zhat_;
+    double dg = 0.0;
+    const double scale = e.lam.cwiseAbs().maxCoeff();
+    for (int j = 0; j < e.lam.size(); ++j) {
+      const double gap = e.lam(j) - e.lam(k);
+      if (j == k || std::abs(gap) <= 1e-14 * scale) continue;
+      dg -= proj(j) / gap * zv(j);
+    }
+    p.b = sign * b0;
+    p.g = sign * zhat_.dot(b0);
+    p.dg = sign * dg;
+    return p;
+  }
+
+  // Root of lambda_k along the segment P0 -> P1 (lambda_k(P0) <= 0 < lambda_k(P1)).
+  EigAt edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
+    EigAt last;
+    auto f = [&](double sig) {
+      last = eig(t1a + sig * (t1b - t1a), t2a + sig * (t2b - t2a));
+      return last.lam(k);
+    };
+    const double sig = detail::brent(f, 0.0, 1.0, fa, fb, 1e-15);
+    if (last.lam.size() == 0 || std::abs(last.t1 - (t1a + sig * (t1b - t1a))) > 0 ||
+        std::abs(last.t2 - (t2a + sig * (t2b - t2a))) > 0)
+      f(sig);
+    return last;
+  }
+
+  // Root of lambda_k on the anti-diagonal t2 - t1 = s inside [lo, hi] (bounds on tau = t1).
+  EigAt diagonal_root(double s, double lo, double hi, double guess, int k) {
+    double tau = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
+    EigAt e;
+    const double tol = 1e-15 * (std::abs(lo) + std::abs(hi) + std::abs(s));
+    for (int it = 0; it < 100; ++it) {
+      e = eig(tau, tau + s);
+      const double f = e.lam(k);
+      if (f < 0) lo = tau; else hi = tau;
+      if (f == 0.0) break;
+      const auto [l1, l2] = grads(e.V.col(k), tau, tau + s);
+      double next = tau - f / (l1 + l2);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - tau) <= tol || hi - lo <= tol) break;
+      tau = next;
+    }
+    return e;
+  }
+
+  // ---- one rectangle ----
+  struct Rect {
+    double a1, b1, A, B;              // shrunk bounds
+    bool left_pole, right_pole, bottom_pole, top_pole;
+  };
+
+  void rectangle(const Rect& r, std::vector<EdgeHit>& left_exits, std::vector<EdgeHit>& top_exits,
+                 std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
+    ++st_.rectangles;
+    const EigAt BL = eig(r.a1, r.A), TR = eig(r.b1, r.B);
+    const int m = md_.m();
+    auto nneg = [m](const EigAt& e) {
+      int c = 0;
+      for (int j = 0; j < m; ++j) c += e.lam(j) < 0;
+      return c;
+    };
+    const int kmin = nneg(TR), kmax = nneg(BL);  // curves k in [kmin, kmax)
+    if (kmin >= kmax) return;
+    const EigAt BR = eig(r.b1, r.A), TL = eig(r.a1, r.B);
+    for (int k = kmin; k < kmax; ++k) {
+      ++st_.curve_pieces;
+      // entry on the lower-right path, exit on the upper-left path (design note §3b)
+      EigAt in, out;
+      bool in_bottom = BR.lam(k) > 0, out_left = TL.lam(k) > 0;
+      if (in_bottom) in = edge_root(r.a1, r.A, r.b1, r.A, k, BL.lam(k), BR.lam(k));
+      else in = edge_root(r.b1, r.A, r.b1, r.B, k, BR.lam(k), TR.lam(k));
+      if (out_left) out = edge_root(r.a1, r.A, r.a1, r.B, k, BL.lam(k), TL.lam(k));
+      else out = edge_root(r.a1, r.B, r.b1, r.B, k, TL.lam(k), TR.lam(k));
+      TracePoint pin = point(in, k, nullptr);
+      TracePoint pout = trace(r, k, pin, out);
+      auto hit = [](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b}; };
+      if (in_bottom ? r.bottom_pole : r.right_pole)
+        (in_bottom ? bottom_entries : right_entries).push_back(hit(pin, in_bottom ? pin.t1 : pin.t2));
+      if (out_left ? r.left_pole : r.top_pole)
+        (out_left ? left_exits : top_exits).push_back(hit(pout, out_left ? pout.t2 : pout.t1));
+    }
+  }
+
+  // Trace curve k from entry to exit; returns the oriented exit point. Roots of g go to candidates_.
+  TracePoint trace(const Rect& r, int k, const TracePoint& pin, const EigAt& out) {
+    const double s_in = pin.s, s_out = out.t2 - out.t1;
+    const double span = s_out - s_in;
+    const double hmin = opt_.min_step * (opt_.t1_max + opt_.t2_max);
+    TracePoint cur = pin;
+    if (!(span > 0)) {
+      TracePoint p = point(out, k, &cur.b);
+      examine(r, k, cur, p, 0);
+      return p;
+    }
+    double h = span / 4.0;
+    double slope = 0.0;  // dtau/ds estimate for the predictor
+    while (cur.s < s_out) {
+      const bool last = cur.s + h >= s_out - 1e-12 * std::abs(span);
+      TracePoint p;
+      if (last) {
+        p = point(out, k, &cur.b);
+      } else {
+        const double s = cur.s + h;
+        const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
+        p = point(diagonal_root(s, lo, hi, cur.t1 + slope * h, k), k, &cur.b);
+      }
+      const double turn = std::acos(std::min(1.0, std::abs(cur.b.dot(p.b))));
+      if (turn > opt_.max_turn && (last ? s_out - cur.s : h) > hmin) {
+        h = 0.5 * (last ? s_out - cur.s : h);
+        continue;
+      }
+      examine(r, k, cur, p, 0);
+      if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
+      cur = p;
+      if (turn < 0.25 * opt_.max_turn) h *= 2.0;
+      h = std::min(h, span / 4.0);
+    }
+    return cur;
+  }
+
+  // g on [A, B] of curve k: locate sign changes, refine where a Hermite model of g dips towards zero.
+  void examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
+    const double h = B.s - A.s;
+    const double hmin = opt_.min_step * (opt_.t1_max + opt_.t2_max);
+    // Hermite cubic in sigma in [0,1]
+    auto herm = [&](double x) {
+      const double h00 = (1 + 2 * x) * (1 - x) * (1 - x), h10 = x * (1 - x) * (1 - x);
+      const double h01 = x * x * (3 - 2 * x), h11 = x * x * (x - 1);
+      return h00 * A.g + h10 * h * A.dg + h01 * B.g + h11 * h * B.dg;
+    };
+    int changes = 0;
+    double prev = A.g, xmin = 0.5, vmin = std::numeric_limits<double>::infinity();
+    const int ns = 32;
+    for (int i = 1; i <= ns; ++i) {
+      const double x = static_cast<double>(i) / ns;
+      const double v = i == ns ? B.g : herm(x);
+      if ((v > 0) != (prev > 0)) ++changes;
+      const double sv = (A.g > 0 ? v : -v);
+      if (i < ns && sv < vmin) {
+        vmin = sv;
+        xmin = x;
+      }
+      prev = v;
+    }
+    const bool endpoints_differ = (A.g > 0) != (B.g > 0);
+    const double gscale = std::max(std::abs(A.g), std::abs(B.g));
+    // Interior dip of the model towards (or through) zero, away from the end values.
+    const bool dip = vmin < 0.25 * std::min(std::abs(A.g), std::abs(B.g)) && vmin < 0.25 * gscale &&
+                     xmin > 0.02 && xmin < 0.98;
+    const bool suspicious = (endpoints_differ && changes > 1) || (!endpoints_differ && (changes > 0 || dip));
+    if (suspicious) {
+      if (h <= hmin || depth > 60) {
+        if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < 1e-8) {
+          ++st_.near_double_roots;
+          candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false});
+        }
+        if (!endpoints_differ) return;
+      } else {
+        const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
+        const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
+        const TracePoint M = point(diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), k, &A.b);
+        examine(r, k, A, M, depth + 1);
+        examine(r, k, M, B, depth + 1);
+        return;
+      }
+    }
+    if (!endpoints_differ) return;
+    // One sign change: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
+    auto g_at = [&](double s) {
+      const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
+      const double guess = A.t1 + (B.t1 - A.t1) * (s - A.s) / h;
+      const EigAt e = diagonal_root(s, lo, hi, guess, k);
+      Vec b = e.V.col(k);
+      if (b.dot(A.b) < 0) b = -b;
+      return zhat_.dot(b);
+    };
+    const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
+    const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
+    const EigAt e = diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k);
+    candidates_.push_back({e.t1, e.t2, false, false});
+  }
+
+  // Pairs curves across one pole line, in order along it; a sign change of the oriented g inside the thin
+  // strip is an SPP there.
+  void pair_across(const std::vector<EdgeHit>& from, const std::vector<EdgeHit>& to) {
+    if (from.size() != to.size()) {
+      st_.unpaired_crossings += static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size()));
+      return;
+    }
+    for (size_t i = 0; i < from.size(); ++i) {
+      ++st_.strip_pairs;
+      double g2 = to[i].g;
+      if (from[i].b.dot(to[i].b) < 0) g2 = -g2;
+      if ((from[i].g > 0) != (g2 > 0))
+        candidates_.push_back({0.5 * (from[i].t1 + to[i].t1), 0.5 * (from[i].t2 + to[i].t2), false, true});
+    }
+  }
+
+  std::vector<Candidate> candidates_;
+
+ private:
+  const ModalForm& md_;
+  const SolveOptions& opt_;
+  SolveStats& st_;
+  Vec zhat_;
+  Eigen::ArrayXd d2_;
+  double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
+  Mat C_;
+};
+
+// Newton on the pole-free bordered system: N(t1,t2) a = 0, z^T cos(W t1) a = 0, a_ref^T a = 1.
+struct Polished {
+  bool converged = false;
+  double t1 = 0, t2 = 0, residual = 1.0;
+  Vec a;
+};
+
+double residual_of(const ModalForm& md, double t1, double t2, const Vec& a) {
+  const Mat N = md.N(t1, t2);
+  const Vec p0 = ((md.omega().array() * t1).cos() * a.array()).matrix();
+  const double r1 = (N * a).norm() / (N.norm() * a.norm());
+  const double r2 = std::abs(md.z().dot(p0)) / (md.z().norm() * std::max(p0.norm(), 1e-300));
+  return std::max(r1, r2);
+}
+
+Polished polish(const ModalForm& md, double t1, double t2) {
+  const int m = md.m();
+  Polished out;
+  Eigen::JacobiSVD<Mat> svd(md.N(t1, t2), Eigen::ComputeFullV);
+  Vec a = svd.matrixV().col(m - 1);
+  const Vec aref = a;
+  const Eigen::ArrayXd& w = md.omega().array();
+  double best = residual_of(md, t1, t2, a);
+  out = {false, t1, t2, best, a};
+  for (int it = 0; it < 12; ++it) {
+    const Mat N = md.N(t1, t2);
+    Vec F(m + 2);
+    F.head(m) = N * a;
+    F(m) = md.z().dot(((w * t1).cos() * a.array()).matrix());
+    F(m + 1) = aref.dot(a) - 1.0;
+    Mat J = Mat::Zero(m + 2, m + 2);
+    J.block(0, 0, m, 1) = md.dN_dt1(t1, t2) * a;
+    J.block(0, 1, m, 1) = md.dN_dt2(t1, t2) * a;
+    J.block(0, 2, m, m) = N;
+    J(m, 0) = -md.z().dot((w * (w * t1).sin() * a.array()).matrix());
+    J.block(m, 2, 1, m) = ((w * t1).cos() * md.z().array()).matrix().transpose();
+    J.block(m + 1, 2, 1, m) = aref.transpose();
+    const Vec dx = J.fullPivLu().solve(-F);
+    t1 += dx(0);
+    t2 += dx(1);
+    a += dx.tail(m);
+    const double res = residual_of(md, t1, t2, a);
+    if (res < best) {
+      best = res;
+      out = {false, t1, t2, res, a};
+    }
+    if (dx.head(2).norm() <= 1e-15 * (std::abs(t1) + std::abs(t2))) break;
+  }
+  out.converged = best < 1e-10;
+  return out;
+}
+
+Solution build_solution(const System& system, const ModalForm& md, const Polished& p, const SolveOptions& opt,
+                        bool with_return_error) {
+  Solution s;
+  s.t1 = p.t1;
+  s.t2 = p.t2;
+  s.period = 2.0 * (p.t1 + p.t2);
+  s.residual = p.residual;
+  s.orbit = make_orbit(md, p.t1, p.t2, p.a);
+  if (s.orbit.closure_ratio < 1e-10) s.flags.push_back("gap_closure_degenerate");
+  s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
+  s.admissible = s.admissibility.admissible;
+  s.min_gap = s.admissibility.min_gap;
+  s.min_force = s.admissibility.min_force;
+  s.energy = s.orbit.energy;
+  for (Eigen::Index k = 0; k < md.omega_decoupled().size(); ++k) {
+    const double r = md.omega_decoupled()(k) * (p.t1 + p.t2) / std::numbers::pi;
+    if (std::abs(r - std::round(r)) < 1e-9 * std::max(1.0, r)) s.flags.push_back("decoupled_mode_resonant");
+  }
+  if (with_return_error) s.return_error = return_error(system, s.orbit);
+  return s;
+}
+
+}  // namespace
+
+Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
+  if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
+    std::ostringstream os;
+    os << "solution_at: t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
+    throw std::invalid_argument(os.str());
+  }
+  if (system.g0() == 0.0) throw std::invalid_argument("system: g0 = 0, the scale of eq. (5.2) is undefined");
+  const ModalForm md(system);
+  const Polished p = polish(md, t1, t2);
+  if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > 1e-3 * (t1 + t2)) {
+    std::ostringstream os;
+    os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual "
+       << p.residual << " at (" << p.t1 << ", " << p.t2 << ")";
+    throw std::invalid_argument(os.str());
+  }
+  return build_solution(system, md, p, options, options.compute_return_error);
+}
+
+SolveResult solve(const System& system, const SolveOptions& options) {
+  options.validate();
+  if (system.g0() == 0.0)
+    throw std::invalid_argument(
+        "system: g0 = 0 (obstacle touching the rest position): SPPs then exist only for special parameter "
+        "values (paper §6.1) and need one more unknown; the zero-gap solver with a declared parameter is not "
+        "available yet. Use g0 != 0.");
+  const auto t0 = std::chrono::steady_clock::now();
+  SolveResult res;
+  const ModalForm md(system);
+  res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
+  res.repeated_groups = md.repeated_groups();
+  SolveOptions opt = options;
+  const double pi = std::numbers::pi;
+  if (opt.t1_min == 0.0) opt.t1_min = std::min(1e-4 * pi / (2.0 * md.omega().maxCoeff()), 1e-3 * opt.t1_max);
+  if (opt.t2_min == 0.0) {
+    const double dmax = md.d().maxCoeff();
+    opt.t2_min = std::min(dmax > 0 ? 1e-4 * pi / (2.0 * dmax) : 1e-4 * opt.t2_max, 1e-3 * opt.t2_max);
+  }
+  res.t1_min = opt.t1_min;
+  res.t2_min = opt.t2_min;
+  res.t1_max = opt.t1_max;
+  res.t2_max = opt.t2_max;
+
+  // Breakpoints: window edges and pole lines; a window edge too close to a pole moves inward.
+  auto breakpoints = [&](const std::vector<double>& poles, double lo, double hi, std::vector<double>& bp,
+                         std::vector<bool>& is_pole) {
+    bp.assign(1, lo);
+    is_pole.assign(1, false);
+    for (double p : poles) {
+      bp.push_back(p);
+      is_pole.push_back(true);
+    }
+    bp.push_back(hi);
+    is_pole.push_back(false);
+  };
+  const auto p1 = md.flight_poles(opt.t1_min, opt.t1_max), p2 = md.contact_poles(opt.t2_min, opt.t2_max);
+  res.stats.flight_pole_lines = static_cast<int>(p1.size());
+  res.stats.contact_pole_lines = static_cast<int>(p2.size());
+  std::vector<double> b1, b2;
+  std::vector<bool> pole1, pole2;
+  breakpoints(p1, opt.t1_min, opt.t1_max, b1, pole1);
+  breakpoints(p2, opt.t2_min, opt.t2_max, b2, pole2);
+  // margin kept on each side of breakpoint i
+  auto margins = [&](const std::vector<double>& bp, const std::vector<bool>& is_pole) {
+    std::vector<double> mg(bp.size(), 0.0);
+    for (size_t i = 0; i < bp.size(); ++i) {
+      const double left = i > 0 ? bp[i] - bp[i - 1] : bp[i + 1] - bp[i];
+      const double right = i + 1 < bp.size() ? bp[i + 1] - bp[i] : left;
+      const double mgn = opt.pole_margin * std::min(left, right);
+      mg[i] = is_pole[i] ? std::max(mgn, 4e-16 * bp[i]) : 0.0;
+      // a window edge within the margin of a neighbouring pole: move it inward
+    }
+    return mg;
+  };
+  const auto m1 = margins(b1, pole1), m2 = margins(b2, pole2);
+  // window edge adjacent to a pole closer than that pole's margin: shift inward
+  if (b1.size() > 2 && b1[1] - b1[0] <= 2 * m1[1]) b1[0] = b1[1] + 2 * m1[1];
+  if (b1.size() > 2 && b1.back() - b1[b1.size() - 2] <= 2 * m1[b1.size() - 2]) b1.back() = b1[b1.size() - 2] - 2 * m1[b1.size() - 2];
+  if (b2.size() > 2 && b2[1] - b2[0] <= 2 * m2[1]) b2[0] = b2[1] + 2 * m2[1];
+  if (b2.size() > 2 && b2.back() - b2[b2.size() - 2] <= 2 * m2[b2.size() - 2]) b2.back() = b2[b2.size() - 2] - 2 * m2[b2.size() - 2];
+
+  Search search(md, opt, res.stats);
+  const size_t I = b1.size() - 1, J = b2.size() - 1;
+  // Edge hits kept per pole line: vertical lines by t1-breakpoint index, horizontal by t2-breakpoint index.
+  std::vector<std::vector<EdgeHit>> v_from(b1.size()), v_to(b1.size()), h_from(b2.size()), h_to(b2.size());
+  for (size_t j = 0; j < J; ++j) {
+    for (size_t i = 0; i < I; ++i) {
+      Search::Rect r{b1[i] + m1[i], b1[i + 1] - m1[i + 1], b2[j] + m2[j], b2[j + 1] - m2[j + 1],
+                     pole1[i], pole1[i + 1], pole2[j], pole2[j + 1]};
+      if (!(r.a1 < r.b1 && r.A < r.B)) continue;
+      std::vector<EdgeHit> le, te, re, be;
+      search.rectangle(r, le, te, re, be);
+      // curves leave through the left edge (pole line i) into the right edge of cell i-1, and through the top
+      // edge (pole line j+1) into the bottom edge of strip j+1
+      for (auto& h : le) v_from[i].push_back(std::move(h));
+      for (auto& h : re) v_to[i + 1].push_back(std::move(h));
+      for (auto& h : te) h_from[j + 1].push_back(std::move(h));
+      for (auto& h : be) h_to[j].push_back(std::move(h));
+    }
+    // horizontal pole line j is complete once strip j is done: pair and release it
+    if (j > 0 && pole2[j]) {
+      auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
+      std::sort(h_from[j].begin(), h_from[j].end(), by_pos);
+      std::sort(h_to[j].begin(), h_to[j].end(), by_pos);
+      search.pair_across(h_from[j], h_to[j]);
+      h_from[j].clear();
+      h_to[j].clear();
+    }
+  }
+  for (size_t i = 1; i + 1 < b1.size(); ++i) {
+    if (!pole1[i]) continue;
+    auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
+    std::sort(v_from[i].begin(), v_from[i].end(), by_pos);
+    std::sort(v_to[i].begin(), v_to[i].end(), by_pos);
+    search.pair_across(v_from[i], v_to[i]);
+  }
+
+  // Polish, deduplicate, build orbits.
+  const double window_scale = opt.t1_max + opt.t2_max;
+  for (const Candidate& c : search.candidates_) {
+    const Polished p = polish(md, c.t1, c.t2);
+    if (std::getenv("SPP_DEBUG")) std::fprintf(stderr, "cand %.12g %.12g nd=%d np=%d -> %.12g %.12g res %.3g\n", c.t1, c.t2, c.near_double, c.near_pole, p.t1, p.t2, p.residual);
+    const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-4 * window_scale;
+    if (!p.converged || moved_far) {
+      std::ostringstream os;
+      os << "root near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish (residual " << p.residual
+         << ")";
+      res.warnings.push_back(os.str());
+      if (!c.near_double) continue;
+    }
+    // Each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both equations in the limit
+    // (pure contact oscillation): roots that polish back towards an axis are these limits, not SPPs.
+    if (p.t1 <= 2.0 * opt.t1_min || p.t1 > opt.t1_max || p.t2 <= 2.0 * opt.t2_min || p.t2 > opt.t2_max) continue;
+    bool dup = false;
+    for (const Solution& s : res.solutions)
+      if (std::hypot(s.t1 - p.t1, s.t2 - p.t2) <= 1e-9 * window_scale) dup = true;
+    if (dup) continue;
+    Solution s;
+    try {
+      s = build_solution(system, md, p, opt, options.compute_return_error);
+    } catch (const std::invalid_argument& e) {
+      res.warnings.push_back(std::string("root skipped: ") + e.what());
+      continue;
+    }
+    if (c.near_double) s.flags.push_back("near_double_root");
+    if (c.near_pole) s.flags.push_back("near_pole_line");
+    res.solutions.push_back(std::move(s));
+  }
+  res.stats.roots = static_cast<long>(res.solutions.size());
+  std::sort(res.solutions.begin(), res.solutions.end(),
+            [](const Solution& a, const Solution& b) { return a.period < b.period; });
+  if (options.admissible_only)
+    res.solutions.erase(std::remove_if(res.solutions.begin(), res.solutions.end(),
+                                       [](const Solution& s) { return !s.admissible; }),
+                        res.solutions.end());
+  if (res.stats.unpaired_crossings > 0)
+    res.warnings.push_back(std::to_string(res.stats.unpaired_crossings) +
+                           " curve crossing(s) of a pole line could not be paired (a curve passed within the "
+                           "pole margin of a pole-line intersection): a root in that thin strip is not excluded");
+  if (res.stats.near_double_roots > 0)
+    res.warnings.push_back(std::to_string(res.stats.near_double_roots) +
+                           " near-double root(s): g touches zero to within the step resolution");
+  for (const Solution& s : res.solutions)
+    if (!s.admissibility.certified) res.warnings.push_back("admissibility of an SPP not certified to tolerance");
+  res.status = res.warnings.empty() ? SolveStatus::Success : SolveStatus::Incomplete;
+  res.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace spp
