@@ -30,7 +30,11 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
       fail(where + ": field \"" + key + "\" must be a list of rows or {\"matrix_market\": \"file.mtx\"}");
     fs::path p = v.at("matrix_market").get<std::string>();
     if (p.is_relative()) p = fs::path(dir) / p;
-    return read_matrix_market(p.string());
+    try {
+      return read_matrix_market(p.string());
+    } catch (const std::invalid_argument& e) {
+      fail(where + ": field \"" + key + "\": " + e.what());
+    }
   }
   if (!v.is_array() || v.empty())
     fail(where + ": field \"" + key + "\" must be a non-empty list of rows, got " + std::string(v.type_name()));
@@ -94,7 +98,7 @@ System load_system(const std::string& path) {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers out of double range (e.g. 1e999)
     fail(path + ": malformed JSON: " + e.what());
   }
   const std::string dir = fs::path(path).parent_path().string();

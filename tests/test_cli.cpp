@@ -1,0 +1,181 @@
+// The command-line tool: every validation rule gives a non-zero exit code, a message naming what is wrong,
+// and no output file; the happy paths write loadable JSON and CSV.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int code;
+  std::string out;  // stdout + stderr
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(SPP_CLI) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+fs::path dir() {
+  static fs::path d = [] {
+    fs::path p = fs::temp_directory_path() / ("spp_test_cli_" + std::to_string(::getpid()));
+    fs::create_directories(p);
+    return p;
+  }();
+  return d;
+}
+
+std::string write(const std::string& name, const std::string& text) {
+  const fs::path p = dir() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+const std::string kChain = std::string(SPP_SOURCE_DIR) + "/examples/chain5.json";
+
+// A bad system must fail with a message and leave no output file.
+void expect_rejected(const std::string& sys_json, const std::string& message, const std::string& extra = "") {
+  const std::string sys = write("sys.json", sys_json);
+  const fs::path out = dir() / "out.json";
+  fs::remove(out);
+  const CliRun r = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + out.string() + " " + extra);
+  EXPECT_NE(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
+  EXPECT_FALSE(fs::exists(out)) << "output written despite the error";
+}
+
+const char* kGood = R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})";
+
+}  // namespace
+
+TEST(Cli, SolveWritesJsonAndCsv) {
+  const fs::path js = dir() / "c5.json", cs = dir() / "c5.csv";
+  const CliRun r = run("solve " + kChain + " --t1-max 12 --t2-max 12 --json " + js.string() + " --csv " + cs.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("admissible"), std::string::npos);
+  std::ifstream in(js);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["system"]["n"], 5);
+  EXPECT_EQ(j["window"]["t1_max"], 12.0);
+  ASSERT_GT(j["solutions"].size(), 0u);
+  for (const char* key : {"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy",
+                          "residual", "return_error"})
+    EXPECT_TRUE(j["solutions"][0].contains(key)) << key;
+  std::ifstream c(cs);
+  std::string header;
+  std::getline(c, header);
+  EXPECT_EQ(header.rfind("t1,t2,period,admissible,min_gap,min_force", 0), 0u);
+  size_t rows = 0;
+  for (std::string line; std::getline(c, line);) ++rows;
+  EXPECT_EQ(rows, j["solutions"].size());
+}
+
+TEST(Cli, AdmissibleOnlyKeepsAdmissible) {
+  const fs::path js = dir() / "adm.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --admissible-only --json " + js.string()).code, 0);
+  std::ifstream in(js);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_GT(j["solutions"].size(), 0u);
+  for (const auto& s : j["solutions"]) EXPECT_TRUE(s["admissible"].get<bool>());
+}
+
+TEST(Cli, NonUnitWIsNormalisedAndSaid) {
+  const std::string sys = write("w2.json", R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-2], "g0": 2})");
+  const fs::path js = dir() / "w2out.json";
+  const CliRun r = run("solve " + sys + " --t1-max 6 --t2-max 6 --json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("normalised"), std::string::npos);
+  std::ifstream in(js);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["system"]["w_normalized"].get<bool>());
+  EXPECT_EQ(j["system"]["g0"], 1.0);
+}
+
+TEST(Cli, RejectsInvalidSystems) {
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1)", "malformed JSON");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1]})", "missing field \"g0\"");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1,0],[-1,1,0],[0,0,1]], "w": [0,-1], "g0": 1})", "K must be 2 x 2");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1,0], "g0": 1})", "w must have 2 entries");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1.5],[-1,1]], "w": [0,-1], "g0": 1})", "K must be symmetric");
+  expect_rejected(R"({"M": [[1,2],[2,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})", "M must be positive definite");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,0], "g0": 1})", "w must be non-zero");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": "a"})", "\"g0\" must be a number");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 0})", "g0 = 0");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1e999]], "w": [0,-1], "g0": 1})", "number overflow");
+}
+
+TEST(Cli, RejectsInvalidWindow) {
+  const std::string sys = write("good.json", kGood);
+  for (const char* w : {"--t1-max -1 --t2-max 5", "--t1-max 5 --t2-max 0", "--t1-max inf --t2-max 5",
+                        "--t1-max nan --t2-max 5"}) {
+    const fs::path out = dir() / "win.json";
+    fs::remove(out);
+    const CliRun r = run("solve " + sys + " " + w + " --json " + out.string());
+    EXPECT_NE(r.code, 0) << w << ": " << r.out;
+    EXPECT_NE(r.out.find("_max"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+TEST(Cli, MissingFileAndUsageErrors) {
+  CliRun r = run("solve /nonexistent/sys.json --t1-max 5 --t2-max 5");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("/nonexistent/sys.json"), std::string::npos);
+  r = run("solve " + kChain + " --t2-max 5");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("--t1-max"), std::string::npos);
+}
+
+TEST(Cli, TrajectoryWritesOnePeriod) {
+  const fs::path js = dir() / "t.json", cs = dir() / "traj.csv";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --admissible-only --json " + js.string()).code, 0);
+  const CliRun r = run("trajectory " + kChain + " --result " + js.string() + " --solution 0 --samples 201 --csv " + cs.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream c(cs);
+  std::string header;
+  std::getline(c, header);
+  EXPECT_EQ(header, "t,x1,x2,x3,x4,x5,v1,v2,v3,v4,v5,gap,force");
+  size_t rows = 0;
+  double gmin = 1e300, fmin = 1e300;
+  for (std::string line; std::getline(c, line); ++rows) {
+    std::stringstream ss(line);
+    std::vector<double> v;
+    for (std::string x; std::getline(ss, x, ',');) v.push_back(std::stod(x));
+    ASSERT_EQ(v.size(), 13u);
+    gmin = std::min(gmin, v[11]);
+    fmin = std::min(fmin, v[12]);
+  }
+  EXPECT_EQ(rows, 201u);
+  EXPECT_GE(gmin, -1e-9);
+  EXPECT_GE(fmin, -1e-9);
+  const CliRun bad = run("trajectory " + kChain + " --result " + js.string() + " --solution 999 --csv " + (dir() / "x.csv").string());
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.out.find("out of range"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir() / "x.csv"));
+}
+
+TEST(Cli, GenerateThenSolve) {
+  const fs::path g = dir() / "gen.json";
+  ASSERT_EQ(run("generate chain --n 4 --masses 1,2,1,2 --stiffnesses 1 --g0 0.5 --out " + g.string()).code, 0);
+  EXPECT_EQ(run("solve " + g.string() + " --t1-max 6 --t2-max 6 --quiet").code, 0);
+  ASSERT_EQ(run("generate rod --a -0.25 --b 0.25 --out " + g.string()).code, 0);
+  EXPECT_EQ(run("solve " + g.string() + " --t1-max 6 --t2-max 6 --quiet").code, 0);
+  ASSERT_EQ(run("generate two-dof --k2 5.716 --out " + g.string()).code, 0);
+  const CliRun bad = run("generate chain --n 3 --masses 1,2 --out " + (dir() / "bad.json").string());
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.out.find("masses must have 1 or n = 3 values, got 2"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(dir() / "bad.json"));
+}

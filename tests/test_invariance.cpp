@@ -1,0 +1,71 @@
+// Scaling M and K together, scaling g0, permuting dofs and rotating coordinates leave the SPPs unchanged:
+// t1, t2 equal, x0 transformed.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "paper_reference.hpp"
+#include "spp/io.hpp"
+#include "spp/solver.hpp"
+
+using namespace spp;
+
+namespace {
+SolveResult run(const System& s) {
+  SolveOptions o;
+  o.t1_max = 12.0;
+  o.t2_max = 12.0;
+  o.compute_return_error = false;
+  return solve(s, o);
+}
+
+void expect_same(const SolveResult& a, const SolveResult& b, const Eigen::MatrixXd& T, double xscale) {
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  for (size_t i = 0; i < a.solutions.size(); ++i) {
+    const Solution &x = a.solutions[i], &y = b.solutions[i];
+    EXPECT_NEAR(x.t1, y.t1, 1e-10 * x.t1);
+    EXPECT_NEAR(x.t2, y.t2, 1e-10 * x.t2);
+    EXPECT_EQ(x.admissible, y.admissible);
+    // x0' = T x0 * xscale
+    EXPECT_LT((T * x.orbit.x0 * xscale - y.orbit.x0).norm(), 1e-8 * y.orbit.x0.norm());
+  }
+}
+
+System rod() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json"); }
+}  // namespace
+
+TEST(Invariance, ScalingMassAndStiffnessTogether) {
+  const System s = rod();
+  const System t(3.7 * s.M(), 3.7 * s.K(), s.w(), s.g0());
+  expect_same(run(s), run(t), Eigen::MatrixXd::Identity(4, 4), 1.0);
+}
+
+TEST(Invariance, ScalingG0ScalesTheOrbit) {
+  const System s = rod();
+  const System t(s.M(), s.K(), s.w(), 5.0 * s.g0());
+  expect_same(run(s), run(t), Eigen::MatrixXd::Identity(4, 4), 5.0);
+}
+
+TEST(Invariance, ScalingWDoesNotChangeTheGeometry) {
+  const System s = rod();
+  const System t(s.M(), s.K(), 2.5 * s.w(), 2.5 * s.g0());  // same constraint, w not unit
+  expect_same(run(s), run(t), Eigen::MatrixXd::Identity(4, 4), 1.0);
+}
+
+TEST(Invariance, PermutingDofs) {
+  const System s = rod();
+  Eigen::PermutationMatrix<Eigen::Dynamic> P(4);
+  P.indices() << 2, 0, 3, 1;
+  const Eigen::MatrixXd Pm = P;  // x' = P x
+  const System t(Pm * s.M() * Pm.transpose(), Pm * s.K() * Pm.transpose(), Pm * s.w(), s.g0());
+  expect_same(run(s), run(t), Pm, 1.0);
+}
+
+TEST(Invariance, RotatingCoordinates) {
+  const System s = rod();
+  std::mt19937 rng(3);
+  const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(ref::random_spd(4, rng)).householderQ();
+  // x' = Q x: M' = Q M Q^T, K' = Q K Q^T, w' = Q w
+  const System t(Q * s.M() * Q.transpose(), Q * s.K() * Q.transpose(), Q * s.w(), s.g0());
+  expect_same(run(s), run(t), Q, 1.0);
+}

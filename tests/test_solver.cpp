@@ -1,0 +1,197 @@
+// The paper's examples (§5.2 chain, §5.3 rod with slip): every SPP is checked against the paper's own
+// equations and the exact physical flows, independently of the modal form the solver uses.
+#include <gtest/gtest.h>
+
+#include "paper_reference.hpp"
+#include "physical_flow.hpp"
+#include "spp/generators.hpp"
+#include "spp/io.hpp"
+#include "spp/solver.hpp"
+
+using namespace spp;
+
+namespace {
+
+SolveResult solve_window(const System& s, double t1max, double t2max) {
+  SolveOptions o;
+  o.t1_max = t1max;
+  o.t2_max = t2max;
+  return solve(s, o);
+}
+
+System chain5() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"); }
+System rod4() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json"); }
+
+// All the properties the issue lists for an admissible SPP, checked with physical flows.
+void check_admissible_orbit(const System& s, const Solution& sol) {
+  const ref::PhysicalFlow flow(s);
+  const int n = s.n();
+  Eigen::VectorXd X0(2 * n);
+  X0 << sol.orbit.x0, sol.orbit.v0;
+  const double xs = X0.norm();
+  // returns to its initial state after one period (contact 2 t2, then flight 2 t1)
+  const Eigen::VectorXd XT = flow.flight(flow.contact(X0, 2 * sol.t2), 2 * sol.t1);
+  EXPECT_LT((XT - X0).norm() / xs, 1e-10);
+  EXPECT_LT(sol.return_error, 1e-10);
+  // (1.3c): zero normal velocity and acceleration at contact onset; (1.3d) gap closed
+  EXPECT_LT(std::abs(s.w().dot(sol.orbit.v0)), 1e-10 * xs);
+  EXPECT_LT(std::abs(flow.normal_acceleration_free(X0)), 1e-10 * xs);
+  EXPECT_LT(std::abs(flow.gap(X0)), 1e-12 * (xs + std::abs(s.g0())));
+  // Theorem 3.1: axes of symmetry at t = -t1 (flight) and t = t2 (contact)
+  for (double f : {0.13, 0.5, 0.91}) {
+    const double tau = f * sol.t1;
+    const Eigen::VectorXd a = flow.flight(X0, -sol.t1 + tau), b = flow.flight(X0, -sol.t1 - tau);
+    EXPECT_LT((a.head(n) - b.head(n)).norm(), 1e-10 * xs);
+    EXPECT_LT((a.tail(n) + b.tail(n)).norm(), 1e-10 * xs);
+    const double sig = f * sol.t2;
+    const Eigen::VectorXd c = flow.contact(X0, sol.t2 + sig), d = flow.contact(X0, sol.t2 - sig);
+    EXPECT_LT((c.head(n) - d.head(n)).norm(), 1e-10 * xs);
+    EXPECT_LT((c.tail(n) + d.tail(n)).norm(), 1e-10 * xs);
+  }
+  // non-negative gap in flight and force in contact, sampled densely (tolerance at rounding level)
+  for (int i = 0; i <= 400; ++i) {
+    EXPECT_GE(flow.gap(flow.flight(X0, -2 * sol.t1 * i / 400.0)), -1e-10 * (xs + std::abs(s.g0())));
+    EXPECT_GE(flow.force(flow.contact(X0, 2 * sol.t2 * i / 400.0)), -1e-10 * xs);
+  }
+}
+
+void check_paper_equations(const System& s, const SolveResult& r) {
+  const ref::PaperForm pf(s);
+  for (const Solution& sol : r.solutions) {
+    const auto [sv, cond] = pf.residuals(sol.t1, sol.t2);
+    EXPECT_LT(sv, 1e-10) << "det R2 (eq. 5.1a) at t1 = " << sol.t1 << ", t2 = " << sol.t2;
+    EXPECT_LT(cond, 1e-9) << "eq. (5.1b) at t1 = " << sol.t1 << ", t2 = " << sol.t2;
+    EXPECT_LT(sol.residual, 1e-12);
+  }
+}
+
+}  // namespace
+
+TEST(PaperChain5, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
+  const System s = chain5();
+  const SolveResult r = solve_window(s, 12.0, 12.0);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  int admissible = 0;
+  for (const Solution& sol : r.solutions)
+    if (sol.admissible) {
+      ++admissible;
+      SCOPED_TRACE("t1 = " + std::to_string(sol.t1) + ", t2 = " + std::to_string(sol.t2));
+      check_admissible_orbit(s, sol);
+    }
+  // The paper's fig. 4 marks several admissible SPPs (A and B among them) in this window.
+  EXPECT_GE(admissible, 2);
+}
+
+TEST(PaperChain5, EveryRootSolvesThePapersOwnEquations) {
+  const System s = chain5();
+  check_paper_equations(s, solve_window(s, 12.0, 12.0));
+}
+
+TEST(PaperRod4, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
+  const System s = rod4();
+  const SolveResult r = solve_window(s, 12.0, 12.0);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  int admissible = 0;
+  for (const Solution& sol : r.solutions)
+    if (sol.admissible) {
+      ++admissible;
+      check_admissible_orbit(s, sol);
+    }
+  EXPECT_GE(admissible, 1);  // the paper's fig. 7 shows one
+  check_paper_equations(s, r);
+}
+
+TEST(PaperChain5, InadmissibleRootsViolateAnInequality) {
+  // A potential but inadmissible SPP must show a negative gap in flight or a negative force in contact.
+  const System s = chain5();
+  const SolveResult r = solve_window(s, 12.0, 12.0);
+  const ref::PhysicalFlow flow(s);
+  for (const Solution& sol : r.solutions) {
+    if (sol.admissible) continue;
+    Eigen::VectorXd X0(2 * s.n());
+    X0 << sol.orbit.x0, sol.orbit.v0;
+    double gmin = 1e300, fmin = 1e300;
+    for (int i = 1; i < 2000; ++i) {
+      gmin = std::min(gmin, flow.gap(flow.flight(X0, -2 * sol.t1 * i / 2000.0)));
+      fmin = std::min(fmin, flow.force(flow.contact(X0, 2 * sol.t2 * i / 2000.0)));
+    }
+    // either a clear violation in the samples, or the violation sits at the phase ends (end-order check)
+    const bool clear = gmin < -1e-9 * X0.norm() || fmin < -1e-9 * X0.norm();
+    EXPECT_TRUE(clear || !sol.admissibility.ends_ok) << "t1 = " << sol.t1 << ", t2 = " << sol.t2;
+  }
+}
+
+TEST(Remark41, NoRootIsAdmissibleForBothSignsOfG0) {
+  for (const System& s : {chain5(), rod4()}) {
+    const System flipped(s.M(), s.K(), s.w(), -s.g0(), s.name());
+    const SolveResult a = solve_window(s, 12.0, 12.0), b = solve_window(flipped, 12.0, 12.0);
+    ASSERT_EQ(a.solutions.size(), b.solutions.size());  // the roots do not depend on g0
+    for (size_t i = 0; i < a.solutions.size(); ++i) {
+      EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-12);
+      EXPECT_NEAR(a.solutions[i].t2, b.solutions[i].t2, 1e-12);
+      EXPECT_FALSE(a.solutions[i].admissible && b.solutions[i].admissible);
+    }
+  }
+}
+
+TEST(Solver, RefusesZeroGapWithAPointerToTheParametricSolver) {
+  const System s(Eigen::MatrixXd::Identity(2, 2), (Eigen::MatrixXd(2, 2) << 2, -1, -1, 1).finished(),
+                 Eigen::Vector2d(0, -1), 0.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 5;
+  try {
+    solve(s, o);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("g0 = 0"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("parameter"), std::string::npos);
+  }
+}
+
+TEST(Solver, OptionsAreValidatedWithTheirNames) {
+  SolveOptions o;
+  o.t1_max = 1.0;
+  o.t2_max = -2.0;
+  try {
+    o.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("t2_max must be positive and finite, got -2"), std::string::npos);
+  }
+  o.t2_max = std::nan("");
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.t2_max = 1.0;
+  o.t1_min = 2.0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+}
+
+TEST(Solver, DecoupledModeDoesNotCreateSpuriousSolutions) {
+  // Two identical chains side by side with contact on one: the other's modes never see the contact,
+  // so the SPPs are those of the contacting chain alone.
+  const System single = spp::chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(6, 6), K = Eigen::MatrixXd::Zero(6, 6);
+  K.topLeftCorner(3, 3) = single.K();
+  K.bottomRightCorner(3, 3) = single.K() * 1.7;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(6);
+  w(2) = -1;
+  const System both(M, K, w, 1.0);
+  const SolveResult a = solve_window(single, 8.0, 8.0), b = solve_window(both, 8.0, 8.0);
+  EXPECT_EQ(b.decoupled_modes, 3);
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  for (size_t i = 0; i < a.solutions.size(); ++i) {
+    EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-10);
+    EXPECT_NEAR(a.solutions[i].t2, b.solutions[i].t2, 1e-10);
+    EXPECT_LT(b.solutions[i].orbit.x0.tail(3).norm(), 1e-12);
+  }
+}
+
+TEST(Solver, SolutionAtRefinesToTheNearestRoot) {
+  const System s = chain5();
+  const SolveResult r = solve_window(s, 12.0, 12.0);
+  ASSERT_FALSE(r.solutions.empty());
+  const Solution& ref = r.solutions.front();
+  const Solution near = solution_at(s, ref.t1 * (1 + 1e-5), ref.t2 * (1 - 1e-5));
+  EXPECT_NEAR(near.t1, ref.t1, 1e-12);
+  EXPECT_NEAR(near.t2, ref.t2, 1e-12);
+  EXPECT_THROW(solution_at(s, -1.0, 1.0), std::invalid_argument);
+}

@@ -1,0 +1,77 @@
+#include <gtest/gtest.h>
+
+#include "spp/system.hpp"
+
+using spp::System;
+
+namespace {
+Eigen::MatrixXd I2() { return Eigen::MatrixXd::Identity(2, 2); }
+Eigen::MatrixXd K2() {
+  Eigen::MatrixXd K(2, 2);
+  K << 2, -1, -1, 1;
+  return K;
+}
+Eigen::VectorXd w2() { return Eigen::Vector2d(0, -1); }
+
+void expect_error(const std::function<void()>& f, const std::string& part) {
+  try {
+    f();
+    FAIL() << "expected std::invalid_argument containing \"" << part << "\"";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+}  // namespace
+
+TEST(System, NormalisesContactDirectionAndGap) {
+  const System s(I2(), K2(), Eigen::Vector2d(0, -2), 3.0);
+  EXPECT_DOUBLE_EQ(s.w().norm(), 1.0);
+  EXPECT_DOUBLE_EQ(s.g0(), 1.5);
+  EXPECT_DOUBLE_EQ(s.w_input_norm(), 2.0);
+}
+
+TEST(System, ContactStiffnessMatchesPaperEq26) {
+  // paper eq. (2.6): K~ = [[k1 + k2, -k2], [0, 0]] for the 2-dof system with contact on mass 2
+  Eigen::MatrixXd M(2, 2), K(2, 2);
+  M << 2, 0, 0, 3;
+  K << 5, -4, -4, 4;
+  const System s(M, K, w2(), 1.0);
+  Eigen::MatrixXd expected(2, 2);
+  expected << 5, -4, 0, 0;
+  EXPECT_LT((s.contact_stiffness() - expected).norm(), 1e-14);
+}
+
+TEST(System, RejectsBadSizes) {
+  expect_error([] { System(Eigen::MatrixXd::Identity(2, 3), K2(), w2(), 1); }, "M must be square, got 2 x 3");
+  expect_error([] { System(I2(), Eigen::MatrixXd::Identity(3, 3), w2(), 1); }, "K must be 2 x 2 like M, got 3 x 3");
+  expect_error([] { System(I2(), K2(), Eigen::Vector3d(1, 0, 0), 1); }, "w must have 2 entries like M, got 3");
+  expect_error([] { System(Eigen::MatrixXd(0, 0), Eigen::MatrixXd(0, 0), Eigen::VectorXd(0), 1); }, "at least one row");
+}
+
+TEST(System, RejectsNonFinite) {
+  Eigen::MatrixXd K = K2();
+  K(1, 0) = std::nan("");
+  expect_error([&] { System(I2(), K, w2(), 1); }, "K[1][0] must be finite");
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, INFINITY), 1); }, "w[1][0] must be finite");
+  expect_error([] { System(I2(), K2(), w2(), INFINITY); }, "g0 must be finite");
+}
+
+TEST(System, RejectsNonSymmetricAndIndefinite) {
+  Eigen::MatrixXd K = K2();
+  K(0, 1) = -1.1;
+  expect_error([&] { System(I2(), K, w2(), 1); }, "K must be symmetric");
+  Eigen::MatrixXd M(2, 2);
+  M << 1, 2, 2, 1;
+  expect_error([&] { System(M, K2(), w2(), 1); }, "M must be positive definite");
+  expect_error([] { System(I2(), Eigen::MatrixXd::Zero(2, 2), w2(), 1); }, "K must be positive definite");
+}
+
+TEST(System, RejectsZeroContactDirection) {
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, 0), 1); }, "w must be non-zero");
+}
+
+TEST(System, AcceptsSymmetryWithinRelativeTolerance) {
+  Eigen::MatrixXd K = K2() * 1e6;
+  K(0, 1) += 1e-6;  // relative 1e-12
+  EXPECT_NO_THROW(System(I2(), K, w2(), 1));
+}
