@@ -1,1 +1,92 @@
-int main(){}
+// spp::solve swept over n. Cost follows the number of pole lines in the window, so the windows are fixed by
+// pole-line counts, not by size:
+//  - ChainBox: the chain's fundamental box t1 <= pi/omega_1, t2 <= pi/d_2;
+//  - ChainWindow / RandomWindow: about P x P pole lines, t1_max = P pi / sum(omega), t2_max = P pi / sum(d).
+// Counters: pole lines, rectangles, curve pieces, roots, H evaluations, seconds per root.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <numbers>
+#include <random>
+
+#include "spp/generators.hpp"
+#include "spp/modal.hpp"
+#include "spp/solver.hpp"
+
+namespace {
+
+spp::System chain_system(int n) { return spp::chain(n, {1.0}, {1.0}, n - 1, spp::ContactSide::Upper, 1.0); }
+
+spp::System random_system(int n) {
+  std::mt19937 rng(static_cast<unsigned>(n));
+  std::normal_distribution<double> nd;
+  auto spd = [&](double lo, double hi) {
+    Eigen::MatrixXd A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = nd(rng);
+    const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ();
+    std::uniform_real_distribution<double> u(lo, hi);
+    Eigen::VectorXd e(n);
+    for (int i = 0; i < n; ++i) e(i) = u(rng);
+    return Eigen::MatrixXd(Q * e.asDiagonal() * Q.transpose());
+  };
+  Eigen::VectorXd w(n);
+  for (int i = 0; i < n; ++i) w(i) = nd(rng);
+  return spp::System(spd(0.5, 2.0), spd(0.5, 2.0 * n), w, 1.0, "random" + std::to_string(n));
+}
+
+void run(benchmark::State& state, const spp::System& s, const spp::SolveOptions& o) {
+  spp::SolveResult r;
+  for (auto _ : state) {
+    r = spp::solve(s, o);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["n"] = s.n();
+  state.counters["pole_lines_t1"] = r.stats.flight_pole_lines;
+  state.counters["pole_lines_t2"] = r.stats.contact_pole_lines;
+  state.counters["rectangles"] = static_cast<double>(r.stats.rectangles);
+  state.counters["curve_pieces"] = static_cast<double>(r.stats.curve_pieces);
+  state.counters["roots"] = static_cast<double>(r.solutions.size());
+  state.counters["evaluations"] = static_cast<double>(r.stats.evaluations);
+  state.counters["s_per_root"] = r.solutions.empty() ? 0.0 : r.stats.seconds / static_cast<double>(r.solutions.size());
+  state.counters["complete"] = r.status == spp::SolveStatus::Success ? 1 : 0;
+}
+
+void ChainBox(benchmark::State& state) {
+  const spp::System s = chain_system(static_cast<int>(state.range(0)));
+  const spp::ModalForm md(s);
+  spp::SolveOptions o;
+  o.t1_max = std::numbers::pi / md.omega()(0);
+  o.t2_max = std::numbers::pi / md.d()(1);
+  o.compute_return_error = false;
+  run(state, s, o);
+}
+
+void window(benchmark::State& state, const spp::System& s) {
+  const spp::ModalForm md(s);
+  const double P = static_cast<double>(state.range(1));
+  spp::SolveOptions o;
+  o.t1_max = P * std::numbers::pi / md.omega().sum();
+  o.t2_max = P * std::numbers::pi / md.d().sum();
+  o.compute_return_error = false;
+  run(state, s, o);
+}
+
+void ChainWindow(benchmark::State& state) { window(state, chain_system(static_cast<int>(state.range(0)))); }
+void RandomWindow(benchmark::State& state) { window(state, random_system(static_cast<int>(state.range(0)))); }
+
+void Chain5Window12(benchmark::State& state) {
+  spp::SolveOptions o;
+  o.t1_max = o.t2_max = 12.0;
+  o.compute_return_error = false;
+  run(state, chain_system(5), o);
+}
+
+}  // namespace
+
+BENCHMARK(Chain5Window12)->Unit(benchmark::kMillisecond);
+BENCHMARK(ChainBox)->DenseRange(2, 10)->Unit(benchmark::kMillisecond);
+BENCHMARK(ChainBox)->Arg(20)->Arg(30)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(ChainWindow)->Args({30, 100})->Args({100, 100})->Args({300, 100})->Args({1000, 100})->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(RandomWindow)->Args({30, 100})->Args({100, 100})->Args({300, 100})->Args({1000, 100})->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_MAIN();

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -149,37 +147,39 @@ class Search {
     return p;
   }
 
-  // Root of lambda_k along the segment P0 -> P1 (lambda_k(P0) <= 0 < lambda_k(P1)).
-  EigAt edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
-    EigAt last;
-    auto f = [&](double sig) {
-      last = eig(t1a + sig * (t1b - t1a), t2a + sig * (t2b - t2a));
-      return last.lam(k);
-    };
-    const double sig = detail::brent(f, 0.0, 1.0, fa, fb, 1e-15);
-    if (last.lam.size() == 0 || std::abs(last.t1 - (t1a + sig * (t1b - t1a))) > 0 ||
-        std::abs(last.t2 - (t2a + sig * (t2b - t2a))) > 0)
-      f(sig);
-    return last;
-  }
-
-  // Root of lambda_k on the anti-diagonal t2 - t1 = s inside [lo, hi] (bounds on tau = t1).
-  EigAt diagonal_root(double s, double lo, double hi, double guess, int k) {
-    double tau = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
+  // Root of lambda_k on the segment (t1a, t2a) + sigma (dt1, dt2), sigma in [lo, hi], lambda_k(lo) <= 0 <
+  // lambda_k(hi). lambda_k is non-decreasing along the segment (dt1, dt2 >= 0 in one of the two senses), so a
+  // Newton step safeguarded by bisection on the bracket converges; it stops at the rounding level of
+  // lambda_k (rel_ftol times the largest |eigenvalue|).
+  EigAt segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
+                     double rel_ftol) {
+    double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     EigAt e;
-    const double tol = 1e-15 * (std::abs(lo) + std::abs(hi) + std::abs(s));
-    for (int it = 0; it < 100; ++it) {
-      e = eig(tau, tau + s);
+    const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
+    for (int it = 0; it < 200; ++it) {
+      e = eig(t1a + x * dt1, t2a + x * dt2);
       const double f = e.lam(k);
-      if (f < 0) lo = tau; else hi = tau;
-      if (f == 0.0) break;
-      const auto [l1, l2] = grads(e.V.col(k), tau, tau + s);
-      double next = tau - f / (l1 + l2);
+      if (std::abs(f) <= rel_ftol * e.lam.cwiseAbs().maxCoeff()) break;
+      if (f < 0) lo = x; else hi = x;
+      const auto [l1, l2] = grads(e.V.col(k), e.t1, e.t2);
+      const double df = dt1 * l1 + dt2 * l2;
+      double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      if (std::abs(next - tau) <= tol || hi - lo <= tol) break;
-      tau = next;
+      if (hi - lo <= xtol || next == x) break;
+      x = next;
     }
     return e;
+  }
+
+  // Root of lambda_k on the edge from (t1a, t2a) to (t1b, t2b), with lambda_k = fa <= 0 and fb > 0 there.
+  EigAt edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
+    const double guess = fa / (fa - fb);  // secant on the end values
+    return segment_root(t1a, t2a, t1b - t1a, t2b - t2a, 0.0, 1.0, guess, k, 1e-14);
+  }
+
+  // Root of lambda_k on the anti-diagonal t2 - t1 = s, tau = t1 in [lo, hi].
+  EigAt diagonal_root(double s, double lo, double hi, double guess, int k) {
+    return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, 1e-13);
   }
 
   // ---- one rectangle ----
@@ -231,7 +231,7 @@ class Search {
       examine(r, k, cur, p, 0);
       return p;
     }
-    double h = span / 4.0;
+    double h = span;
     double slope = 0.0;  // dtau/ds estimate for the predictor
     while (cur.s < s_out) {
       const bool last = cur.s + h >= s_out - 1e-12 * std::abs(span);
@@ -244,15 +244,17 @@ class Search {
         p = point(diagonal_root(s, lo, hi, cur.t1 + slope * h, k), k, &cur.b);
       }
       const double turn = std::acos(std::min(1.0, std::abs(cur.b.dot(p.b))));
-      if (turn > opt_.max_turn && (last ? s_out - cur.s : h) > hmin) {
-        h = 0.5 * (last ? s_out - cur.s : h);
+      const double step = last ? s_out - cur.s : h;
+      // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
+      const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
+      if (turn > opt_.max_turn && step > hmin) {
+        h = std::max(hmin, step * std::clamp(factor, 0.1, 0.5));
         continue;
       }
       examine(r, k, cur, p, 0);
       if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
       cur = p;
-      if (turn < 0.25 * opt_.max_turn) h *= 2.0;
-      h = std::min(h, span / 4.0);
+      h = std::min(span, step * std::clamp(factor, 0.3, 4.0));
     }
     return cur;
   }
@@ -543,7 +545,6 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   const double window_scale = opt.t1_max + opt.t2_max;
   for (const Candidate& c : search.candidates_) {
     const Polished p = polish(md, c.t1, c.t2);
-    if (std::getenv("SPP_DEBUG")) std::fprintf(stderr, "cand %.12g %.12g nd=%d np=%d -> %.12g %.12g res %.3g\n", c.t1, c.t2, c.near_double, c.near_pole, p.t1, p.t2, p.residual);
     const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-4 * window_scale;
     if (!p.converged || moved_far) {
       std::ostringstream os;

@@ -29,7 +29,7 @@ struct SolveOptions {
   double t1_min = 0.0;
   double t2_min = 0.0;
   double pole_margin = 1e-6;        ///< distance kept from pole lines, relative to the neighbouring cell width
-  double max_turn = 0.1;            ///< largest angle (rad) of the null vector b between two trace points
+  double max_turn = 0.2;            ///< largest angle (rad) of the null vector b between two trace points
   double min_step = 1e-13;          ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
   double admissibility_tol = 1e-9;  ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
   bool admissible_only = false;     ///< keep only admissible SPPs in the result

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian packages spp needs (Debian 12, as root). Skips apt entirely when all are present.
+set -euo pipefail
+PACKAGES=(g++ cmake ninja-build pkg-config
+          libeigen3-dev nlohmann-json3-dev libcli11-dev
+          libgtest-dev googletest libbenchmark-dev)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "spp: installing Debian packages: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Quick start, step 2: run every test. On a fresh machine it installs and builds what it needs first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+scripts/build.sh
+cd build
+ctest -j "$(nproc)" --output-on-failure
