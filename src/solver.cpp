@@ -546,12 +546,15 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   for (const Candidate& c : search.candidates_) {
     const Polished p = polish(md, c.t1, c.t2);
     const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-4 * window_scale;
-    if (!p.converged || moved_far) {
+    // A root whose Newton polish stalls above 1e-10 but below 1e-6 (N nearly rank-2 there, e.g. close to the
+    // axis t1 = 0) is reported with a flag; one that does not polish at all is a gap in the search.
+    const bool ill_conditioned = !p.converged && p.residual < 1e-6 && !moved_far;
+    if ((!p.converged && !ill_conditioned) || moved_far) {
       std::ostringstream os;
       os << "root near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish (residual " << p.residual
          << ")";
       res.warnings.push_back(os.str());
-      if (!c.near_double) continue;
+      continue;
     }
     // Each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both equations in the limit
     // (pure contact oscillation): roots that polish back towards an axis are these limits, not SPPs.
@@ -568,6 +571,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
       continue;
     }
     if (c.near_double) s.flags.push_back("near_double_root");
+    if (ill_conditioned) s.flags.push_back("ill_conditioned");
     if (c.near_pole) s.flags.push_back("near_pole_line");
     res.solutions.push_back(std::move(s));
   }
