@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "spp/detail/brent.hpp"
+#include "spp/detail/tridiagonal.hpp"
 #include "spp/modal.hpp"
 
 namespace spp {
@@ -69,12 +70,6 @@ namespace {
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 
-struct EigAt {
-  double t1 = 0, t2 = 0;
-  Vec lam;
-  Mat V;
-};
-
 // A point on curve k: position, oriented null vector, signed g and dg/ds along s = t2 - t1.
 struct TracePoint {
   double s = 0, t1 = 0, t2 = 0, g = 0, dg = 0;
@@ -90,6 +85,7 @@ struct EdgeHit {
 struct Candidate {
   double t1, t2;
   bool near_double = false, near_pole = false;
+  Eigen::VectorXd b;  // null vector of H from the trace (empty: take the SVD of N)
 };
 
 class Search {
@@ -100,16 +96,30 @@ class Search {
   }
 
   // ---- evaluations ----
-  EigAt eig(double t1, double t2) {
+  const Mat& H_at(double t1, double t2) {
     if (t2 != cached_t2_) {
       C_ = md_.contact_part(t2);
       cached_t2_ = t2;
     }
-    Mat Hm = C_;
-    Hm.diagonal() += md_.flight_part(t1);
-    Eigen::SelfAdjointEigenSolver<Mat> es(Hm);
+    Hbuf_ = C_;
+    Hbuf_.diagonal() += md_.flight_part(t1);
     ++st_.evaluations;
-    return {t1, t2, es.eigenvalues(), es.eigenvectors()};
+    return Hbuf_;
+  }
+
+  // Tridiagonal form of H at a corner: counts and the eigenvalues that are needed.
+  detail::SymmetricTridiagonal corner(double t1, double t2) { return detail::SymmetricTridiagonal(H_at(t1, t2)); }
+
+  // The k-th eigenpair of H (tridiagonal form, bisection, inverse iteration).
+  struct Pair {
+    double t1 = 0, t2 = 0, lam = 0, scale = 0;
+    Vec b;
+  };
+  Pair eigenpair(double t1, double t2, int k) {
+    const detail::SymmetricTridiagonal T(H_at(t1, t2));
+    Pair p{t1, t2, T.eigenvalue(k), T.norm_bound(), Vec()};
+    p.b = T.eigenvector(p.lam);
+    return p;
   }
 
   // b^T dH/dt1 b and b^T dH/dt2 b (both >= 0).
@@ -120,30 +130,34 @@ class Search {
     return {l1, l2};
   }
 
-  TracePoint point(const EigAt& e, int k, const Vec* ref) const {
+  // Trace point from the eigenpair: g = zhat^T b and dg/ds, with db/ds from the bordered system
+  // [[H - lam I, b], [b^T, 0]] [db; mu] = [-(I - b b^T) dH/ds b; 0] (first-order eigenvector perturbation).
+  TracePoint point(const Pair& q, const Vec* ref) {
     TracePoint p;
-    p.t1 = e.t1;
-    p.t2 = e.t2;
-    p.s = e.t2 - e.t1;
-    const Vec b0 = e.V.col(k);
+    p.t1 = q.t1;
+    p.t2 = q.t2;
+    p.s = q.t2 - q.t1;
+    const Vec& b0 = q.b;
     const double sign = (ref && b0.dot(*ref) < 0) ? -1.0 : 1.0;
-    const auto [l1, l2] = grads(b0, e.t1, e.t2);
+    const auto [l1, l2] = grads(b0, q.t1, q.t2);
     const double tp = -l2 / (l1 + l2);  // dtau/ds on the curve
     const Vec y = md_.G().transpose() * b0;
-    const Vec e2 = (d2_ / (md_.d().array() * e.t2).cos().square()).matrix();
-    const Vec dHb = tp * md_.dflight_dt1(e.t1).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
-    // first-order perturbation of the eigenvector: db = -sum_{j != k} v_j (v_j^T dH b) / (lam_j - lam_k)
-    const Vec proj = e.V.transpose() * dHb, zv = e.V.transpose() * zhat_;
-    double dg = 0.0;
-    const double scale = e.lam.cwiseAbs().maxCoeff();
-    for (int j = 0; j < e.lam.size(); ++j) {
-      const double gap = e.lam(j) - e.lam(k);
-      if (j == k || std::abs(gap) <= 1e-14 * scale) continue;
-      dg -= proj(j) / gap * zv(j);
-    }
+    const Vec e2 = (d2_ / (md_.d().array() * q.t2).cos().square()).matrix();
+    const Vec dHb = tp * md_.dflight_dt1(q.t1).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
+    const int m = static_cast<int>(b0.size());
+    Mat B(m + 1, m + 1);
+    B.topLeftCorner(m, m) = H_at(q.t1, q.t2);
+    B.topLeftCorner(m, m).diagonal().array() -= q.lam;
+    B.col(m).head(m) = b0;
+    B.row(m).head(m) = b0.transpose();
+    B(m, m) = 0.0;
+    Vec rhs(m + 1);
+    rhs.head(m) = -(dHb - b0.dot(dHb) * b0);
+    rhs(m) = 0.0;
+    const Vec db = B.partialPivLu().solve(rhs);
     p.b = sign * b0;
     p.g = sign * zhat_.dot(b0);
-    p.dg = sign * dg;
+    p.dg = sign * zhat_.dot(db.head(m));
     return p;
   }
 
@@ -151,17 +165,17 @@ class Search {
   // lambda_k(hi). lambda_k is non-decreasing along the segment (dt1, dt2 >= 0 in one of the two senses), so a
   // Newton step safeguarded by bisection on the bracket converges; it stops at the rounding level of
   // lambda_k (rel_ftol times the largest |eigenvalue|).
-  EigAt segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
-                     double rel_ftol) {
+  Pair segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
+                    double rel_ftol) {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
-    EigAt e;
+    Pair e;
     const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
     for (int it = 0; it < 200; ++it) {
-      e = eig(t1a + x * dt1, t2a + x * dt2);
-      const double f = e.lam(k);
-      if (std::abs(f) <= rel_ftol * e.lam.cwiseAbs().maxCoeff()) break;
+      e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
+      const double f = e.lam;
+      if (std::abs(f) <= rel_ftol * e.scale) break;
       if (f < 0) lo = x; else hi = x;
-      const auto [l1, l2] = grads(e.V.col(k), e.t1, e.t2);
+      const auto [l1, l2] = grads(e.b, e.t1, e.t2);
       const double df = dt1 * l1 + dt2 * l2;
       double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -172,13 +186,13 @@ class Search {
   }
 
   // Root of lambda_k on the edge from (t1a, t2a) to (t1b, t2b), with lambda_k = fa <= 0 and fb > 0 there.
-  EigAt edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
+  Pair edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
     const double guess = fa / (fa - fb);  // secant on the end values
     return segment_root(t1a, t2a, t1b - t1a, t2b - t2a, 0.0, 1.0, guess, k, 1e-14);
   }
 
   // Root of lambda_k on the anti-diagonal t2 - t1 = s, tau = t1 in [lo, hi].
-  EigAt diagonal_root(double s, double lo, double hi, double guess, int k) {
+  Pair diagonal_root(double s, double lo, double hi, double guess, int k) {
     return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, 1e-13);
   }
 
@@ -191,26 +205,23 @@ class Search {
   void rectangle(const Rect& r, std::vector<EdgeHit>& left_exits, std::vector<EdgeHit>& top_exits,
                  std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
     ++st_.rectangles;
-    const EigAt BL = eig(r.a1, r.A), TR = eig(r.b1, r.B);
-    const int m = md_.m();
-    auto nneg = [m](const EigAt& e) {
-      int c = 0;
-      for (int j = 0; j < m; ++j) c += e.lam(j) < 0;
-      return c;
-    };
-    const int kmin = nneg(TR), kmax = nneg(BL);  // curves k in [kmin, kmax)
+    const detail::SymmetricTridiagonal BLt = corner(r.a1, r.A), TRt = corner(r.b1, r.B);
+    const int kmin = TRt.count_below(0.0), kmax = BLt.count_below(0.0);  // curves k in [kmin, kmax)
     if (kmin >= kmax) return;
-    const EigAt BR = eig(r.b1, r.A), TL = eig(r.a1, r.B);
+    const detail::SymmetricTridiagonal BRt = corner(r.b1, r.A), TLt = corner(r.a1, r.B);
+    const int nBR = BRt.count_below(0.0), nTL = TLt.count_below(0.0);
     for (int k = kmin; k < kmax; ++k) {
       ++st_.curve_pieces;
       // entry on the lower-right path, exit on the upper-left path (design note §3b)
-      EigAt in, out;
-      bool in_bottom = BR.lam(k) > 0, out_left = TL.lam(k) > 0;
-      if (in_bottom) in = edge_root(r.a1, r.A, r.b1, r.A, k, BL.lam(k), BR.lam(k));
-      else in = edge_root(r.b1, r.A, r.b1, r.B, k, BR.lam(k), TR.lam(k));
-      if (out_left) out = edge_root(r.a1, r.A, r.a1, r.B, k, BL.lam(k), TL.lam(k));
-      else out = edge_root(r.a1, r.B, r.b1, r.B, k, TL.lam(k), TR.lam(k));
-      TracePoint pin = point(in, k, nullptr);
+      Pair in, out;
+      // lambda_k > 0 at a corner iff fewer than k + 1 eigenvalues lie below 0 there
+      const bool in_bottom = nBR <= k, out_left = nTL <= k;
+      const double bl = BLt.eigenvalue(k), tr = TRt.eigenvalue(k), br = BRt.eigenvalue(k), tl = TLt.eigenvalue(k);
+      if (in_bottom) in = edge_root(r.a1, r.A, r.b1, r.A, k, bl, br);
+      else in = edge_root(r.b1, r.A, r.b1, r.B, k, br, tr);
+      if (out_left) out = edge_root(r.a1, r.A, r.a1, r.B, k, bl, tl);
+      else out = edge_root(r.a1, r.B, r.b1, r.B, k, tl, tr);
+      TracePoint pin = point(in, nullptr);
       TracePoint pout = trace(r, k, pin, out);
       auto hit = [](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b}; };
       if (in_bottom ? r.bottom_pole : r.right_pole)
@@ -221,13 +232,13 @@ class Search {
   }
 
   // Trace curve k from entry to exit; returns the oriented exit point. Roots of g go to candidates_.
-  TracePoint trace(const Rect& r, int k, const TracePoint& pin, const EigAt& out) {
+  TracePoint trace(const Rect& r, int k, const TracePoint& pin, const Pair& out) {
     const double s_in = pin.s, s_out = out.t2 - out.t1;
     const double span = s_out - s_in;
     const double hmin = opt_.min_step * (opt_.t1_max + opt_.t2_max);
     TracePoint cur = pin;
     if (!(span > 0)) {
-      TracePoint p = point(out, k, &cur.b);
+      TracePoint p = point(out, &cur.b);
       examine(r, k, cur, p, 0);
       return p;
     }
@@ -237,11 +248,11 @@ class Search {
       const bool last = cur.s + h >= s_out - 1e-12 * std::abs(span);
       TracePoint p;
       if (last) {
-        p = point(out, k, &cur.b);
+        p = point(out, &cur.b);
       } else {
         const double s = cur.s + h;
         const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-        p = point(diagonal_root(s, lo, hi, cur.t1 + slope * h, k), k, &cur.b);
+        p = point(diagonal_root(s, lo, hi, cur.t1 + slope * h, k), &cur.b);
       }
       const double turn = std::acos(std::min(1.0, std::abs(cur.b.dot(p.b))));
       const double step = last ? s_out - cur.s : h;
@@ -293,13 +304,13 @@ class Search {
       if (h <= hmin || depth > 60) {
         if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < 1e-8) {
           ++st_.near_double_roots;
-          candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false});
+          candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}});
         }
         if (!endpoints_differ) return;
       } else {
         const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
         const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-        const TracePoint M = point(diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), k, &A.b);
+        const TracePoint M = point(diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), &A.b);
         examine(r, k, A, M, depth + 1);
         examine(r, k, M, B, depth + 1);
         return;
@@ -310,15 +321,15 @@ class Search {
     auto g_at = [&](double s) {
       const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
       const double guess = A.t1 + (B.t1 - A.t1) * (s - A.s) / h;
-      const EigAt e = diagonal_root(s, lo, hi, guess, k);
-      Vec b = e.V.col(k);
+      const Pair e = diagonal_root(s, lo, hi, guess, k);
+      Vec b = e.b;
       if (b.dot(A.b) < 0) b = -b;
       return zhat_.dot(b);
     };
     const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
     const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-    const EigAt e = diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k);
-    candidates_.push_back({e.t1, e.t2, false, false});
+    const Pair e = diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k);
+    candidates_.push_back({e.t1, e.t2, false, false, e.b});
   }
 
   // Pairs curves across one pole line, in order along it; a sign change of the oriented g inside the thin
@@ -333,7 +344,7 @@ class Search {
       double g2 = to[i].g;
       if (from[i].b.dot(to[i].b) < 0) g2 = -g2;
       if ((from[i].g > 0) != (g2 > 0))
-        candidates_.push_back({0.5 * (from[i].t1 + to[i].t1), 0.5 * (from[i].t2 + to[i].t2), false, true});
+        candidates_.push_back({0.5 * (from[i].t1 + to[i].t1), 0.5 * (from[i].t2 + to[i].t2), false, true, {}});
     }
   }
 
@@ -346,7 +357,7 @@ class Search {
   Vec zhat_;
   Eigen::ArrayXd d2_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
-  Mat C_;
+  Mat C_, Hbuf_;
 };
 
 // Newton on the pole-free bordered system: N(t1,t2) a = 0, z^T cos(W t1) a = 0, a_ref^T a = 1.
@@ -364,13 +375,22 @@ double residual_of(const ModalForm& md, double t1, double t2, const Vec& a) {
   return std::max(r1, r2);
 }
 
-Polished polish(const ModalForm& md, double t1, double t2) {
+// Starting vector: a = p0 ./ cos(W t1) from the traced null vector p0 of H when the cosines are not small
+// (near the axis t1 = 0, N has two small singular values and its SVD may pick the wrong one), else the SVD.
+Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec()) {
   const int m = md.m();
   Polished out;
-  Eigen::JacobiSVD<Mat> svd(md.N(t1, t2), Eigen::ComputeFullV);
-  Vec a = svd.matrixV().col(m - 1);
+  Vec a;
+  const Eigen::ArrayXd c1 = (md.omega().array() * t1).cos();
+  if (b.size() == m && c1.abs().minCoeff() > 1e-3) {
+    a = (b.array() / c1).matrix().normalized();
+  } else {
+    Eigen::JacobiSVD<Mat> svd(md.N(t1, t2), Eigen::ComputeFullV);
+    a = svd.matrixV().col(m - 1);
+  }
   const Vec aref = a;
   const Eigen::ArrayXd& w = md.omega().array();
+  const double t1_start = t1, t2_start = t2;
   double best = residual_of(md, t1, t2, a);
   out = {false, t1, t2, best, a};
   for (int it = 0; it < 12; ++it) {
@@ -386,7 +406,14 @@ Polished polish(const ModalForm& md, double t1, double t2) {
     J(m, 0) = -md.z().dot((w * (w * t1).sin() * a.array()).matrix());
     J.block(m, 2, 1, m) = ((w * t1).cos() * md.z().array()).matrix().transpose();
     J.block(m + 1, 2, 1, m) = aref.transpose();
-    const Vec dx = J.fullPivLu().solve(-F);
+    Vec dx = J.fullPivLu().solve(-F);
+    // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0
+    double alpha = 1.0;
+    while (alpha > 1e-6 && (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
+                            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) >
+                                1e-3 * (t1_start + t2_start)))
+      alpha *= 0.5;
+    dx *= alpha;
     t1 += dx(0);
     t2 += dx(1);
     a += dx.tail(m);
@@ -544,7 +571,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   // Polish, deduplicate, build orbits.
   const double window_scale = opt.t1_max + opt.t2_max;
   for (const Candidate& c : search.candidates_) {
-    const Polished p = polish(md, c.t1, c.t2);
+    const Polished p = polish(md, c.t1, c.t2, c.b);
     const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-4 * window_scale;
     // A root whose Newton polish stalls above 1e-10 but below 1e-6 (N nearly rank-2 there, e.g. close to the
     // axis t1 = 0) is reported with a flag; one that does not polish at all is a gap in the search.

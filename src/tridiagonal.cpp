@@ -1,0 +1,111 @@
+#include "spp/detail/tridiagonal.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace spp::detail {
+
+SymmetricTridiagonal::SymmetricTridiagonal(const Eigen::MatrixXd& A) {
+  const Eigen::Index m = A.rows();
+  householder_ = A;
+  hcoeffs_.resize(m > 1 ? m - 1 : 0);
+  a_.resize(m);
+  b_.resize(m > 1 ? m - 1 : 0);
+  if (m > 1) Eigen::internal::tridiagonalization_inplace(householder_, a_, b_, hcoeffs_, false);
+  else a_(0) = A(0, 0);
+  double bmax2 = 0.0;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const double r = (i > 0 ? std::abs(b_(i - 1)) : 0.0) + (i + 1 < m ? std::abs(b_(i)) : 0.0);
+    bound_ = std::max(bound_, std::abs(a_(i)) + r);
+    if (i + 1 < m) bmax2 = std::max(bmax2, b_(i) * b_(i));
+  }
+  pivmin_ = std::numeric_limits<double>::min() * std::max(1.0, bmax2);
+}
+
+int SymmetricTridiagonal::count_below(double x) const {
+  const Eigen::Index m = a_.size();
+  int count = 0;
+  double q = a_(0) - x;
+  if (std::abs(q) < pivmin_) q = -pivmin_;
+  count += q < 0;
+  for (Eigen::Index i = 1; i < m; ++i) {
+    q = a_(i) - x - b_(i - 1) * b_(i - 1) / q;
+    if (std::abs(q) < pivmin_) q = -pivmin_;
+    count += q < 0;
+  }
+  return count;
+}
+
+double SymmetricTridiagonal::eigenvalue(int k) const {
+  double lo = -bound_ - 1e-300, hi = bound_ + 1e-300;
+  const double tol = 2.0 * std::numeric_limits<double>::epsilon() * bound_;
+  for (int it = 0; it < 200 && hi - lo > tol; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    if (count_below(mid) > k) hi = mid;
+    else lo = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Eigen::VectorXd SymmetricTridiagonal::eigenvector(double lambda) const {
+  // Inverse iteration on T - lambda I with a tridiagonal LU with partial pivoting (two super-diagonals).
+  const Eigen::Index m = a_.size();
+  Eigen::VectorXd y = Eigen::VectorXd::Ones(m);
+  if (m == 1) return y;
+  const double eps = std::numeric_limits<double>::epsilon() * std::max(bound_, 1e-300);
+  Eigen::VectorXd d(m), u1(m), u2(m), l(m);
+  Eigen::VectorXi swapped(m);
+  // factor
+  for (Eigen::Index i = 0; i < m; ++i) {
+    d(i) = a_(i) - lambda;
+    u1(i) = i + 1 < m ? b_(i) : 0.0;
+    u2(i) = 0.0;
+  }
+  Eigen::VectorXd lower = b_;  // sub-diagonal entries to eliminate
+  for (Eigen::Index i = 0; i + 1 < m; ++i) {
+    const double sub = lower(i);
+    if (std::abs(d(i)) >= std::abs(sub)) {
+      swapped(i) = 0;
+      if (d(i) == 0.0) d(i) = eps;
+      l(i) = sub / d(i);
+      d(i + 1) -= l(i) * u1(i);
+      // u2(i) stays 0; row i+1's super-diagonal unchanged
+    } else {
+      swapped(i) = 1;
+      // swap rows i and i+1: row i+1 = [sub, d(i+1), u1(i+1)]
+      l(i) = d(i) / sub;
+      const double nd = sub, nu1 = d(i + 1), nu2 = i + 1 < m - 1 ? u1(i + 1) : 0.0;
+      const double od = d(i), ou1 = u1(i);
+      d(i) = nd;
+      u1(i) = nu1;
+      u2(i) = nu2;
+      d(i + 1) = ou1 - l(i) * nu1;
+      if (i + 1 < m - 1) u1(i + 1) = -l(i) * nu2;
+      (void)od;
+    }
+  }
+  if (d(m - 1) == 0.0) d(m - 1) = eps;
+  for (int iter = 0; iter < 3; ++iter) {
+    // forward: apply L^{-1} with the recorded swaps
+    for (Eigen::Index i = 0; i + 1 < m; ++i) {
+      if (swapped(i)) std::swap(y(i), y(i + 1));
+      y(i + 1) -= l(i) * y(i);
+    }
+    // back substitution with U (d, u1, u2)
+    for (Eigen::Index i = m - 1; i >= 0; --i) {
+      double s = y(i);
+      if (i + 1 < m) s -= u1(i) * y(i + 1);
+      if (i + 2 < m) s -= u2(i) * y(i + 2);
+      y(i) = s / (std::abs(d(i)) > 0 ? d(i) : eps);
+    }
+    y /= y.norm();
+  }
+  // back to the basis of A: v = Q y, Q the product of the Householder reflectors
+  Eigen::HouseholderSequence<Eigen::MatrixXd, Eigen::VectorXd> Q(householder_, hcoeffs_);
+  Q.setLength(m - 1).setShift(1);
+  Eigen::VectorXd v = Q * y;
+  return v / v.norm();
+}
+
+}  // namespace spp::detail
