@@ -6,7 +6,9 @@
 
 namespace spp::detail {
 
-double CosineSum::value(double t) const { return c0 + (amp.array() * (freq.array() * t).cos()).sum(); }
+double CosineSum::value(double t) const {
+  return c0 + (amp.array() * (freq.array() * t).cos()).sum();
+}
 
 double CosineSum::derivative(double t, int k) const {
   if (k == 0) return value(t);
@@ -15,7 +17,9 @@ double CosineSum::derivative(double t, int k) const {
   return (amp.array() * freq.array().pow(k) * (freq.array() * t + shift).cos()).sum();
 }
 
-double CosineSum::bound(int p) const { return (amp.array().abs() * freq.array().pow(p)).sum(); }
+double CosineSum::bound(int p) const {
+  return (amp.array().abs() * freq.array().pow(p)).sum();
+}
 
 namespace {
 struct Interval {
@@ -28,9 +32,9 @@ CosineMinimum minimize(const CosineSum& f, double lo, double hi, double abs_tol,
   const double M2 = f.bound(2);
   auto make = [&](double a, double b, double fa, double fb, double da, double db) {
     const double h = b - a;
-    double lb = std::min(fa, fb) - M2 * h * h / 8.0;                     // interpolation error bound
-    lb = std::max(lb, std::min(fa, fa + da * h - 0.5 * M2 * h * h));     // Taylor from a (concave bound)
-    lb = std::max(lb, std::min(fb, fb - db * h - 0.5 * M2 * h * h));     // Taylor from b
+    double lb = std::min(fa, fb) - M2 * h * h / 8.0;                  // interpolation error bound
+    lb = std::max(lb, std::min(fa, fa + da * h - 0.5 * M2 * h * h));  // Taylor from a (concave bound)
+    lb = std::max(lb, std::min(fb, fb - db * h - 0.5 * M2 * h * h));  // Taylor from b
     return Interval{a, b, fa, fb, da, db, lb};
   };
   CosineMinimum best;

@@ -30,8 +30,8 @@ System chain(int n, const std::vector<double>& masses, const std::vector<double>
   for (int i = 0; i < n; ++i)
     if (!(m[i] > 0) || !(k[i] > 0)) {
       std::ostringstream os;
-      os << "chain: masses and stiffnesses must be positive, got m" << i + 1 << " = " << m[i] << ", k" << i + 1
-         << " = " << k[i];
+      os << "chain: masses and stiffnesses must be positive, got m" << i + 1 << " = " << m[i] << ", k" << i + 1 << " = "
+         << k[i];
       throw std::invalid_argument(os.str());
     }
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = Eigen::MatrixXd::Zero(n, n);
@@ -51,7 +51,7 @@ System chain(int n, const std::vector<double>& masses, const std::vector<double>
 
 System rod_with_slip(double a, double b) {
   Eigen::MatrixXd M(4, 4), K(4, 4);
-  M << 4, 1, 0, 0, 1, 2, 0, 0, 0, 0, 3, 1.5, 0, 0, 1.5, 6;      // eq. (5.6)
+  M << 4, 1, 0, 0, 1, 2, 0, 0, 0, 0, 3, 1.5, 0, 0, 1.5, 6;  // eq. (5.6)
   K << 2, -1, 0, 0, -1, 1, 0, 0, 0, 0, 2.5, -2.5, 0, 0, -2.5, 5;
   const double s = std::sqrt(1.0 + a * a);
   Eigen::VectorXd w(4);

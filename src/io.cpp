@@ -1,12 +1,13 @@
 #include "spp/io.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace spp {
 
@@ -14,7 +15,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-[[noreturn]] void fail(const std::string& s) { throw std::invalid_argument(s); }
+[[noreturn]] void fail(const std::string& s) {
+  throw std::invalid_argument(s);
+}
 
 std::string num(double v) {
   std::ostringstream os;
@@ -52,8 +55,7 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
     for (size_t c = 0; c < cols; ++c) {
       if (!v[i][c].is_number()) {
         std::ostringstream os;
-        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got "
-           << v[i][c].dump();
+        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got " << v[i][c].dump();
         fail(os.str());
       }
       A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) = v[i][c].get<double>();
@@ -80,7 +82,8 @@ System system_from_json(const json& j, const std::string& where, const std::stri
   if (!jw.is_array() || jw.empty()) fail(where + ": field \"w\" must be a non-empty list of numbers");
   Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
   for (size_t i = 0; i < jw.size(); ++i) {
-    if (!jw[i].is_number()) fail(where + ": field \"w\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
+    if (!jw[i].is_number())
+      fail(where + ": field \"w\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
     w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
   }
   if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
@@ -151,12 +154,14 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
   long rows = 0, cols = 0, nnz = 0;
   ss >> rows >> cols;
   if (format == "coordinate") ss >> nnz;
-  if (!ss || rows <= 0 || cols <= 0 || nnz < 0) fail(path + ":" + std::to_string(lineno) + ": bad size line \"" + line + "\"");
+  if (!ss || rows <= 0 || cols <= 0 || nnz < 0)
+    fail(path + ":" + std::to_string(lineno) + ": bad size line \"" + line + "\"");
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
   const bool sym = symmetry == "symmetric";
   if (format == "coordinate") {
     for (long e = 0; e < nnz; ++e) {
-      if (!std::getline(in, line)) fail(path + ": expected " + std::to_string(nnz) + " entries, got " + std::to_string(e));
+      if (!std::getline(in, line))
+        fail(path + ": expected " + std::to_string(nnz) + " entries, got " + std::to_string(e));
       ++lineno;
       std::istringstream es(line);
       long i = 0, j = 0;
@@ -171,7 +176,9 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
     for (long j = 0; j < cols; ++j)
       for (long i = sym ? j : 0; i < rows; ++i) {
         double v = 0;
-        if (!(in >> v)) fail(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ")");
+        if (!(in >> v))
+          fail(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+               ")");
         A(i, j) = v;
         if (sym) A(j, i) = v;
       }
@@ -182,8 +189,12 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
 json result_to_json(const System& s, const SolveResult& r) {
   json j;
   auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
-  j["system"] = {{"name", s.name()}, {"n", s.n()}, {"g0", s.g0()}, {"w", vec(s.w())},
-                 {"w_normalized", s.w_input_norm() != 1.0}, {"w_input_norm", s.w_input_norm()}};
+  j["system"] = {{"name", s.name()},
+                 {"n", s.n()},
+                 {"g0", s.g0()},
+                 {"w", vec(s.w())},
+                 {"w_normalized", s.w_input_norm() != 1.0},
+                 {"w_input_norm", s.w_input_norm()}};
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["status"] = to_string(r.status);
   j["warnings"] = r.warnings;
@@ -201,13 +212,22 @@ json result_to_json(const System& s, const SolveResult& r) {
                 {"seconds", r.stats.seconds}};
   json sols = json::array();
   for (const Solution& x : r.solutions) {
-    json o = {{"t1", x.t1}, {"t2", x.t2}, {"period", x.period}, {"admissible", x.admissible},
-              {"min_gap", x.min_gap}, {"min_force", x.min_force}, {"x0", vec(x.orbit.x0)}, {"v0", vec(x.orbit.v0)},
-              {"energy", x.energy}, {"residual", x.residual}, {"return_error", x.return_error},
+    json o = {{"t1", x.t1},
+              {"t2", x.t2},
+              {"period", x.period},
+              {"admissible", x.admissible},
+              {"min_gap", x.min_gap},
+              {"min_force", x.min_force},
+              {"x0", vec(x.orbit.x0)},
+              {"v0", vec(x.orbit.v0)},
+              {"energy", x.energy},
+              {"residual", x.residual},
+              {"return_error", x.return_error},
               {"mid_flight_gap", x.admissibility.mid_flight_gap},
               {"mid_contact_force", x.admissibility.mid_contact_force},
               {"onset_force_rate", x.admissibility.onset_force_rate},
-              {"admissibility_certified", x.admissibility.certified}, {"flags", x.flags}};
+              {"admissibility_certified", x.admissibility.certified},
+              {"flags", x.flags}};
     sols.push_back(o);
   }
   j["solutions"] = sols;
@@ -235,12 +255,13 @@ std::string result_to_csv(const SolveResult& r) {
 std::string result_table(const SolveResult& r) {
   std::ostringstream os;
   os << std::setw(4) << "#" << std::setw(14) << "t1" << std::setw(14) << "t2" << std::setw(14) << "period"
-     << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force" << "\n";
+     << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force"
+     << "\n";
   int i = 0;
   for (const Solution& x : r.solutions) {
-    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1 << std::setw(14) << x.t2
-       << std::setw(14) << x.period << std::setw(12) << (x.admissible ? "yes" : "no") << std::setprecision(3)
-       << std::setw(14) << x.min_gap << std::setw(14) << x.min_force;
+    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1 << std::setw(14) << x.t2 << std::setw(14)
+       << x.period << std::setw(12) << (x.admissible ? "yes" : "no") << std::setprecision(3) << std::setw(14)
+       << x.min_gap << std::setw(14) << x.min_force;
     for (const auto& f : x.flags) os << "  [" << f << "]";
     os << "\n";
   }

@@ -116,8 +116,7 @@ Eigen::MatrixXd ModalForm::contact_msin(double t) const {
 
 Eigen::MatrixXd ModalForm::N(double t1, double t2) const {
   const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
-  return contact_msin(t2) * c1.matrix().asDiagonal() +
-         contact_cos(t2) * (omega_.array() * s1).matrix().asDiagonal();
+  return contact_msin(t2) * c1.matrix().asDiagonal() + contact_cos(t2) * (omega_.array() * s1).matrix().asDiagonal();
 }
 
 Eigen::MatrixXd ModalForm::dN_dt1(double t1, double t2) const {
@@ -152,7 +151,11 @@ std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, doubl
   return merged;
 }
 
-std::vector<double> ModalForm::flight_poles(double lo, double hi) const { return tangent_poles(omega_, lo, hi); }
-std::vector<double> ModalForm::contact_poles(double lo, double hi) const { return tangent_poles(d_, lo, hi); }
+std::vector<double> ModalForm::flight_poles(double lo, double hi) const {
+  return tangent_poles(omega_, lo, hi);
+}
+std::vector<double> ModalForm::contact_poles(double lo, double hi) const {
+  return tangent_poles(d_, lo, hi);
+}
 
 }  // namespace spp

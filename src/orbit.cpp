@@ -99,8 +99,8 @@ Admissibility check_admissibility(const ModalForm& md, const Orbit& o, double re
   const double g3 = gap.derivative(o.t1, 3), g4 = gap.derivative(o.t1, 4);
   const double f1 = force.derivative(o.t2, 1), f2 = force.derivative(o.t2, 2);
   const bool gap_end = g3 < -zrel * gap.bound(3) || (std::abs(g3) <= zrel * gap.bound(3) && g4 >= -zrel * gap.bound(4));
-  const bool force_end = f1 < -zrel * force.bound(1) ||
-                         (std::abs(f1) <= zrel * force.bound(1) && f2 >= -zrel * force.bound(2));
+  const bool force_end =
+      f1 < -zrel * force.bound(1) || (std::abs(f1) <= zrel * force.bound(1) && f2 >= -zrel * force.bound(2));
   adm.onset_force_rate = -f1;
   adm.ends_ok = gap_end && force_end;
   adm.admissible = adm.ends_ok && gmin.lower_bound >= -gtol && fmin.lower_bound >= -ftol;

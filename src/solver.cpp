@@ -1,11 +1,15 @@
 #include "spp/solver.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "spp/detail/brent.hpp"
 #include "spp/detail/tridiagonal.hpp"
@@ -35,8 +39,7 @@ void SolveOptions::validate() const {
   auto lower = [](double v, double hi, const char* name, const char* hiname) {
     if (!(std::isfinite(v) && v >= 0.0 && v < hi)) {
       std::ostringstream os;
-      os << "options: " << name << " must be >= 0 and < " << hiname << " = " << hi << " (0 = automatic), got "
-         << v;
+      os << "options: " << name << " must be >= 0 and < " << hiname << " = " << hi << " (0 = automatic), got " << v;
       throw std::invalid_argument(os.str());
     }
   };
@@ -53,15 +56,16 @@ void SolveOptions::validate() const {
   in_open(max_turn, 0.0, 1.0, "max_turn");
   in_open(min_step, 0.0, 1e-3, "min_step");
   in_open(admissibility_tol, 0.0, 1e-2, "admissibility_tol");
+  if (threads < 0)
+    throw std::invalid_argument("options: threads must be >= 0 (0 = all), got " + std::to_string(threads));
 }
 
 std::string SolveResult::brief_report() const {
   std::ostringstream os;
   long adm = std::count_if(solutions.begin(), solutions.end(), [](const Solution& s) { return s.admissible; });
-  os << "spp: " << to_string(status) << ", " << solutions.size() << " SPPs (" << adm << " admissible) in ("
-     << t1_min << ", " << t1_max << "] x (" << t2_min << ", " << t2_max << "]; " << stats.rectangles
-     << " rectangles, " << stats.curve_pieces << " curve pieces, " << stats.evaluations << " evaluations, "
-     << stats.seconds << " s";
+  os << "spp: " << to_string(status) << ", " << solutions.size() << " SPPs (" << adm << " admissible) in (" << t1_min
+     << ", " << t1_max << "] x (" << t2_min << ", " << t2_max << "]; " << stats.rectangles << " rectangles, "
+     << stats.curve_pieces << " curve pieces, " << stats.evaluations << " evaluations, " << stats.seconds << " s";
   return os.str();
 }
 
@@ -174,7 +178,10 @@ class Search {
       e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
       const double f = e.lam;
       if (std::abs(f) <= rel_ftol * e.scale) break;
-      if (f < 0) lo = x; else hi = x;
+      if (f < 0)
+        lo = x;
+      else
+        hi = x;
       const auto [l1, l2] = grads(e.b, e.t1, e.t2);
       const double df = dt1 * l1 + dt2 * l2;
       double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
@@ -198,7 +205,7 @@ class Search {
 
   // ---- one rectangle ----
   struct Rect {
-    double a1, b1, A, B;              // shrunk bounds
+    double a1, b1, A, B;  // shrunk bounds
     bool left_pole, right_pole, bottom_pole, top_pole;
   };
 
@@ -217,10 +224,14 @@ class Search {
       // lambda_k > 0 at a corner iff fewer than k + 1 eigenvalues lie below 0 there
       const bool in_bottom = nBR <= k, out_left = nTL <= k;
       const double bl = BLt.eigenvalue(k), tr = TRt.eigenvalue(k), br = BRt.eigenvalue(k), tl = TLt.eigenvalue(k);
-      if (in_bottom) in = edge_root(r.a1, r.A, r.b1, r.A, k, bl, br);
-      else in = edge_root(r.b1, r.A, r.b1, r.B, k, br, tr);
-      if (out_left) out = edge_root(r.a1, r.A, r.a1, r.B, k, bl, tl);
-      else out = edge_root(r.a1, r.B, r.b1, r.B, k, tl, tr);
+      if (in_bottom)
+        in = edge_root(r.a1, r.A, r.b1, r.A, k, bl, br);
+      else
+        in = edge_root(r.b1, r.A, r.b1, r.B, k, br, tr);
+      if (out_left)
+        out = edge_root(r.a1, r.A, r.a1, r.B, k, bl, tl);
+      else
+        out = edge_root(r.a1, r.B, r.b1, r.B, k, tl, tr);
       TracePoint pin = point(in, nullptr);
       TracePoint pout = trace(r, k, pin, out);
       auto hit = [](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b}; };
@@ -297,8 +308,8 @@ class Search {
     const bool endpoints_differ = (A.g > 0) != (B.g > 0);
     const double gscale = std::max(std::abs(A.g), std::abs(B.g));
     // Interior dip of the model towards (or through) zero, away from the end values.
-    const bool dip = vmin < 0.25 * std::min(std::abs(A.g), std::abs(B.g)) && vmin < 0.25 * gscale &&
-                     xmin > 0.02 && xmin < 0.98;
+    const bool dip =
+        vmin < 0.25 * std::min(std::abs(A.g), std::abs(B.g)) && vmin < 0.25 * gscale && xmin > 0.02 && xmin < 0.98;
     const bool suspicious = (endpoints_differ && changes > 1) || (!endpoints_differ && (changes > 0 || dip));
     if (suspicious) {
       if (h <= hmin || depth > 60) {
@@ -409,9 +420,9 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec())
     Vec dx = J.fullPivLu().solve(-F);
     // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0
     double alpha = 1.0;
-    while (alpha > 1e-6 && (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
-                            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) >
-                                1e-3 * (t1_start + t2_start)))
+    while (alpha > 1e-6 &&
+           (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
+            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) > 1e-3 * (t1_start + t2_start)))
       alpha *= 0.5;
     dx *= alpha;
     t1 += dx(0);
@@ -463,8 +474,8 @@ Solution solution_at(const System& system, double t1, double t2, const SolveOpti
   const Polished p = polish(md, t1, t2);
   if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > 1e-3 * (t1 + t2)) {
     std::ostringstream os;
-    os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual "
-       << p.residual << " at (" << p.t1 << ", " << p.t2 << ")";
+    os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual " << p.residual
+       << " at (" << p.t1 << ", " << p.t2 << ")";
     throw std::invalid_argument(os.str());
   }
   return build_solution(system, md, p, options, options.compute_return_error);
@@ -528,61 +539,97 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   const auto m1 = margins(b1, pole1), m2 = margins(b2, pole2);
   // window edge adjacent to a pole closer than that pole's margin: shift inward
   if (b1.size() > 2 && b1[1] - b1[0] <= 2 * m1[1]) b1[0] = b1[1] + 2 * m1[1];
-  if (b1.size() > 2 && b1.back() - b1[b1.size() - 2] <= 2 * m1[b1.size() - 2]) b1.back() = b1[b1.size() - 2] - 2 * m1[b1.size() - 2];
+  if (b1.size() > 2 && b1.back() - b1[b1.size() - 2] <= 2 * m1[b1.size() - 2])
+    b1.back() = b1[b1.size() - 2] - 2 * m1[b1.size() - 2];
   if (b2.size() > 2 && b2[1] - b2[0] <= 2 * m2[1]) b2[0] = b2[1] + 2 * m2[1];
-  if (b2.size() > 2 && b2.back() - b2[b2.size() - 2] <= 2 * m2[b2.size() - 2]) b2.back() = b2[b2.size() - 2] - 2 * m2[b2.size() - 2];
+  if (b2.size() > 2 && b2.back() - b2[b2.size() - 2] <= 2 * m2[b2.size() - 2])
+    b2.back() = b2[b2.size() - 2] - 2 * m2[b2.size() - 2];
 
-  Search search(md, opt, res.stats);
+  // Strips between t2 pole lines are independent: workers take whole strips, each with its own Search (own
+  // cache and counters). Pairing across pole lines and the polish follow in order, so the result does not
+  // depend on the number of threads.
   const size_t I = b1.size() - 1, J = b2.size() - 1;
-  // Edge hits kept per pole line: vertical lines by t1-breakpoint index, horizontal by t2-breakpoint index.
-  std::vector<std::vector<EdgeHit>> v_from(b1.size()), v_to(b1.size()), h_from(b2.size()), h_to(b2.size());
-  for (size_t j = 0; j < J; ++j) {
-    for (size_t i = 0; i < I; ++i) {
-      Search::Rect r{b1[i] + m1[i], b1[i + 1] - m1[i + 1], b2[j] + m2[j], b2[j + 1] - m2[j + 1],
-                     pole1[i], pole1[i + 1], pole2[j], pole2[j + 1]};
-      if (!(r.a1 < r.b1 && r.A < r.B)) continue;
-      std::vector<EdgeHit> le, te, re, be;
-      search.rectangle(r, le, te, re, be);
-      // curves leave through the left edge (pole line i) into the right edge of cell i-1, and through the top
-      // edge (pole line j+1) into the bottom edge of strip j+1
-      for (auto& h : le) v_from[i].push_back(std::move(h));
-      for (auto& h : re) v_to[i + 1].push_back(std::move(h));
-      for (auto& h : te) h_from[j + 1].push_back(std::move(h));
-      for (auto& h : be) h_to[j].push_back(std::move(h));
+  struct StripOut {
+    std::vector<Candidate> candidates;
+    std::vector<std::vector<EdgeHit>> v_from, v_to;  // this strip's hits on each vertical pole line
+    std::vector<EdgeHit> top_exits, bottom_entries;
+    SolveStats stats;
+  };
+  std::vector<StripOut> strips(J);
+  std::atomic<size_t> next_strip{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&]() {
+    try {
+      for (size_t j = next_strip++; j < J; j = next_strip++) {
+        StripOut& out = strips[j];
+        out.v_from.resize(b1.size());
+        out.v_to.resize(b1.size());
+        Search search(md, opt, out.stats);
+        for (size_t i = 0; i < I; ++i) {
+          Search::Rect r{b1[i] + m1[i], b1[i + 1] - m1[i + 1], b2[j] + m2[j], b2[j + 1] - m2[j + 1],
+                         pole1[i],      pole1[i + 1],          pole2[j],      pole2[j + 1]};
+          if (!(r.a1 < r.b1 && r.A < r.B)) continue;
+          // curves leave through the left edge (pole line i) into the right edge of cell i - 1, and through
+          // the top edge (pole line j + 1) into the bottom edge of strip j + 1
+          search.rectangle(r, out.v_from[i], out.top_exits, out.v_to[i + 1], out.bottom_entries);
+        }
+        out.candidates = std::move(search.candidates_);
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(failure_mutex);
+      failure = std::current_exception();
     }
-    // horizontal pole line j is complete once strip j is done: pair and release it
-    if (j > 0 && pole2[j]) {
-      auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
-      std::sort(h_from[j].begin(), h_from[j].end(), by_pos);
-      std::sort(h_to[j].begin(), h_to[j].end(), by_pos);
-      search.pair_across(h_from[j], h_to[j]);
-      h_from[j].clear();
-      h_to[j].clear();
-    }
+  };
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const size_t nthreads = std::min<size_t>(J, opt.threads > 0 ? static_cast<size_t>(opt.threads) : hw);
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+
+  Search merger(md, opt, res.stats);
+  auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
+  for (size_t j = 1; j < J; ++j) {  // horizontal pole lines
+    if (!pole2[j]) continue;
+    auto& from = strips[j - 1].top_exits;
+    auto& to = strips[j].bottom_entries;
+    std::sort(from.begin(), from.end(), by_pos);
+    std::sort(to.begin(), to.end(), by_pos);
+    merger.pair_across(from, to);
   }
-  for (size_t i = 1; i + 1 < b1.size(); ++i) {
+  for (size_t i = 1; i + 1 < b1.size(); ++i) {  // vertical pole lines, over all strips
     if (!pole1[i]) continue;
-    auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
-    std::sort(v_from[i].begin(), v_from[i].end(), by_pos);
-    std::sort(v_to[i].begin(), v_to[i].end(), by_pos);
-    search.pair_across(v_from[i], v_to[i]);
+    std::vector<EdgeHit> from, to;
+    for (size_t j = 0; j < J; ++j) {
+      for (auto& h : strips[j].v_from[i]) from.push_back(std::move(h));
+      for (auto& h : strips[j].v_to[i]) to.push_back(std::move(h));
+    }
+    std::sort(from.begin(), from.end(), by_pos);
+    std::sort(to.begin(), to.end(), by_pos);
+    merger.pair_across(from, to);
   }
+  std::vector<Candidate> candidates;
+  for (StripOut& out : strips) {
+    res.stats.rectangles += out.stats.rectangles;
+    res.stats.curve_pieces += out.stats.curve_pieces;
+    res.stats.evaluations += out.stats.evaluations;
+    res.stats.near_double_roots += out.stats.near_double_roots;
+    for (auto& c : out.candidates) candidates.push_back(std::move(c));
+  }
+  for (auto& c : merger.candidates_) candidates.push_back(std::move(c));
 
   // Polish, deduplicate, build orbits.
   const double window_scale = opt.t1_max + opt.t2_max;
-  for (const Candidate& c : search.candidates_) {
-    const Polished p = polish(md, c.t1, c.t2, c.b);
-    const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-4 * window_scale;
-    // A root whose Newton polish stalls above 1e-10 but below 1e-6 (N nearly rank-2 there, e.g. close to the
-    // axis t1 = 0) is reported with a flag; one that does not polish at all is a gap in the search.
-    const bool ill_conditioned = !p.converged && p.residual < 1e-6 && !moved_far;
-    if ((!p.converged && !ill_conditioned) || moved_far) {
-      std::ostringstream os;
-      os << "root near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish (residual " << p.residual
-         << ")";
-      res.warnings.push_back(os.str());
-      continue;
-    }
+  for (const Candidate& c : candidates) {
+    Polished p = polish(md, c.t1, c.t2, c.b);
+    // A root found by the search is never dropped: where Newton stalls (N nearly rank-deficient in two
+    // directions, e.g. close to the limit points on the axis t1 = 0) the root is reported at its best point
+    // with its residual and a flag; the trust region keeps it next to the traced candidate.
+    const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-3 * window_scale;
+    if (moved_far) p = {false, c.t1, c.t2, residual_of(md, c.t1, c.t2, p.a), p.a};
+    const char* accuracy_flag = p.converged ? nullptr : p.residual < 1e-6 ? "ill_conditioned" : "unpolished";
     // Each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both equations in the limit
     // (pure contact oscillation): roots that polish back towards an axis are these limits, not SPPs.
     if (p.t1 <= 2.0 * opt.t1_min || p.t1 > opt.t1_max || p.t2 <= 2.0 * opt.t2_min || p.t2 > opt.t2_max) continue;
@@ -598,7 +645,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
       continue;
     }
     if (c.near_double) s.flags.push_back("near_double_root");
-    if (ill_conditioned) s.flags.push_back("ill_conditioned");
+    if (accuracy_flag) s.flags.push_back(accuracy_flag);
     if (c.near_pole) s.flags.push_back("near_pole_line");
     res.solutions.push_back(std::move(s));
   }
@@ -606,9 +653,9 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   std::sort(res.solutions.begin(), res.solutions.end(),
             [](const Solution& a, const Solution& b) { return a.period < b.period; });
   if (options.admissible_only)
-    res.solutions.erase(std::remove_if(res.solutions.begin(), res.solutions.end(),
-                                       [](const Solution& s) { return !s.admissible; }),
-                        res.solutions.end());
+    res.solutions.erase(
+        std::remove_if(res.solutions.begin(), res.solutions.end(), [](const Solution& s) { return !s.admissible; }),
+        res.solutions.end());
   if (res.stats.unpaired_crossings > 0)
     res.warnings.push_back(std::to_string(res.stats.unpaired_crossings) +
                            " curve crossing(s) of a pole line could not be paired (a curve passed within the "

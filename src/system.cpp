@@ -7,7 +7,9 @@
 namespace spp {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
+[[noreturn]] void fail(const std::string& what) {
+  throw std::invalid_argument(what);
+}
 
 void check_finite(const Eigen::MatrixXd& A, const char* field) {
   for (Eigen::Index j = 0; j < A.cols(); ++j)
@@ -27,9 +29,8 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
     Eigen::Index i = 0, j = 0;
     (A - A.transpose()).cwiseAbs().maxCoeff(&i, &j);
     std::ostringstream os;
-    os << "system: " << field << " must be symmetric (relative tolerance " << kSymmetryTolerance << "), got "
-       << field << "[" << i << "][" << j << "] = " << A(i, j) << " but " << field << "[" << j << "][" << i
-       << "] = " << A(j, i);
+    os << "system: " << field << " must be symmetric (relative tolerance " << kSymmetryTolerance << "), got " << field
+       << "[" << i << "][" << j << "] = " << A(i, j) << " but " << field << "[" << j << "][" << i << "] = " << A(j, i);
     fail(os.str());
   }
   Eigen::MatrixXd S = 0.5 * (A + A.transpose());
@@ -39,8 +40,8 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
   // Positive definite with a margin above rounding: an eigenvalue at the level of rounding is singular.
   if (!(lmin > 1e3 * std::numeric_limits<double>::epsilon() * lmax * static_cast<double>(A.rows()))) {
     std::ostringstream os;
-    os << "system: " << field << " must be positive definite, got smallest eigenvalue " << lmin
-       << " (largest " << lmax << ")";
+    os << "system: " << field << " must be positive definite, got smallest eigenvalue " << lmin << " (largest " << lmax
+       << ")";
     fail(os.str());
   }
   return S;

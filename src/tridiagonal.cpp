@@ -11,8 +11,10 @@ SymmetricTridiagonal::SymmetricTridiagonal(const Eigen::MatrixXd& A) {
   hcoeffs_.resize(m > 1 ? m - 1 : 0);
   a_.resize(m);
   b_.resize(m > 1 ? m - 1 : 0);
-  if (m > 1) Eigen::internal::tridiagonalization_inplace(householder_, a_, b_, hcoeffs_, false);
-  else a_(0) = A(0, 0);
+  if (m > 1)
+    Eigen::internal::tridiagonalization_inplace(householder_, a_, b_, hcoeffs_, false);
+  else
+    a_(0) = A(0, 0);
   double bmax2 = 0.0;
   for (Eigen::Index i = 0; i < m; ++i) {
     const double r = (i > 0 ? std::abs(b_(i - 1)) : 0.0) + (i + 1 < m ? std::abs(b_(i)) : 0.0);
@@ -42,8 +44,10 @@ double SymmetricTridiagonal::eigenvalue(int k) const {
   for (int it = 0; it < 200 && hi - lo > tol; ++it) {
     const double mid = 0.5 * (lo + hi);
     if (mid == lo || mid == hi) break;
-    if (count_below(mid) > k) hi = mid;
-    else lo = mid;
+    if (count_below(mid) > k)
+      hi = mid;
+    else
+      lo = mid;
   }
   return 0.5 * (lo + hi);
 }

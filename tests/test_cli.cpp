@@ -1,6 +1,7 @@
 // The command-line tool: every validation rule gives a non-zero exit code, a message naming what is wrong,
 // and no output file; the happy paths write loadable JSON and CSV.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
@@ -71,8 +71,8 @@ TEST(Cli, SolveWritesJsonAndCsv) {
   EXPECT_EQ(j["system"]["n"], 5);
   EXPECT_EQ(j["window"]["t1_max"], 12.0);
   ASSERT_GT(j["solutions"].size(), 0u);
-  for (const char* key : {"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy",
-                          "residual", "return_error"})
+  for (const char* key :
+       {"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy", "residual", "return_error"})
     EXPECT_TRUE(j["solutions"][0].contains(key)) << key;
   std::ifstream c(cs);
   std::string header;
@@ -119,8 +119,8 @@ TEST(Cli, RejectsInvalidSystems) {
 
 TEST(Cli, RejectsInvalidWindow) {
   const std::string sys = write("good.json", kGood);
-  for (const char* w : {"--t1-max -1 --t2-max 5", "--t1-max 5 --t2-max 0", "--t1-max inf --t2-max 5",
-                        "--t1-max nan --t2-max 5"}) {
+  for (const char* w :
+       {"--t1-max -1 --t2-max 5", "--t1-max 5 --t2-max 0", "--t1-max inf --t2-max 5", "--t1-max nan --t2-max 5"}) {
     const fs::path out = dir() / "win.json";
     fs::remove(out);
     const CliRun r = run("solve " + sys + " " + w + " --json " + out.string());
@@ -142,7 +142,8 @@ TEST(Cli, MissingFileAndUsageErrors) {
 TEST(Cli, TrajectoryWritesOnePeriod) {
   const fs::path js = dir() / "t.json", cs = dir() / "traj.csv";
   ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --admissible-only --json " + js.string()).code, 0);
-  const CliRun r = run("trajectory " + kChain + " --result " + js.string() + " --solution 0 --samples 201 --csv " + cs.string());
+  const CliRun r =
+      run("trajectory " + kChain + " --result " + js.string() + " --solution 0 --samples 201 --csv " + cs.string());
   ASSERT_EQ(r.code, 0) << r.out;
   std::ifstream c(cs);
   std::string header;
@@ -161,7 +162,8 @@ TEST(Cli, TrajectoryWritesOnePeriod) {
   EXPECT_EQ(rows, 201u);
   EXPECT_GE(gmin, -1e-9);
   EXPECT_GE(fmin, -1e-9);
-  const CliRun bad = run("trajectory " + kChain + " --result " + js.string() + " --solution 999 --csv " + (dir() / "x.csv").string());
+  const CliRun bad =
+      run("trajectory " + kChain + " --result " + js.string() + " --solution 999 --csv " + (dir() / "x.csv").string());
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.out.find("out of range"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir() / "x.csv"));

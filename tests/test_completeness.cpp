@@ -82,11 +82,13 @@ void compare(const System& s, double T1, double T2, int N) {
     if (x.t1 > lo1 && x.t1 < hi1 && x.t2 > lo2 && x.t2 < hi2) sv.push_back({x.t1, x.t2});
   const double tol = 1e-6 * (T1 + T2);
   for (const Pt& p : bf) {
-    const bool found = std::any_of(sv.begin(), sv.end(), [&](const Pt& q) { return std::hypot(p.t1 - q.t1, p.t2 - q.t2) < tol; });
+    const bool found =
+        std::any_of(sv.begin(), sv.end(), [&](const Pt& q) { return std::hypot(p.t1 - q.t1, p.t2 - q.t2) < tol; });
     EXPECT_TRUE(found) << "brute force root (" << p.t1 << ", " << p.t2 << ") missing from spp::solve";
   }
   for (const Pt& p : sv) {
-    const bool found = std::any_of(bf.begin(), bf.end(), [&](const Pt& q) { return std::hypot(p.t1 - q.t1, p.t2 - q.t2) < tol; });
+    const bool found =
+        std::any_of(bf.begin(), bf.end(), [&](const Pt& q) { return std::hypot(p.t1 - q.t1, p.t2 - q.t2) < tol; });
     EXPECT_TRUE(found) << "spp::solve root (" << p.t1 << ", " << p.t2 << ") not found by brute force";
   }
   EXPECT_GT(sv.size(), 0u);

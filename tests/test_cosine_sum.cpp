@@ -31,8 +31,8 @@ TEST(CosineSum, MinimumMatchesDenseSampling) {
     ASSERT_TRUE(m.certified);
     double sampled = 1e300;
     for (int i = 0; i <= 300000; ++i) sampled = std::min(sampled, f.value(3.0 * i / 300000.0));
-    EXPECT_LE(m.value, sampled + 1e-12);           // at least as low as any sample
-    EXPECT_LE(m.lower_bound, sampled);              // the certified bound holds at every sample
+    EXPECT_LE(m.value, sampled + 1e-12);             // at least as low as any sample
+    EXPECT_LE(m.lower_bound, sampled);               // the certified bound holds at every sample
     EXPECT_GE(m.lower_bound, m.value - 1.0001e-10);  // and is tight to the tolerance
   }
 }

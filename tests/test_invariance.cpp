@@ -31,7 +31,9 @@ void expect_same(const SolveResult& a, const SolveResult& b, const Eigen::Matrix
   }
 }
 
-System rod() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json"); }
+System rod() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
+}
 }  // namespace
 
 TEST(Invariance, ScalingMassAndStiffnessTogether) {

@@ -15,7 +15,9 @@ fs::path tmpdir() {
   fs::create_directories(d);
   return d;
 }
-void write(const fs::path& p, const std::string& s) { std::ofstream(p) << s; }
+void write(const fs::path& p, const std::string& s) {
+  std::ofstream(p) << s;
+}
 }  // namespace
 
 TEST(Io, SystemJsonRoundTrip) {

@@ -39,8 +39,8 @@ TEST(Modal, ModesAreMassNormalisedAndCouplingIsUnit) {
 TEST(Modal, ContactSpectrumInterlacesWithZeroFirst) {
   const System s = random_system(7, 2);
   const ModalForm md(s);
-  const Eigen::MatrixXd S = Eigen::MatrixXd(md.omega().array().square().matrix().asDiagonal()) -
-                            md.z() * md.z().transpose();
+  const Eigen::MatrixXd S =
+      Eigen::MatrixXd(md.omega().array().square().matrix().asDiagonal()) - md.z() * md.z().transpose();
   const Eigen::MatrixXd back = md.G() * md.d().array().square().matrix().asDiagonal() * md.G().transpose();
   EXPECT_LT((S - back).norm(), 1e-11 * S.norm());
   EXPECT_LT((md.G().transpose() * md.G() - Eigen::MatrixXd::Identity(7, 7)).norm(), 1e-12);
@@ -113,8 +113,7 @@ TEST(Modal, InertiaCountMatchesSignChangesOnChain5) {
   const System s = spp::chain(5, {1.0}, {1.0}, 4, spp::ContactSide::Upper, 1.0);
   const ModalForm md(s);
   const double t1 = 1.2345, a = 1e-9, b = 12.0;
-  const int count = negatives(md.H(t1, a)) - negatives(md.H(t1, b)) +
-                    static_cast<int>(md.contact_poles(a, b).size());
+  const int count = negatives(md.H(t1, a)) - negatives(md.H(t1, b)) + static_cast<int>(md.contact_poles(a, b).size());
   EXPECT_EQ(count, 20);
   int changes = 0;
   double prev = md.N(t1, a).determinant();

@@ -19,8 +19,12 @@ SolveResult solve_window(const System& s, double t1max, double t2max) {
   return solve(s, o);
 }
 
-System chain5() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"); }
-System rod4() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json"); }
+System chain5() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+}
+System rod4() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
+}
 
 // All the properties the issue lists for an admissible SPP, checked with physical flows.
 void check_admissible_orbit(const System& s, const Solution& sol) {
@@ -65,11 +69,8 @@ void check_paper_equations(const System& s, const SolveResult& r) {
   }
 }
 
-}  // namespace
-
-TEST(PaperChain5, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
-  const System s = chain5();
-  const SolveResult r = solve_window(s, 12.0, 12.0);
+// Solves the window, checks every admissible SPP, returns how many there are.
+int check_every_admissible(const System& s, const SolveResult& r) {
   EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
   int admissible = 0;
   for (const Solution& sol : r.solutions)
@@ -78,8 +79,15 @@ TEST(PaperChain5, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
       SCOPED_TRACE("t1 = " + std::to_string(sol.t1) + ", t2 = " + std::to_string(sol.t2));
       check_admissible_orbit(s, sol);
     }
+  return admissible;
+}
+
+}  // namespace
+
+TEST(PaperChain5, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
+  const System s = chain5();
   // The paper's fig. 4 marks several admissible SPPs (A and B among them) in this window.
-  EXPECT_GE(admissible, 2);
+  EXPECT_GE(check_every_admissible(s, solve_window(s, 12.0, 12.0)), 2);
 }
 
 TEST(PaperChain5, EveryRootSolvesThePapersOwnEquations) {
@@ -90,14 +98,7 @@ TEST(PaperChain5, EveryRootSolvesThePapersOwnEquations) {
 TEST(PaperRod4, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
   const System s = rod4();
   const SolveResult r = solve_window(s, 12.0, 12.0);
-  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
-  int admissible = 0;
-  for (const Solution& sol : r.solutions)
-    if (sol.admissible) {
-      ++admissible;
-      check_admissible_orbit(s, sol);
-    }
-  EXPECT_GE(admissible, 1);  // the paper's fig. 7 shows one
+  EXPECT_GE(check_every_admissible(s, r), 1);  // the paper's fig. 7 shows one
   check_paper_equations(s, r);
 }
 
@@ -194,4 +195,22 @@ TEST(Solver, SolutionAtRefinesToTheNearestRoot) {
   EXPECT_NEAR(near.t1, ref.t1, 1e-12);
   EXPECT_NEAR(near.t2, ref.t2, 1e-12);
   EXPECT_THROW(solution_at(s, -1.0, 1.0), std::invalid_argument);
+}
+
+TEST(Solver, ResultDoesNotDependOnTheNumberOfThreads) {
+  const System s = chain5();
+  SolveOptions o;
+  o.t1_max = o.t2_max = 12.0;
+  o.compute_return_error = false;
+  o.threads = 1;
+  const SolveResult a = solve(s, o);
+  o.threads = 2;
+  const SolveResult b = solve(s, o);
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  for (size_t i = 0; i < a.solutions.size(); ++i) {
+    EXPECT_EQ(a.solutions[i].t1, b.solutions[i].t1);
+    EXPECT_EQ(a.solutions[i].t2, b.solutions[i].t2);
+  }
+  EXPECT_EQ(a.stats.evaluations, b.stats.evaluations);
+  EXPECT_EQ(a.stats.strip_pairs, b.stats.strip_pairs);
 }

@@ -5,13 +5,17 @@
 using spp::System;
 
 namespace {
-Eigen::MatrixXd I2() { return Eigen::MatrixXd::Identity(2, 2); }
+Eigen::MatrixXd I2() {
+  return Eigen::MatrixXd::Identity(2, 2);
+}
 Eigen::MatrixXd K2() {
   Eigen::MatrixXd K(2, 2);
   K << 2, -1, -1, 1;
   return K;
 }
-Eigen::VectorXd w2() { return Eigen::Vector2d(0, -1); }
+Eigen::VectorXd w2() {
+  return Eigen::Vector2d(0, -1);
+}
 
 void expect_error(const std::function<void()>& f, const std::string& part) {
   try {

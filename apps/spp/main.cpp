@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   solve->add_option("--csv", csv_out, "write the solutions as CSV");
   solve->add_flag("--admissible-only", opt.admissible_only, "keep only admissible SPPs");
   solve->add_flag("--quiet", quiet, "print only the one-line summary");
+  solve->add_option("--threads", opt.threads, "worker threads (default 0: all hardware threads)");
 
   // trajectory
   auto* traj = app.add_subcommand("trajectory", "sample one period of an SPP: t, x, v, gap, force");
@@ -108,8 +109,8 @@ int main(int argc, char** argv) {
       const std::string json_text = json_out.empty() ? "" : spp::result_to_json(sys, res).dump(2) + "\n";
       const std::string csv_text = csv_out.empty() ? "" : spp::result_to_csv(res);
       if (sys.w_input_norm() != 1.0)
-        std::cerr << "note: w was normalised (|w| = " << sys.w_input_norm() << "); g0 divided by it: g0 = "
-                  << sys.g0() << "\n";
+        std::cerr << "note: w was normalised (|w| = " << sys.w_input_norm() << "); g0 divided by it: g0 = " << sys.g0()
+                  << "\n";
       if (!quiet) std::cout << spp::result_table(res);
       std::cout << res.brief_report() << "\n";
       for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
@@ -143,9 +144,8 @@ int main(int argc, char** argv) {
       const spp::Solution s = spp::solution_at(sys, t1, t2, o);
       const spp::ModalForm md(sys);
       spp::write_file_atomic(traj_csv, spp::trajectory_csv(md, s.orbit, samples));
-      std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period
-                << ", " << (s.admissible ? "admissible" : "not admissible") << ") written to " << traj_csv
-                << "\n";
+      std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period << ", "
+                << (s.admissible ? "admissible" : "not admissible") << ") written to " << traj_csv << "\n";
       return 0;
     }
     if (*gen) {

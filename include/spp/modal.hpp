@@ -22,14 +22,14 @@ class ModalForm {
   /// repeat_tol: relative gap below which two frequencies are treated as one repeated frequency.
   explicit ModalForm(const System& system, double decoupling_tol = 1e-10, double repeat_tol = 1e-9);
 
-  int n() const { return n_; }                          ///< dofs of the system
+  int n() const { return n_; }                               ///< dofs of the system
   int m() const { return static_cast<int>(omega_.size()); }  ///< modes that see the contact
-  const Eigen::VectorXd& omega() const { return omega_; }  ///< coupled free-flight frequencies, ascending
-  const Eigen::VectorXd& u() const { return u_; }          ///< unit coupling vector (coupled modes)
-  const Eigen::VectorXd& z() const { return z_; }          ///< z = W u
-  const Eigen::VectorXd& d() const { return d_; }          ///< contact-phase frequencies, d(0) = 0
-  const Eigen::MatrixXd& G() const { return G_; }          ///< S = G D^2 G^T
-  const Eigen::MatrixXd& Phi() const { return Phi_; }      ///< n x m coupled mode shapes, M-normalised
+  const Eigen::VectorXd& omega() const { return omega_; }    ///< coupled free-flight frequencies, ascending
+  const Eigen::VectorXd& u() const { return u_; }            ///< unit coupling vector (coupled modes)
+  const Eigen::VectorXd& z() const { return z_; }            ///< z = W u
+  const Eigen::VectorXd& d() const { return d_; }            ///< contact-phase frequencies, d(0) = 0
+  const Eigen::MatrixXd& G() const { return G_; }            ///< S = G D^2 G^T
+  const Eigen::MatrixXd& Phi() const { return Phi_; }        ///< n x m coupled mode shapes, M-normalised
   const Eigen::VectorXd& omega_decoupled() const { return omega_dec_; }
   const Eigen::MatrixXd& Phi_decoupled() const { return Phi_dec_; }
   double beta() const { return beta_; }  ///< |Phi^T w| = sqrt(w^T M^{-1} w)
@@ -49,9 +49,9 @@ class ModalForm {
   Eigen::MatrixXd dN_dt2(double t1, double t2) const;
 
   /// Matrix functions of the contact phase, G f(D) G^T, for the flows.
-  Eigen::MatrixXd contact_cos(double t) const;     ///< cos(S^{1/2} t)
-  Eigen::MatrixXd contact_sinc(double t) const;    ///< S^{-1/2} sin(S^{1/2} t)  (t at d = 0)
-  Eigen::MatrixXd contact_msin(double t) const;    ///< S^{1/2} sin(S^{1/2} t)
+  Eigen::MatrixXd contact_cos(double t) const;   ///< cos(S^{1/2} t)
+  Eigen::MatrixXd contact_sinc(double t) const;  ///< S^{-1/2} sin(S^{1/2} t)  (t at d = 0)
+  Eigen::MatrixXd contact_msin(double t) const;  ///< S^{1/2} sin(S^{1/2} t)
 
   /// Poles of tan(W t1) (flight) and tan(D t2) (contact) in the open interval (lo, hi), ascending, merged
   /// when closer than merge_tol (relative).

@@ -11,12 +11,12 @@ namespace spp {
 
 struct Orbit {
   double t1 = 0.0, t2 = 0.0;
-  Eigen::VectorXd a;            ///< modal p at mid-flight (t = -t1), scaled so that the gap closes at t = 0
-  Eigen::VectorXd c;            ///< modal p at mid-contact (t = t2)
-  Eigen::VectorXd p0, p0dot;    ///< modal p, p' at contact onset
-  Eigen::VectorXd x0, v0;       ///< physical x(0), x'(0)
-  double closure_ratio = 0.0;   ///< |u^T W^-1 p0| / |W^-1 p0|: near 0, the gap cannot close at g0 != 0
-  double energy = 0.0;          ///< 1/2 v^T M v + 1/2 x^T K x (conserved in both phases)
+  Eigen::VectorXd a;           ///< modal p at mid-flight (t = -t1), scaled so that the gap closes at t = 0
+  Eigen::VectorXd c;           ///< modal p at mid-contact (t = t2)
+  Eigen::VectorXd p0, p0dot;   ///< modal p, p' at contact onset
+  Eigen::VectorXd x0, v0;      ///< physical x(0), x'(0)
+  double closure_ratio = 0.0;  ///< |u^T W^-1 p0| / |W^-1 p0|: near 0, the gap cannot close at g0 != 0
+  double energy = 0.0;         ///< 1/2 v^T M v + 1/2 x^T K x (conserved in both phases)
   double period() const { return 2.0 * (t1 + t2); }
 };
 
@@ -34,13 +34,13 @@ OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
 
 struct Admissibility {
   bool admissible = false;
-  double min_gap = 0.0;          ///< smallest gap over the whole flight (0 at its tangent ends), certified
-  double min_force = 0.0;        ///< smallest normal force over the whole contact phase, certified
-  double mid_flight_gap = 0.0;   ///< gap at t = -t1
-  double mid_contact_force = 0.0;///< force at t = t2
-  double onset_force_rate = 0.0; ///< lambda'(0+): must be >= 0 (equals minus the gap jerk times a positive factor)
-  bool ends_ok = false;          ///< leading Taylor terms at the phase ends have the admissible sign
-  bool certified = false;        ///< both minima certified to tolerance
+  double min_gap = 0.0;            ///< smallest gap over the whole flight (0 at its tangent ends), certified
+  double min_force = 0.0;          ///< smallest normal force over the whole contact phase, certified
+  double mid_flight_gap = 0.0;     ///< gap at t = -t1
+  double mid_contact_force = 0.0;  ///< force at t = t2
+  double onset_force_rate = 0.0;   ///< lambda'(0+): must be >= 0 (equals minus the gap jerk times a positive factor)
+  bool ends_ok = false;            ///< leading Taylor terms at the phase ends have the admissible sign
+  bool certified = false;          ///< both minima certified to tolerance
 };
 
 /// Checks ineqs. (5.3) with a certified global minimum of each cosine sum; rel_tol scales the tolerance on

@@ -28,12 +28,13 @@ struct SolveOptions {
   /// t2 < 2 t2_min) are the limits at the axes and are dropped.
   double t1_min = 0.0;
   double t2_min = 0.0;
-  double pole_margin = 1e-6;        ///< distance kept from pole lines, relative to the neighbouring cell width
-  double max_turn = 0.2;            ///< largest angle (rad) of the null vector b between two trace points
-  double min_step = 1e-13;          ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
-  double admissibility_tol = 1e-9;  ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
-  bool admissible_only = false;     ///< keep only admissible SPPs in the result
-  bool compute_return_error = true; ///< propagate each SPP over one period with the physical flows
+  double pole_margin = 1e-6;         ///< distance kept from pole lines, relative to the neighbouring cell width
+  double max_turn = 0.2;             ///< largest angle (rad) of the null vector b between two trace points
+  double min_step = 1e-13;           ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
+  double admissibility_tol = 1e-9;   ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
+  bool admissible_only = false;      ///< keep only admissible SPPs in the result
+  bool compute_return_error = true;  ///< propagate each SPP over one period with the physical flows
+  int threads = 0;                   ///< worker threads over t2-strips; 0 = every hardware thread
 
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
@@ -50,11 +51,12 @@ struct Solution {
   double t1 = 0.0, t2 = 0.0, period = 0.0;
   bool admissible = false;
   double min_gap = 0.0, min_force = 0.0, energy = 0.0;
-  double residual = 0.0;      ///< relative residual of N a = 0 and z^T p0 = 0 (eqs. 5.1a-b)
-  double return_error = -1.0; ///< relative periodicity error after one period (-1: not computed)
+  double residual = 0.0;       ///< relative residual of N a = 0 and z^T p0 = 0 (eqs. 5.1a-b)
+  double return_error = -1.0;  ///< relative periodicity error after one period (-1: not computed)
   Orbit orbit;
   Admissibility admissibility;
-  /// "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)), "near_double_root", "near_pole_line"
+  /// "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)), "unpolished" (residual above 1e-6:
+  /// the traced point is reported), "near_double_root", "near_pole_line"
   /// (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees the contact has the same
   /// period: any amount of it can be added), "gap_closure_degenerate".
   std::vector<std::string> flags;
@@ -63,8 +65,8 @@ struct Solution {
 struct SolveStats {
   int flight_pole_lines = 0, contact_pole_lines = 0;
   long rectangles = 0, curve_pieces = 0, roots = 0;
-  long evaluations = 0;       ///< symmetric eigen-decompositions of H
-  long strip_pairs = 0;       ///< curves paired across pole lines
+  long evaluations = 0;  ///< symmetric eigen-decompositions of H
+  long strip_pairs = 0;  ///< curves paired across pole lines
   long unpaired_crossings = 0;
   long near_double_roots = 0;
   double seconds = 0.0;

@@ -18,8 +18,8 @@ class System {
   int n() const { return static_cast<int>(M_.rows()); }
   const Eigen::MatrixXd& M() const { return M_; }
   const Eigen::MatrixXd& K() const { return K_; }
-  const Eigen::VectorXd& w() const { return w_; }  ///< unit contact direction
-  double g0() const { return g0_; }                 ///< gap at rest, in the units of x (after normalising w)
+  const Eigen::VectorXd& w() const { return w_; }        ///< unit contact direction
+  double g0() const { return g0_; }                      ///< gap at rest, in the units of x (after normalising w)
   double w_input_norm() const { return w_input_norm_; }  ///< |w| as given; 1 means w was already unit
   const std::string& name() const { return name_; }
 

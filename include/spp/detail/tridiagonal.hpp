@@ -25,7 +25,7 @@ class SymmetricTridiagonal {
  private:
   Eigen::MatrixXd householder_;  // packed Householder reflectors (Eigen's Tridiagonalization storage)
   Eigen::VectorXd hcoeffs_;
-  Eigen::VectorXd a_, b_;        // diagonal, sub-diagonal of T
+  Eigen::VectorXd a_, b_;  // diagonal, sub-diagonal of T
   double bound_ = 0.0, pivmin_ = 0.0;
 };
 
