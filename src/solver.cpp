@@ -94,7 +94,8 @@ struct Candidate {
 
 class Search {
  public:
-  Search(const ModalForm& md, const SolveOptions& opt, SolveStats& st) : md_(md), opt_(opt), st_(st) {
+  Search(const ModalForm& md, const SolveOptions& opt, SolveStats& st)
+      : md_(md), opt_(opt), st_(st), hmin_(opt.min_step * (opt.t1_max + opt.t2_max)) {
     zhat_ = md_.z().normalized();
     d2_ = md_.d().array().square();
   }
@@ -246,7 +247,6 @@ class Search {
   TracePoint trace(const Rect& r, int k, const TracePoint& pin, const Pair& out) {
     const double s_in = pin.s, s_out = out.t2 - out.t1;
     const double span = s_out - s_in;
-    const double hmin = opt_.min_step * (opt_.t1_max + opt_.t2_max);
     TracePoint cur = pin;
     if (!(span > 0)) {
       TracePoint p = point(out, &cur.b);
@@ -269,8 +269,8 @@ class Search {
       const double step = last ? s_out - cur.s : h;
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
-      if (turn > opt_.max_turn && step > hmin) {
-        h = std::max(hmin, step * std::clamp(factor, 0.1, 0.5));
+      if (turn > opt_.max_turn && step > hmin_) {
+        h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
         continue;
       }
       examine(r, k, cur, p, 0);
@@ -284,7 +284,6 @@ class Search {
   // g on [A, B] of curve k: locate sign changes, refine where a Hermite model of g dips towards zero.
   void examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
     const double h = B.s - A.s;
-    const double hmin = opt_.min_step * (opt_.t1_max + opt_.t2_max);
     // Hermite cubic in sigma in [0,1]
     auto herm = [&](double x) {
       const double h00 = (1 + 2 * x) * (1 - x) * (1 - x), h10 = x * (1 - x) * (1 - x);
@@ -312,7 +311,7 @@ class Search {
         vmin < 0.25 * std::min(std::abs(A.g), std::abs(B.g)) && vmin < 0.25 * gscale && xmin > 0.02 && xmin < 0.98;
     const bool suspicious = (endpoints_differ && changes > 1) || (!endpoints_differ && (changes > 0 || dip));
     if (suspicious) {
-      if (h <= hmin || depth > 60) {
+      if (h <= hmin_ || depth > 60) {
         if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < 1e-8) {
           ++st_.near_double_roots;
           candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}});
@@ -365,6 +364,7 @@ class Search {
   const ModalForm& md_;
   const SolveOptions& opt_;
   SolveStats& st_;
+  const double hmin_;  // smallest trace step in s
   Vec zhat_;
   Eigen::ArrayXd d2_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();

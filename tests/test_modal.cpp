@@ -16,7 +16,9 @@ System random_system(int n, unsigned seed) {
   std::normal_distribution<double> nd;
   Eigen::VectorXd w(n);
   for (int i = 0; i < n; ++i) w(i) = nd(rng);
-  return System(spp::ref::random_spd(n, rng), spp::ref::random_spd(n, rng), w, 0.7);
+  const Eigen::MatrixXd K = spp::ref::random_spd(n, rng);  // explicit order: K, then M
+  const Eigen::MatrixXd M = spp::ref::random_spd(n, rng);
+  return System(M, K, w, 0.7);
 }
 int negatives(const Eigen::MatrixXd& H) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H, Eigen::EigenvaluesOnly);
