@@ -207,6 +207,7 @@ json result_to_json(const System& s, const SolveResult& r) {
                 {"strip_pairs", r.stats.strip_pairs},
                 {"unpaired_crossings", r.stats.unpaired_crossings},
                 {"near_double_roots", r.stats.near_double_roots},
+                {"unresolved_pieces", r.stats.unresolved_pieces},
                 {"decoupled_modes", r.decoupled_modes},
                 {"repeated_frequency_groups", r.repeated_groups},
                 {"seconds", r.stats.seconds}};

@@ -255,26 +255,35 @@ class Search {
     }
     double h = span;
     double slope = 0.0;  // dtau/ds estimate for the predictor
+    budget_ = kPieceBudget;
     while (cur.s < s_out) {
-      const bool last = cur.s + h >= s_out - 1e-12 * std::abs(span);
+      if (--budget_ < 0) {  // b turns faster than the step control can follow (near-degenerate eigenvalues)
+        ++st_.unresolved_pieces;
+        TracePoint p = point(out, &cur.b);
+        examine(r, k, cur, p, 0);
+        return p;
+      }
+      const double remaining = s_out - cur.s;
+      const bool last = h >= remaining;
+      const double step = last ? remaining : h;
       TracePoint p;
       if (last) {
         p = point(out, &cur.b);
       } else {
-        const double s = cur.s + h;
+        const double s = cur.s + step;
         const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-        p = point(diagonal_root(s, lo, hi, cur.t1 + slope * h, k), &cur.b);
+        p = point(diagonal_root(s, lo, hi, cur.t1 + slope * step, k), &cur.b);
       }
       const double turn = std::acos(std::min(1.0, std::abs(cur.b.dot(p.b))));
-      const double step = last ? s_out - cur.s : h;
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
       if (turn > opt_.max_turn && step > hmin_) {
-        h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
+        h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));  // h < step <= remaining: not last
         continue;
       }
       examine(r, k, cur, p, 0);
       if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
+      if (last) return p;
       cur = p;
       h = std::min(span, step * std::clamp(factor, 0.3, 4.0));
     }
@@ -311,13 +320,15 @@ class Search {
         vmin < 0.25 * std::min(std::abs(A.g), std::abs(B.g)) && vmin < 0.25 * gscale && xmin > 0.02 && xmin < 0.98;
     const bool suspicious = (endpoints_differ && changes > 1) || (!endpoints_differ && (changes > 0 || dip));
     if (suspicious) {
-      if (h <= hmin_ || depth > 60) {
+      if (h <= hmin_ || depth > 60 || budget_ <= 0) {
+        if (budget_ <= 0 && !endpoints_differ) ++st_.unresolved_pieces;
         if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < 1e-8) {
           ++st_.near_double_roots;
           candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}});
         }
         if (!endpoints_differ) return;
       } else {
+        --budget_;
         const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
         const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
         const TracePoint M = point(diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), &A.b);
@@ -364,7 +375,9 @@ class Search {
   const ModalForm& md_;
   const SolveOptions& opt_;
   SolveStats& st_;
-  const double hmin_;  // smallest trace step in s
+  const double hmin_;                         // smallest trace step in s
+  static constexpr int kPieceBudget = 20000;  // trace steps and subdivisions per curve piece
+  int budget_ = kPieceBudget;
   Vec zhat_;
   Eigen::ArrayXd d2_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
@@ -616,6 +629,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
     res.stats.curve_pieces += out.stats.curve_pieces;
     res.stats.evaluations += out.stats.evaluations;
     res.stats.near_double_roots += out.stats.near_double_roots;
+    res.stats.unresolved_pieces += out.stats.unresolved_pieces;
     for (auto& c : out.candidates) candidates.push_back(std::move(c));
   }
   for (auto& c : merger.candidates_) candidates.push_back(std::move(c));
@@ -660,6 +674,10 @@ SolveResult solve(const System& system, const SolveOptions& options) {
     res.warnings.push_back(std::to_string(res.stats.unpaired_crossings) +
                            " curve crossing(s) of a pole line could not be paired (a curve passed within the "
                            "pole margin of a pole-line intersection): a root in that thin strip is not excluded");
+  if (res.stats.unresolved_pieces > 0)
+    res.warnings.push_back(std::to_string(res.stats.unresolved_pieces) +
+                           " curve piece(s) could not be followed within the step budget (null vector turning "
+                           "faster than the step control: nearly equal eigenvalues); a root there is not excluded");
   if (res.stats.near_double_roots > 0)
     res.warnings.push_back(std::to_string(res.stats.near_double_roots) +
                            " near-double root(s): g touches zero to within the step resolution");

@@ -69,6 +69,7 @@ struct SolveStats {
   long strip_pairs = 0;  ///< curves paired across pole lines
   long unpaired_crossings = 0;
   long near_double_roots = 0;
+  long unresolved_pieces = 0;  ///< curve pieces whose null vector turned too fast for the step budget
   double seconds = 0.0;
 };
 
