@@ -513,22 +513,27 @@ SolveResult solve(const System& system, const SolveOptions& options) {
     const double dmax = md.d().maxCoeff();
     opt.t2_min = std::min(dmax > 0 ? 1e-4 * pi / (2.0 * dmax) : 1e-4 * opt.t2_max, 1e-3 * opt.t2_max);
   }
-  res.t1_min = opt.t1_min;
-  res.t2_min = opt.t2_min;
-  res.t1_max = opt.t1_max;
-  res.t2_max = opt.t2_max;
 
-  // Breakpoints: window edges and pole lines; a window edge too close to a pole moves inward.
-  auto breakpoints = [&](const std::vector<double>& poles, double lo, double hi, std::vector<double>& bp,
+  // Breakpoints: window edges and pole lines. A window edge within 1e-6 (relative) of a pole line is moved
+  // onto that line, so that no sliver rectangle next to a pole (where H is huge) is left.
+  auto breakpoints = [&](std::vector<double> poles, double lo, double hi, std::vector<double>& bp,
                          std::vector<bool>& is_pole) {
-    bp.assign(1, lo);
-    is_pole.assign(1, false);
+    bp.clear();
+    is_pole.clear();
+    const bool lo_on_pole = !poles.empty() && poles.front() - lo <= 1e-6 * poles.front();
+    const bool hi_on_pole = !poles.empty() && hi - poles.back() <= 1e-6 * hi;
+    if (!lo_on_pole) {
+      bp.push_back(lo);
+      is_pole.push_back(false);
+    }
     for (double p : poles) {
       bp.push_back(p);
       is_pole.push_back(true);
     }
-    bp.push_back(hi);
-    is_pole.push_back(false);
+    if (!hi_on_pole) {
+      bp.push_back(hi);
+      is_pole.push_back(false);
+    }
   };
   const auto p1 = md.flight_poles(opt.t1_min, opt.t1_max), p2 = md.contact_poles(opt.t2_min, opt.t2_max);
   res.stats.flight_pole_lines = static_cast<int>(p1.size());
@@ -537,7 +542,9 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   std::vector<bool> pole1, pole2;
   breakpoints(p1, opt.t1_min, opt.t1_max, b1, pole1);
   breakpoints(p2, opt.t2_min, opt.t2_max, b2, pole2);
-  // margin kept on each side of breakpoint i
+  if (b1.size() < 2 || b2.size() < 2)
+    throw std::invalid_argument("options: the window holds a single pole line and nothing else; widen it");
+  // margin kept on each side of breakpoint i (0 at window edges)
   auto margins = [&](const std::vector<double>& bp, const std::vector<bool>& is_pole) {
     std::vector<double> mg(bp.size(), 0.0);
     for (size_t i = 0; i < bp.size(); ++i) {
@@ -545,18 +552,14 @@ SolveResult solve(const System& system, const SolveOptions& options) {
       const double right = i + 1 < bp.size() ? bp[i + 1] - bp[i] : left;
       const double mgn = opt.pole_margin * std::min(left, right);
       mg[i] = is_pole[i] ? std::max(mgn, 4e-16 * bp[i]) : 0.0;
-      // a window edge within the margin of a neighbouring pole: move it inward
     }
     return mg;
   };
   const auto m1 = margins(b1, pole1), m2 = margins(b2, pole2);
-  // window edge adjacent to a pole closer than that pole's margin: shift inward
-  if (b1.size() > 2 && b1[1] - b1[0] <= 2 * m1[1]) b1[0] = b1[1] + 2 * m1[1];
-  if (b1.size() > 2 && b1.back() - b1[b1.size() - 2] <= 2 * m1[b1.size() - 2])
-    b1.back() = b1[b1.size() - 2] - 2 * m1[b1.size() - 2];
-  if (b2.size() > 2 && b2[1] - b2[0] <= 2 * m2[1]) b2[0] = b2[1] + 2 * m2[1];
-  if (b2.size() > 2 && b2.back() - b2[b2.size() - 2] <= 2 * m2[b2.size() - 2])
-    b2.back() = b2[b2.size() - 2] - 2 * m2[b2.size() - 2];
+  res.t1_min = b1.front();
+  res.t1_max = b1.back();
+  res.t2_min = b2.front();
+  res.t2_max = b2.back();
 
   // Strips between t2 pole lines are independent: workers take whole strips, each with its own Search (own
   // cache and counters). Pairing across pole lines and the polish follow in order, so the result does not
@@ -637,13 +640,18 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   // Polish, deduplicate, build orbits.
   const double window_scale = opt.t1_max + opt.t2_max;
   for (const Candidate& c : candidates) {
-    Polished p = polish(md, c.t1, c.t2, c.b);
-    // A root found by the search is never dropped: where Newton stalls (N nearly rank-deficient in two
-    // directions, e.g. close to the limit points on the axis t1 = 0) the root is reported at its best point
-    // with its residual and a flag; the trust region keeps it next to the traced candidate.
-    const bool moved_far = std::hypot(p.t1 - c.t1, p.t2 - c.t2) > 1e-3 * window_scale;
-    if (moved_far) p = {false, c.t1, c.t2, residual_of(md, c.t1, c.t2, p.a), p.a};
-    const char* accuracy_flag = p.converged ? nullptr : p.residual < 1e-6 ? "ill_conditioned" : "unpolished";
+    const Polished p = polish(md, c.t1, c.t2, c.b);
+    // Where Newton stalls with a small residual (N nearly rank-deficient in two directions, e.g. close to
+    // the limit points on the axis t1 = 0) the root is reported with a flag. A candidate that does not
+    // polish at all is not reported as an SPP: it is a gap in the search, and the status says so.
+    if (!p.converged && !(p.residual < 1e-6)) {
+      std::ostringstream os;
+      os << "a sign change of g near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish to a root (residual "
+         << p.residual << ")";
+      res.warnings.push_back(os.str());
+      continue;
+    }
+    const char* accuracy_flag = p.converged ? nullptr : "ill_conditioned";
     // Each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both equations in the limit
     // (pure contact oscillation): roots that polish back towards an axis are these limits, not SPPs.
     if (p.t1 <= 2.0 * opt.t1_min || p.t1 > opt.t1_max || p.t2 <= 2.0 * opt.t2_min || p.t2 > opt.t2_max) continue;

@@ -6,6 +6,7 @@
 #include "physical_flow.hpp"
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/modal.hpp"
 #include "spp/solver.hpp"
 
 using namespace spp;
@@ -213,4 +214,43 @@ TEST(Solver, ResultDoesNotDependOnTheNumberOfThreads) {
   }
   EXPECT_EQ(a.stats.evaluations, b.stats.evaluations);
   EXPECT_EQ(a.stats.strip_pairs, b.stats.strip_pairs);
+}
+
+TEST(Solver, TraceTerminatesOnClusteredPoleLines) {
+  // Regression: on the 100-dof chain near t = pi/4 the top frequencies give pole lines 1e-4 apart and nearly
+  // equal eigenvalues; the last step to a curve's exit used to be rejected forever. Every root reported must
+  // still solve the paper's equations.
+  const System s = spp::chain(100, {1.0}, {1.0}, 99, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = 0.7950900808498774;  // 10 flight pole lines
+  o.t2_max = 0.7951882510930521;  // 10 contact pole lines
+  o.compute_return_error = false;
+  const SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.stats.unresolved_pieces, 0);
+  for (const Solution& sol : r.solutions) {
+    if (sol.flags.empty()) {
+      EXPECT_LT(sol.residual, 1e-10);
+    }
+  }
+}
+
+TEST(Solver, WindowEdgeJustPastAPoleLineLeavesNoSliver) {
+  // Regression: a window edge 1e-9 (relative) past a pole line left a sliver rectangle where H is ~1e9 and
+  // the trace produced false sign changes. The edge now moves onto the pole line: same roots as a window
+  // ending just before it, status success.
+  const System s = chain5();
+  const ModalForm md(s);
+  const double p1 = md.flight_poles(0.0, 12.0).back(), p2 = md.contact_poles(0.0, 12.0).back();
+  SolveOptions o;
+  o.compute_return_error = false;
+  o.t1_max = p1 * (1 + 1e-9);
+  o.t2_max = p2 * (1 + 1e-9);
+  const SolveResult a = solve(s, o);
+  o.t1_max = p1 * (1 - 1e-5);
+  o.t2_max = p2 * (1 - 1e-5);
+  const SolveResult b = solve(s, o);
+  EXPECT_EQ(a.status, SolveStatus::Success) << a.brief_report();
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  for (size_t i = 0; i < a.solutions.size(); ++i) EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-12);
 }

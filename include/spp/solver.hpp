@@ -55,8 +55,7 @@ struct Solution {
   double return_error = -1.0;  ///< relative periodicity error after one period (-1: not computed)
   Orbit orbit;
   Admissibility admissibility;
-  /// "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)), "unpolished" (residual above 1e-6:
-  /// the traced point is reported), "near_double_root", "near_pole_line"
+  /// "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)), "near_double_root", "near_pole_line"
   /// (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees the contact has the same
   /// period: any amount of it can be added), "gap_closure_degenerate".
   std::vector<std::string> flags;
