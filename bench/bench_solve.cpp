@@ -111,7 +111,7 @@ BENCHMARK(ChainBox)->DenseRange(2, 10)->Unit(benchmark::kMillisecond);
 BENCHMARK(ChainBox)->Arg(20)->Arg(30)->Iterations(1)->Unit(benchmark::kSecond);
 // {n, pole lines per direction}: windows sized to run in minutes here; cost grows with the rectangles
 void window_sweep(benchmark::internal::Benchmark* b) {
-  b->Args({30, 100})->Args({100, 20})->Args({300, 6})->Args({1000, 2})->Iterations(1)->Unit(benchmark::kSecond);
+  b->Args({30, 100})->Args({100, 100})->Args({300, 6})->Iterations(1)->Unit(benchmark::kSecond);
 }
 BENCHMARK(ChainWindow)->Apply(window_sweep);
 BENCHMARK(RandomWindow)->Apply(window_sweep);
