@@ -199,16 +199,17 @@ class Search {
     return segment_root(t1a, t2a, t1b - t1a, t2b - t2a, 0.0, 1.0, guess, k, 1e-14);
   }
 
-  // Root of lambda_k on the anti-diagonal t2 - t1 = s, tau = t1 in [lo, hi].
-  Pair diagonal_root(double s, double lo, double hi, double guess, int k) {
-    return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, 1e-13);
-  }
-
   // ---- one rectangle ----
   struct Rect {
     double a1, b1, A, B;  // shrunk bounds
     bool left_pole, right_pole, bottom_pole, top_pole;
   };
+
+  // Root of lambda_k on the anti-diagonal t2 - t1 = s inside rectangle r (tau = t1 on the segment).
+  Pair diagonal_root(const Rect& r, double s, double guess, int k) {
+    const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
+    return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, 1e-13);
+  }
 
   void rectangle(const Rect& r, std::vector<EdgeHit>& left_exits, std::vector<EdgeHit>& top_exits,
                  std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
@@ -270,9 +271,7 @@ class Search {
       if (last) {
         p = point(out, &cur.b);
       } else {
-        const double s = cur.s + step;
-        const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-        p = point(diagonal_root(s, lo, hi, cur.t1 + slope * step, k), &cur.b);
+        p = point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &cur.b);
       }
       const double turn = std::acos(std::min(1.0, std::abs(cur.b.dot(p.b))));
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
@@ -293,6 +292,7 @@ class Search {
   // g on [A, B] of curve k: locate sign changes, refine where a Hermite model of g dips towards zero.
   void examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
     const double h = B.s - A.s;
+    auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     // Hermite cubic in sigma in [0,1]
     auto herm = [&](double x) {
       const double h00 = (1 + 2 * x) * (1 - x) * (1 - x), h10 = x * (1 - x) * (1 - x);
@@ -330,8 +330,7 @@ class Search {
       } else {
         --budget_;
         const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
-        const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-        const TracePoint M = point(diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), &A.b);
+        const TracePoint M = point(diagonal_root(r, s, guess(s), k), &A.b);
         examine(r, k, A, M, depth + 1);
         examine(r, k, M, B, depth + 1);
         return;
@@ -340,22 +339,22 @@ class Search {
     if (!endpoints_differ) return;
     // One sign change: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
     auto g_at = [&](double s) {
-      const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-      const double guess = A.t1 + (B.t1 - A.t1) * (s - A.s) / h;
-      const Pair e = diagonal_root(s, lo, hi, guess, k);
+      const Pair e = diagonal_root(r, s, guess(s), k);
       Vec b = e.b;
       if (b.dot(A.b) < 0) b = -b;
       return zhat_.dot(b);
     };
     const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
-    const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-    const Pair e = diagonal_root(s, lo, hi, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k);
+    const Pair e = diagonal_root(r, s, guess(s), k);
     candidates_.push_back({e.t1, e.t2, false, false, e.b});
   }
 
-  // Pairs curves across one pole line, in order along it; a sign change of the oriented g inside the thin
-  // strip is an SPP there.
-  void pair_across(const std::vector<EdgeHit>& from, const std::vector<EdgeHit>& to) {
+  // Pairs curves across one pole line, in order along it (both lists are sorted here); a sign change of the oriented g
+  // inside the thin strip is an SPP there.
+  void pair_across(std::vector<EdgeHit>& from, std::vector<EdgeHit>& to) {
+    auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
+    std::sort(from.begin(), from.end(), by_pos);
+    std::sort(to.begin(), to.end(), by_pos);
     if (from.size() != to.size()) {
       st_.unpaired_crossings += static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size()));
       return;
@@ -452,6 +451,15 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec())
   return out;
 }
 
+// g0 = 0 is refused by every entry point with the same message.
+void require_nonzero_gap(const System& system) {
+  if (system.g0() == 0.0)
+    throw std::invalid_argument(
+        "system: g0 = 0 (obstacle touching the rest position): SPPs then exist only for special parameter "
+        "values (paper §6.1) and need one more unknown; the zero-gap solver with a declared parameter is not "
+        "available yet. Use g0 != 0.");
+}
+
 Solution build_solution(const System& system, const ModalForm& md, const Polished& p, const SolveOptions& opt,
                         bool with_return_error) {
   Solution s;
@@ -482,7 +490,7 @@ Solution solution_at(const System& system, double t1, double t2, const SolveOpti
     os << "solution_at: t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
     throw std::invalid_argument(os.str());
   }
-  if (system.g0() == 0.0) throw std::invalid_argument("system: g0 = 0, the scale of eq. (5.2) is undefined");
+  require_nonzero_gap(system);
   const ModalForm md(system);
   const Polished p = polish(md, t1, t2);
   if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > 1e-3 * (t1 + t2)) {
@@ -496,11 +504,7 @@ Solution solution_at(const System& system, double t1, double t2, const SolveOpti
 
 SolveResult solve(const System& system, const SolveOptions& options) {
   options.validate();
-  if (system.g0() == 0.0)
-    throw std::invalid_argument(
-        "system: g0 = 0 (obstacle touching the rest position): SPPs then exist only for special parameter "
-        "values (paper §6.1) and need one more unknown; the zero-gap solver with a declared parameter is not "
-        "available yet. Use g0 != 0.");
+  require_nonzero_gap(system);
   const auto t0 = std::chrono::steady_clock::now();
   SolveResult res;
   const ModalForm md(system);
@@ -606,13 +610,10 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   if (failure) std::rethrow_exception(failure);
 
   Search merger(md, opt, res.stats);
-  auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
   for (size_t j = 1; j < J; ++j) {  // horizontal pole lines
     if (!pole2[j]) continue;
     auto& from = strips[j - 1].top_exits;
     auto& to = strips[j].bottom_entries;
-    std::sort(from.begin(), from.end(), by_pos);
-    std::sort(to.begin(), to.end(), by_pos);
     merger.pair_across(from, to);
   }
   for (size_t i = 1; i + 1 < b1.size(); ++i) {  // vertical pole lines, over all strips
@@ -622,8 +623,6 @@ SolveResult solve(const System& system, const SolveOptions& options) {
       for (auto& h : strips[j].v_from[i]) from.push_back(std::move(h));
       for (auto& h : strips[j].v_to[i]) to.push_back(std::move(h));
     }
-    std::sort(from.begin(), from.end(), by_pos);
-    std::sort(to.begin(), to.end(), by_pos);
     merger.pair_across(from, to);
   }
   std::vector<Candidate> candidates;
