@@ -1,0 +1,110 @@
+#pragma once
+// Exact event-driven simulation of the nonsmooth system (eqs. 1.1-1.2) from any initial state: free flight
+// M x'' + K x = 0, impacts with Newton's law, lasting contact under Signorini's conditions. Each phase is a
+// closed-form modal flow (eq. 3.12); events are the first crossings of the closed-form gap (flight) or
+// contact force (contact), found with certified bounds, so that no grazing or short excursion is stepped over.
+// Independent of the solver: its own eigenproblems, in physical coordinates.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "spp/system.hpp"
+
+namespace spp {
+
+struct SimulateOptions {
+  double duration = 0.0;     ///< simulated time T > 0; the last sample is at t = T exactly
+  double restitution = 0.0;  ///< Newton's coefficient e in [0, 1]: normal velocity after = -e * before
+  /// Samples at these times (sorted, in [0, duration]) besides t = 0, the state after each event and t = T.
+  std::vector<double> sample_times;
+  bool sample_events = true;  ///< add a sample with the state just after each event
+  long max_events = 10000000;
+  /// Event tolerances, relative to the amplitude of the gap (flight) or force (contact) of the phase: an
+  /// excursion below zero shallower than this is not an event.
+  double event_rel_tol = 1e-13;
+  /// An impact slower than this (relative to the bound sum |a_k| omega_k on the gap's velocity), or whose
+  /// rebound would rise less than a few event tolerances, is plastic: it is where an accumulation of impacts
+  /// (chattering, e < 1) ends in lasting contact.
+  double rest_velocity_rel_tol = 1e-8;
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void validate() const;
+};
+
+/// Uniform sample times k / per_unit in [0, duration].
+std::vector<double> uniform_times(double duration, double per_unit);
+
+enum class EventKind {
+  Impact,        ///< gap reached 0 with a negative normal velocity; velocity reset by Newton's law
+  ContactOnset,  ///< gap and normal velocity zero, constraint force non-negative: lasting contact begins
+  Release        ///< the contact force would turn negative: free flight begins
+};
+std::string to_string(EventKind kind);
+
+struct Event {
+  double t = 0.0;
+  EventKind kind = EventKind::Impact;
+  Eigen::VectorXd x, v_before, v_after;
+  double normal_velocity_before = 0.0, normal_velocity_after = 0.0;
+  double force = 0.0;  ///< contact force at the event (0 for an impact)
+};
+
+struct Sample {
+  double t = 0.0;
+  Eigen::VectorXd x, v;
+  double gap = 0.0, force = 0.0;
+  bool in_contact = false;
+};
+
+enum class SimulationStatus {
+  NotRun,
+  Success,    ///< reached t = duration
+  EventLimit  ///< stopped at max_events before t = duration (samples end at the last event)
+};
+std::string to_string(SimulationStatus status);
+
+struct SimulationResult {
+  SimulationStatus status = SimulationStatus::NotRun;
+  std::vector<Sample> samples;  ///< sorted by t; the last one at the end time
+  std::vector<Event> events;
+  long impacts = 0, contact_onsets = 0, releases = 0;
+  double energy_initial = 0.0, energy_final = 0.0;
+  double impact_energy_loss = 0.0;  ///< sum of (1 - e^2)/2 * v_n^2 / (w^T M^-1 w) over the impacts
+  double end_time = 0.0;
+  bool in_contact_at_end = false;
+  std::string brief_report() const;
+};
+
+/// The two phase flows of a system, computed once (model/workspace split): reuse it for many simulations.
+class Simulator {
+ public:
+  explicit Simulator(const System& system);
+
+  /// Simulates from (x0, v0) at t = 0. Throws std::invalid_argument if the sizes are wrong, a value is not
+  /// finite or the initial state penetrates the obstacle.
+  SimulationResult run(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const SimulateOptions& options) const;
+
+  const System& system() const { return system_; }
+  double energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+
+  struct Phase {
+    Eigen::VectorXd omega;         ///< modal frequencies
+    Eigen::MatrixXd Phi;           ///< mass-normalised mode shapes (n x m): Phi^T M Phi = I
+    Eigen::VectorXd x_s;           ///< equilibrium of the phase
+    Eigen::VectorXd w_phi;         ///< w^T Phi (flight: the gap's modal weights)
+    Eigen::RowVectorXd force_row;  ///< w^T M^-1 K / (w^T M^-1 w): force = force_row * x (contact)
+  };
+
+ private:
+  System system_;
+  Eigen::LLT<Eigen::MatrixXd> M_llt_;
+  Eigen::VectorXd Minv_w_;  ///< M^-1 w
+  double w_Minv_w_ = 0.0;
+  Phase flight_, contact_;
+};
+
+/// One-shot form of Simulator(system).run(x0, v0, options).
+SimulationResult simulate(const System& system, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0,
+                          const SimulateOptions& options);
+
+}  // namespace spp

@@ -1,0 +1,335 @@
+#include "spp/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "spp/detail/cosine_sum.hpp"
+
+namespace spp {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  throw std::invalid_argument(what);
+}
+
+// Modes of M y'' + K y = 0 restricted to the range of the orthonormal basis T (n x m).
+Simulator::Phase make_phase(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const Eigen::MatrixXd& T) {
+  Simulator::Phase p;
+  const Eigen::Index m = T.cols();
+  if (m == 0) {
+    p.omega.resize(0);
+    p.Phi.resize(T.rows(), 0);
+    return p;
+  }
+  const Eigen::MatrixXd Mr = T.transpose() * M * T, Kr = T.transpose() * K * T;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);  // Psi^T Mr Psi = I
+  if (es.info() != Eigen::Success) throw std::runtime_error("simulator: generalized eigenproblem failed");
+  p.omega = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  p.Phi = T * es.eigenvectors();
+  return p;
+}
+
+struct PhaseState {  // modal coordinates of one phase started from (x, v)
+  Eigen::VectorXd q, qd;
+};
+
+PhaseState modal_state(const Simulator::Phase& p, const Eigen::MatrixXd& M, const Eigen::VectorXd& x,
+                       const Eigen::VectorXd& v) {
+  return {p.Phi.transpose() * (M * (x - p.x_s)), p.Phi.transpose() * (M * v)};
+}
+
+// a_k cos(w s) + b_k sin(w s) coefficients of q(s).
+Eigen::VectorXd sin_coefficients(const Simulator::Phase& p, const PhaseState& s) {
+  Eigen::VectorXd b(s.qd.size());
+  for (Eigen::Index k = 0; k < b.size(); ++k) b(k) = p.omega(k) > 0.0 ? s.qd(k) / p.omega(k) : 0.0;
+  return b;
+}
+
+void state_at(const Simulator::Phase& p, const PhaseState& s, double t, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  const Eigen::ArrayXd c = (p.omega.array() * t).cos(), sn = (p.omega.array() * t).sin();
+  Eigen::VectorXd q(s.q.size()), qd(s.q.size());
+  for (Eigen::Index k = 0; k < q.size(); ++k) {
+    const double w = p.omega(k);
+    q(k) = s.q(k) * c(k) + (w > 0.0 ? s.qd(k) / w * sn(k) : s.qd(k) * t);
+    qd(k) = -s.q(k) * w * sn(k) + s.qd(k) * c(k);
+  }
+  x = p.x_s + p.Phi * q;
+  v = p.Phi * qd;
+}
+
+}  // namespace
+
+void SimulateOptions::validate() const {
+  auto bad = [](const std::string& field, double value, const std::string& rule) {
+    std::ostringstream os;
+    os << "simulate: " << field << " must be " << rule << ", got " << value;
+    fail(os.str());
+  };
+  if (!(std::isfinite(duration) && duration > 0.0)) bad("duration", duration, "finite and > 0");
+  if (!(restitution >= 0.0 && restitution <= 1.0)) bad("restitution", restitution, "in [0, 1]");
+  if (!(event_rel_tol > 0.0 && event_rel_tol < 1e-3)) bad("event_rel_tol", event_rel_tol, "in (0, 1e-3)");
+  if (!(rest_velocity_rel_tol > 0.0 && rest_velocity_rel_tol < 1e-2))
+    bad("rest_velocity_rel_tol", rest_velocity_rel_tol, "in (0, 1e-2)");
+  if (max_events < 1) bad("max_events", static_cast<double>(max_events), ">= 1");
+  for (size_t i = 0; i < sample_times.size(); ++i) {
+    const double t = sample_times[i];
+    if (!(std::isfinite(t) && t >= 0.0 && t <= duration))
+      bad("sample_times[" + std::to_string(i) + "]", t, "in [0, duration]");
+    if (i > 0 && t < sample_times[i - 1]) bad("sample_times[" + std::to_string(i) + "]", t, "sorted (non-decreasing)");
+  }
+}
+
+std::vector<double> uniform_times(double duration, double per_unit) {
+  if (!(per_unit >= 0.0 && std::isfinite(per_unit))) {
+    std::ostringstream os;
+    os << "simulate: samples per unit time must be finite and >= 0, got " << per_unit;
+    fail(os.str());
+  }
+  std::vector<double> t;
+  if (per_unit == 0.0 || !(duration > 0.0)) return t;
+  const double count = std::floor(duration * per_unit);
+  if (count > 1e8) {
+    std::ostringstream os;
+    os << "simulate: " << count << " samples requested (duration " << duration << " x " << per_unit
+       << " per unit time); at most 1e8";
+    fail(os.str());
+  }
+  t.reserve(static_cast<size_t>(count) + 1);
+  for (long k = 0; k <= static_cast<long>(count); ++k) t.push_back(static_cast<double>(k) / per_unit);
+  return t;
+}
+
+std::string to_string(EventKind kind) {
+  switch (kind) {
+    case EventKind::Impact: return "impact";
+    case EventKind::ContactOnset: return "contact_onset";
+    case EventKind::Release: return "release";
+  }
+  return "unknown";
+}
+
+std::string to_string(SimulationStatus status) {
+  switch (status) {
+    case SimulationStatus::NotRun: return "not_run";
+    case SimulationStatus::Success: return "success";
+    case SimulationStatus::EventLimit: return "event_limit";
+  }
+  return "unknown";
+}
+
+std::string SimulationResult::brief_report() const {
+  std::ostringstream os;
+  os.precision(10);
+  os << "simulation " << to_string(status) << ": t = " << end_time << ", " << impacts << " impacts, " << contact_onsets
+     << " contact onsets, " << releases << " releases; energy " << energy_initial << " -> " << energy_final
+     << " (impact loss " << impact_energy_loss << ")";
+  return os.str();
+}
+
+Simulator::Simulator(const System& system) : system_(system) {
+  const Eigen::MatrixXd& M = system_.M();
+  const Eigen::MatrixXd& K = system_.K();
+  const Eigen::VectorXd& w = system_.w();
+  const Eigen::Index n = system_.n();
+  M_llt_.compute(M);
+  const Eigen::LLT<Eigen::MatrixXd> Kllt(K);
+  Minv_w_ = M_llt_.solve(w);
+  w_Minv_w_ = w.dot(Minv_w_);
+
+  flight_ = make_phase(M, K, Eigen::MatrixXd::Identity(n, n));
+  flight_.x_s = Eigen::VectorXd::Zero(n);
+
+  // Contact: x = x_s + T y with T an orthonormal basis of w-perp (Householder), x_s the constrained equilibrium
+  // (minimum of x^T K x / 2 on w^T x = -g0).
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(w);
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
+  contact_ = make_phase(M, K, Q.rightCols(n - 1));
+  const Eigen::VectorXd Kinv_w = Kllt.solve(w);
+  contact_.x_s = -system_.g0() / w.dot(Kinv_w) * Kinv_w;
+  // force from w^T x'' = 0: lambda = w^T M^-1 K x / (w^T M^-1 w)
+  const Eigen::RowVectorXd row = (K * Minv_w_).transpose() / w_Minv_w_;
+  flight_.force_row = row;
+  contact_.force_row = row;
+  flight_.w_phi = w.transpose() * flight_.Phi;
+  contact_.w_phi = w.transpose() * contact_.Phi;
+}
+
+double Simulator::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+  return 0.5 * v.dot(system_.M() * v) + 0.5 * x.dot(system_.K() * x);
+}
+
+SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0,
+                                const SimulateOptions& opt) const {
+  opt.validate();
+  const Eigen::Index n = system_.n();
+  if (x0.size() != n || v0.size() != n) {
+    std::ostringstream os;
+    os << "simulate: expected x0 and v0 of size " << n << " (the system's dofs), got " << x0.size() << " and "
+       << v0.size();
+    fail(os.str());
+  }
+  if (!x0.allFinite() || !v0.allFinite()) fail("simulate: x0 and v0 must be finite numbers");
+  const Eigen::MatrixXd& M = system_.M();
+  const Eigen::MatrixXd& K = system_.K();
+  const Eigen::VectorXd& w = system_.w();
+  const double e = opt.restitution;
+
+  SimulationResult res;
+  Eigen::VectorXd x = x0, v = v0;
+  double t = 0.0;
+  bool contact = false;
+  size_t next_sample = 0;
+  while (next_sample < opt.sample_times.size() && opt.sample_times[next_sample] <= 0.0) ++next_sample;
+
+  auto push_sample = [&](double ts, const Eigen::VectorXd& xs, const Eigen::VectorXd& vs, bool in_contact) {
+    if (!res.samples.empty() && res.samples.back().t == ts) res.samples.pop_back();  // keep the later state
+    Sample s;
+    s.t = ts;
+    s.x = xs;
+    s.v = vs;
+    s.gap = system_.gap(xs);
+    s.force = in_contact ? contact_.force_row.dot(xs) : 0.0;
+    s.in_contact = in_contact;
+    res.samples.push_back(std::move(s));
+  };
+  // Removes the normal velocity (and, for contact, the gap) along M^-1 w: the M-orthogonal projection.
+  auto project_velocity = [&](Eigen::VectorXd& vv) { vv -= (w.dot(vv) / w_Minv_w_) * Minv_w_; };
+  auto project_position = [&](Eigen::VectorXd& xx) { xx -= (system_.gap(xx) / w_Minv_w_) * Minv_w_; };
+
+  // On the obstacle with zero normal velocity: lasting contact iff the force the constraint needs is
+  // non-negative, decided by its first derivative that is not negligible (lambda, lambda', lambda'').
+  auto needs_contact = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& vv) {
+    const Eigen::RowVectorXd& r = contact_.force_row;
+    const double l0 = r.dot(xx);
+    const Eigen::VectorXd a = M_llt_.solve(-K * xx) + l0 * Minv_w_;
+    const double l1 = r.dot(vv), l2 = r.dot(a);
+    const double s0 = r.cwiseAbs().dot(xx.cwiseAbs()), s1 = r.cwiseAbs().dot(vv.cwiseAbs()),
+                 s2 = r.cwiseAbs().dot(a.cwiseAbs());
+    const double tol = 1e-10;
+    if (std::abs(l0) > tol * s0) return l0 > 0.0;
+    if (std::abs(l1) > tol * s1) return l1 > 0.0;
+    if (std::abs(l2) > tol * s2) return l2 > 0.0;
+    return true;  // at rest on the obstacle to every order we can see: contact holds
+  };
+
+  auto flight_gap = [&](const PhaseState& s) {
+    return detail::CosineSum::from_cos_sin(system_.g0(), flight_.w_phi.cwiseProduct(s.q),
+                                           flight_.w_phi.cwiseProduct(sin_coefficients(flight_, s)), flight_.omega);
+  };
+
+  auto record = [&](EventKind kind, const Eigen::VectorXd& vb, const Eigen::VectorXd& va, double force) {
+    Event ev;
+    ev.t = t;
+    ev.kind = kind;
+    ev.x = x;
+    ev.v_before = vb;
+    ev.v_after = va;
+    ev.normal_velocity_before = w.dot(vb);
+    ev.normal_velocity_after = w.dot(va);
+    ev.force = force;
+    res.events.push_back(std::move(ev));
+    if (kind == EventKind::Impact) ++res.impacts;
+    if (kind == EventKind::ContactOnset) ++res.contact_onsets;
+    if (kind == EventKind::Release) ++res.releases;
+  };
+
+  // Gap reached zero in flight (or the start is on the obstacle): impact, then contact or flight. A bounce
+  // slower than v_rest is plastic: either below the velocity tolerance, or so low (height v^2 / (2 |g''|)
+  // within a few event tolerances) that its end could not be told from its start.
+  auto touchdown = [&](const detail::CosineSum& gap, double gap_tol, bool stalled) {
+    const double vn = w.dot(v);
+    const double v_rest = std::max(opt.rest_velocity_rel_tol * gap.bound(1), std::sqrt(8.0 * gap_tol * gap.bound(2)));
+    if (vn > v_rest && !stalled) return;  // leaving the obstacle
+    const Eigen::VectorXd vb = v;
+    if (vn < -v_rest) {
+      const double vn_after = -e * vn;
+      v -= ((1.0 + e) * vn / w_Minv_w_) * Minv_w_;
+      if (vn_after > v_rest && !stalled) {
+        res.impact_energy_loss += 0.5 * (1.0 - e * e) * vn * vn / w_Minv_w_;
+        record(EventKind::Impact, vb, v, 0.0);
+        return;
+      }
+    }
+    project_velocity(v);  // too slow to bounce: the accumulation of impacts ends here, plastically
+    res.impact_energy_loss += 0.5 * vn * vn / w_Minv_w_;
+    if (vn < -v_rest) record(EventKind::Impact, vb, v, 0.0);
+    if (needs_contact(x, v)) {
+      project_position(x);
+      record(EventKind::ContactOnset, vb, v, contact_.force_row.dot(x));
+      contact = true;
+    }
+  };
+
+  // initial state
+  {
+    const double g = system_.gap(x);
+    const double gtol = 1e-9 * (std::abs(system_.g0()) + x.norm());
+    if (g < -gtol) {
+      std::ostringstream os;
+      os << "simulate: the initial state penetrates the obstacle: gap w^T x0 + g0 = " << g << " < 0";
+      fail(os.str());
+    }
+    res.energy_initial = energy(x, v);
+    push_sample(0.0, x, v, false);
+    if (g <= gtol) {
+      const detail::CosineSum f = flight_gap(modal_state(flight_, M, x, v));
+      touchdown(f, opt.event_rel_tol * (std::abs(f.c0) + f.bound(0)), false);
+      if (contact) res.samples.back() = Sample{0.0, x, v, system_.gap(x), contact_.force_row.dot(x), true};
+    }
+  }
+
+  res.status = SimulationStatus::Success;
+  while (t < opt.duration) {
+    if (static_cast<long>(res.events.size()) >= opt.max_events) {
+      res.status = SimulationStatus::EventLimit;
+      break;
+    }
+    const Phase& ph = contact ? contact_ : flight_;
+    const PhaseState ps = modal_state(ph, M, x, v);
+    detail::CosineSum f;  // the quantity that must stay >= 0 in this phase
+    if (contact) {
+      const Eigen::VectorXd rphi = (contact_.force_row * contact_.Phi).transpose();
+      f = detail::CosineSum::from_cos_sin(contact_.force_row.dot(contact_.x_s), rphi.cwiseProduct(ps.q),
+                                          rphi.cwiseProduct(sin_coefficients(ph, ps)), ph.omega);
+    } else {
+      f = flight_gap(ps);
+    }
+    const double f_tol = opt.event_rel_tol * (std::abs(f.c0) + f.bound(0));
+    const double remaining = opt.duration - t;
+    const detail::Crossing cr = detail::first_crossing_below_zero(f, 0.0, remaining, f_tol);
+    const double s_end = cr.found ? cr.t : remaining;
+    const double t_end = cr.found ? std::min(t + s_end, opt.duration) : opt.duration;
+    Eigen::VectorXd xs, vs;
+    for (; next_sample < opt.sample_times.size() && opt.sample_times[next_sample] < t_end; ++next_sample) {
+      const double ts = opt.sample_times[next_sample];
+      state_at(ph, ps, ts - t, xs, vs);
+      push_sample(ts, xs, vs, contact);
+    }
+    state_at(ph, ps, s_end, x, v);
+    t = t_end;
+    if (!cr.found) break;
+    if (contact) {
+      project_velocity(v);  // rounding only: the contact flow keeps w^T v = 0
+      record(EventKind::Release, v, v, 0.0);
+      contact = false;
+    } else {
+      touchdown(f, f_tol, s_end <= 0.0);  // stalled: no time passed since the last event
+    }
+    if (opt.sample_events) push_sample(t, x, v, contact);
+  }
+  res.end_time = t;
+  push_sample(t, x, v, contact);
+  res.in_contact_at_end = contact;
+  res.energy_final = energy(x, v);
+  return res;
+}
+
+SimulationResult simulate(const System& system, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0,
+                          const SimulateOptions& options) {
+  return Simulator(system).run(x0, v0, options);
+}
+
+}  // namespace spp
