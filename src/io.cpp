@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -189,12 +190,10 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
 json result_to_json(const System& s, const SolveResult& r) {
   json j;
   auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
-  j["system"] = {{"name", s.name()},
-                 {"n", s.n()},
-                 {"g0", s.g0()},
-                 {"w", vec(s.w())},
-                 {"w_normalized", s.w_input_norm() != 1.0},
-                 {"w_input_norm", s.w_input_norm()}};
+  j["system"] = system_to_json(s);
+  j["system"]["n"] = s.n();
+  j["system"]["w_normalized"] = s.w_input_norm() != 1.0;
+  j["system"]["w_input_norm"] = s.w_input_norm();
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["status"] = to_string(r.status);
   j["warnings"] = r.warnings;
@@ -233,6 +232,59 @@ json result_to_json(const System& s, const SolveResult& r) {
   }
   j["solutions"] = sols;
   return j;
+}
+
+json read_json_file(const std::string& path) {
+  const std::string text = read_file(path);
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    fail(path + ": malformed JSON: " + e.what());
+  }
+}
+
+System result_system(const json& r, const std::string& where) {
+  if (!r.is_object() || !r.contains("system") || !r.contains("solutions"))
+    fail(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
+  if (!r.at("system").contains("M") || !r.at("system").contains("K"))
+    fail(where + ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): run spp solve again");
+  return system_from_json(r.at("system"), where + ": field \"system\"");
+}
+
+std::vector<SppCandidate> result_candidates(const json& r, const std::string& where) {
+  if (!r.is_object() || !r.contains("solutions") || !r.at("solutions").is_array())
+    fail(where + ": missing field \"solutions\" (expected a result of spp solve)");
+  std::vector<SppCandidate> out;
+  const json& sols = r.at("solutions");
+  for (size_t i = 0; i < sols.size(); ++i) {
+    const std::string at = where + ": solutions[" + std::to_string(i) + "]";
+    const json& o = sols[i];
+    auto number = [&](const char* key) {
+      if (!o.is_object() || !o.contains(key) || !o.at(key).is_number())
+        fail(at + ": field \"" + key + "\" must be a number");
+      return o.at(key).get<double>();
+    };
+    auto vector = [&](const char* key) {
+      if (!o.contains(key) || !o.at(key).is_array()) fail(at + ": field \"" + key + "\" must be a list of numbers");
+      const json& a = o.at(key);
+      Eigen::VectorXd v(static_cast<Eigen::Index>(a.size()));
+      for (size_t k = 0; k < a.size(); ++k) {
+        if (!a[k].is_number()) fail(at + ": field \"" + key + "\"[" + std::to_string(k) + "] must be a number");
+        v(static_cast<Eigen::Index>(k)) = a[k].get<double>();
+      }
+      return v;
+    };
+    SppCandidate c;
+    c.t1 = number("t1");
+    c.t2 = number("t2");
+    c.x0 = vector("x0");
+    c.v0 = vector("v0");
+    if (!o.contains("admissible") || !o.at("admissible").is_boolean())
+      fail(at + ": field \"admissible\" must be true or false");
+    c.admissible = o.at("admissible").get<bool>();
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 std::string result_to_csv(const SolveResult& r) {
@@ -284,6 +336,98 @@ std::string trajectory_csv(const ModalForm& md, const Orbit& o, int samples) {
     for (int i = 0; i < n; ++i) os << "," << num(st.x(i));
     for (int i = 0; i < n; ++i) os << "," << num(st.v(i));
     os << "," << num(st.gap) << "," << num(st.force) << "\n";
+  }
+  return os.str();
+}
+
+std::string simulation_csv(const SimulationResult& r) {
+  std::ostringstream os;
+  const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].x.size();
+  os << "t";
+  for (Eigen::Index i = 1; i <= n; ++i) os << ",x" << i;
+  for (Eigen::Index i = 1; i <= n; ++i) os << ",v" << i;
+  os << ",gap,force,contact\n";
+  for (const Sample& s : r.samples) {
+    os << num(s.t);
+    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(s.x(i));
+    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(s.v(i));
+    os << "," << num(s.gap) << "," << num(s.force) << "," << (s.in_contact ? 1 : 0) << "\n";
+  }
+  return os.str();
+}
+
+std::string events_csv(const SimulationResult& r) {
+  std::ostringstream os;
+  const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].x.size();
+  os << "t,event,normal_velocity_before,normal_velocity_after,force";
+  for (Eigen::Index i = 1; i <= n; ++i) os << ",x" << i;
+  for (Eigen::Index i = 1; i <= n; ++i) os << ",v" << i;
+  os << "\n";
+  for (const Event& e : r.events) {
+    os << num(e.t) << "," << to_string(e.kind) << "," << num(e.normal_velocity_before) << ","
+       << num(e.normal_velocity_after) << "," << num(e.force);
+    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(e.x(i));
+    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(e.v_after(i));
+    os << "\n";
+  }
+  return os.str();
+}
+
+json verify_to_json(const VerifyResult& r) {
+  json checks = json::array();
+  for (const SppCheck& c : r.checks) {
+    json o = {{"t1", c.candidate.t1},
+              {"t2", c.candidate.t2},
+              {"period", c.candidate.period()},
+              {"admissible", c.candidate.admissible},
+              {"verdict", to_string(c.verdict)},
+              {"consistent", c.consistent},
+              {"return_errors", c.return_errors},
+              {"impacts", c.impacts},
+              {"contact_onsets", c.contact_onsets},
+              {"releases", c.releases}};
+    o["periods_followed"] = c.periods_followed;
+    if (!c.departure.empty()) o["departure"] = {{"t", c.departure_time}, {"what", c.departure}};
+    if (!c.perturbed_distances.empty()) {
+      o["perturbed_distances"] = c.perturbed_distances;
+      o["growth_per_period"] = c.growth_per_period;
+    }
+    checks.push_back(o);
+  }
+  return {{"checks", checks},
+          {"returned", r.returned},
+          {"left", r.left},
+          {"inconsistent", r.inconsistent},
+          {"all_consistent", r.all_consistent()}};
+}
+
+std::string verify_table(const VerifyResult& r) {
+  std::ostringstream os;
+  const bool perturbed =
+      std::any_of(r.checks.begin(), r.checks.end(), [](const SppCheck& c) { return !c.perturbed_distances.empty(); });
+  const int periods = r.checks.empty() ? 0 : static_cast<int>(r.checks[0].return_errors.size());
+  os << std::setw(4) << "#" << std::setw(13) << "t1" << std::setw(13) << "t2" << std::setw(12) << "admissible"
+     << std::setw(14) << "return_err" << std::setw(9) << "verdict";
+  if (periods > 1) os << std::setw(10) << "followed" << std::setw(14) << "err_last";
+  if (perturbed) os << std::setw(12) << "growth/T";
+  os << "  note\n";
+  int i = 0;
+  for (const SppCheck& c : r.checks) {
+    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(13) << c.candidate.t1 << std::setw(13)
+       << c.candidate.t2 << std::setw(12) << (c.candidate.admissible ? "yes" : "no") << std::setprecision(3)
+       << std::setw(14) << (c.return_errors.empty() ? 0.0 : c.return_errors[0]) << std::setw(9) << to_string(c.verdict);
+    if (periods > 1)
+      os << std::setw(10) << (std::to_string(c.periods_followed) + "/" + std::to_string(periods)) << std::setw(14)
+         << c.return_errors.back();
+    if (perturbed) {
+      if (c.perturbed_distances.empty())
+        os << std::setw(12) << "-";
+      else
+        os << std::setprecision(6) << std::setw(12) << c.growth_per_period;
+    }
+    const bool departs = c.verdict == Verdict::Leaves || c.periods_followed < periods;
+    os << "  " << (c.consistent ? "" : "INCONSISTENT with the solver: ")
+       << (departs ? (c.verdict == Verdict::Returns ? "later: " : "") + c.departure : "") << "\n";
   }
   return os.str();
 }

@@ -60,6 +60,24 @@ void state_at(const Simulator::Phase& p, const PhaseState& s, double t, Eigen::V
   v = p.Phi * qd;
 }
 
+// A touchdown with zero velocity and acceleration (how an SPP's contact begins) is a triple root of the gap,
+// located by a crossing only to ~(tol / |g'''|)^(1/3); g'' has a simple root there: Newton on it finds the
+// point where gap, velocity and acceleration vanish together, kept only if the gap is still within tolerance.
+double tangent_touchdown(const detail::CosineSum& gap, double s, double tol) {
+  double r = s;
+  for (int it = 0; it < 4; ++it) {
+    const double g3 = gap.derivative(r, 3);
+    if (g3 == 0.0) return s;
+    r -= gap.derivative(r, 2) / g3;
+  }
+  const double g3 = std::abs(gap.derivative(r, 3));
+  const double window = 10.0 * std::cbrt(6.0 * tol / g3);
+  const double v_tol = std::sqrt(8.0 * tol * gap.bound(2));
+  if (r >= 0.0 && std::abs(r - s) <= window && std::abs(gap.value(r)) <= tol && std::abs(gap.derivative(r, 1)) <= v_tol)
+    return r;
+  return s;
+}
+
 }  // namespace
 
 void SimulateOptions::validate() const {
@@ -116,6 +134,7 @@ std::string to_string(SimulationStatus status) {
     case SimulationStatus::NotRun: return "not_run";
     case SimulationStatus::Success: return "success";
     case SimulationStatus::EventLimit: return "event_limit";
+    case SimulationStatus::Stalled: return "stalled";
   }
   return "unknown";
 }
@@ -173,7 +192,6 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   }
   if (!x0.allFinite() || !v0.allFinite()) fail("simulate: x0 and v0 must be finite numbers");
   const Eigen::MatrixXd& M = system_.M();
-  const Eigen::MatrixXd& K = system_.K();
   const Eigen::VectorXd& w = system_.w();
   const double e = opt.restitution;
 
@@ -199,19 +217,24 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   auto project_velocity = [&](Eigen::VectorXd& vv) { vv -= (w.dot(vv) / w_Minv_w_) * Minv_w_; };
   auto project_position = [&](Eigen::VectorXd& xx) { xx -= (system_.gap(xx) / w_Minv_w_) * Minv_w_; };
 
+  auto contact_force = [&](const PhaseState& ps) {
+    const Eigen::VectorXd rphi = (contact_.force_row * contact_.Phi).transpose();
+    return detail::CosineSum::from_cos_sin(contact_.force_row.dot(contact_.x_s), rphi.cwiseProduct(ps.q),
+                                           rphi.cwiseProduct(sin_coefficients(contact_, ps)), contact_.omega);
+  };
+  auto tolerance = [&](const detail::CosineSum& f, int k) {
+    return opt.event_rel_tol * ((k == 0 ? std::abs(f.c0) : 0.0) + f.bound(k));
+  };
+
   // On the obstacle with zero normal velocity: lasting contact iff the force the constraint needs is
-  // non-negative, decided by its first derivative that is not negligible (lambda, lambda', lambda'').
+  // non-negative, decided by its first derivative that is not negligible (lambda, lambda', lambda''), with the
+  // tolerance of the contact phase's own event search (so that the two never contradict each other).
   auto needs_contact = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& vv) {
-    const Eigen::RowVectorXd& r = contact_.force_row;
-    const double l0 = r.dot(xx);
-    const Eigen::VectorXd a = M_llt_.solve(-K * xx) + l0 * Minv_w_;
-    const double l1 = r.dot(vv), l2 = r.dot(a);
-    const double s0 = r.cwiseAbs().dot(xx.cwiseAbs()), s1 = r.cwiseAbs().dot(vv.cwiseAbs()),
-                 s2 = r.cwiseAbs().dot(a.cwiseAbs());
-    const double tol = 1e-10;
-    if (std::abs(l0) > tol * s0) return l0 > 0.0;
-    if (std::abs(l1) > tol * s1) return l1 > 0.0;
-    if (std::abs(l2) > tol * s2) return l2 > 0.0;
+    const detail::CosineSum f = contact_force(modal_state(contact_, M, xx, vv));
+    for (int k = 0; k <= 2; ++k) {
+      const double d = f.derivative(0.0, k);
+      if (std::abs(d) > tolerance(f, k)) return d > 0.0;
+    }
     return true;  // at rest on the obstacle to every order we can see: contact holds
   };
 
@@ -276,31 +299,29 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     push_sample(0.0, x, v, false);
     if (g <= gtol) {
       const detail::CosineSum f = flight_gap(modal_state(flight_, M, x, v));
-      touchdown(f, opt.event_rel_tol * (std::abs(f.c0) + f.bound(0)), false);
+      touchdown(f, tolerance(f, 0), false);
       if (contact) res.samples.back() = Sample{0.0, x, v, system_.gap(x), contact_.force_row.dot(x), true};
     }
   }
 
   res.status = SimulationStatus::Success;
+  int stalled_events = 0;  // consecutive events without time passing
   while (t < opt.duration) {
     if (static_cast<long>(res.events.size()) >= opt.max_events) {
       res.status = SimulationStatus::EventLimit;
       break;
     }
+    if (stalled_events > 100) {
+      res.status = SimulationStatus::Stalled;
+      break;
+    }
     const Phase& ph = contact ? contact_ : flight_;
     const PhaseState ps = modal_state(ph, M, x, v);
-    detail::CosineSum f;  // the quantity that must stay >= 0 in this phase
-    if (contact) {
-      const Eigen::VectorXd rphi = (contact_.force_row * contact_.Phi).transpose();
-      f = detail::CosineSum::from_cos_sin(contact_.force_row.dot(contact_.x_s), rphi.cwiseProduct(ps.q),
-                                          rphi.cwiseProduct(sin_coefficients(ph, ps)), ph.omega);
-    } else {
-      f = flight_gap(ps);
-    }
-    const double f_tol = opt.event_rel_tol * (std::abs(f.c0) + f.bound(0));
+    const detail::CosineSum f = contact ? contact_force(ps) : flight_gap(ps);  // must stay >= 0 in this phase
+    const double f_tol = tolerance(f, 0);
     const double remaining = opt.duration - t;
     const detail::Crossing cr = detail::first_crossing_below_zero(f, 0.0, remaining, f_tol);
-    const double s_end = cr.found ? cr.t : remaining;
+    const double s_end = cr.found ? (contact ? cr.t : tangent_touchdown(f, cr.t, f_tol)) : remaining;
     const double t_end = cr.found ? std::min(t + s_end, opt.duration) : opt.duration;
     Eigen::VectorXd xs, vs;
     for (; next_sample < opt.sample_times.size() && opt.sample_times[next_sample] < t_end; ++next_sample) {
@@ -309,6 +330,7 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
       push_sample(ts, xs, vs, contact);
     }
     state_at(ph, ps, s_end, x, v);
+    stalled_events = t_end > t ? 0 : stalled_events + 1;
     t = t_end;
     if (!cr.found) break;
     if (contact) {

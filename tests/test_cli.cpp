@@ -181,3 +181,78 @@ TEST(Cli, GenerateThenSolve) {
   EXPECT_NE(bad.out.find("masses must have 1 or n = 3 values, got 2"), std::string::npos) << bad.out;
   EXPECT_FALSE(fs::exists(dir() / "bad.json"));
 }
+
+// simulate: samples up to t = T exactly, events file, energy; bad input rejected without output.
+TEST(Cli, SimulateWritesSamplesAndEvents) {
+  const fs::path csv = dir() / "sim.csv", ev = dir() / "ev.csv";
+  const CliRun r = run("simulate " + kChain + " --x0 0,0,0,0,0 --v0 0.3,-0.2,0.5,0.1,0.9 --duration 30" +
+                       " --restitution 0.5 --samples-per-unit 10 --csv " + csv.string() + " --events " + ev.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,x1,x2,x3,x4,x5,v1,v2,v3,v4,v5,gap,force,contact");
+  int rows = 0;
+  while (std::getline(in, line)) last = line, ++rows;
+  EXPECT_GE(rows, 301);
+  EXPECT_EQ(last.substr(0, last.find(',')), "30");
+  std::ifstream evs(ev);
+  std::getline(evs, header);
+  EXPECT_EQ(header.substr(0, 57), "t,event,normal_velocity_before,normal_velocity_after,forc");
+  int impacts = 0;
+  while (std::getline(evs, line)) impacts += line.find(",impact,") != std::string::npos;
+  EXPECT_GT(impacts, 0);
+  EXPECT_NE(r.out.find("impacts"), std::string::npos);
+}
+
+TEST(Cli, SimulateRejectsBadInput) {
+  const fs::path csv = dir() / "bad_sim.csv";
+  auto rejected = [&](const std::string& args, const std::string& message) {
+    fs::remove(csv);
+    const CliRun r = run("simulate " + kChain + " " + args + " --csv " + csv.string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
+    EXPECT_FALSE(fs::exists(csv));
+  };
+  rejected("--x0 0,0,0 --v0 0,0,0,0,0 --duration 1", "expected x0 and v0 of size 5");
+  rejected("--x0 0,0,0,0,2 --v0 0,0,0,0,0 --duration 1", "penetrates the obstacle");
+  rejected("--x0 0,0,0,0,0 --v0 0,0,0,0,0 --duration -1", "duration must be finite and > 0");
+  rejected("--x0 0,0,0,0,0 --v0 0,0,0,0,0 --duration 1 --restitution 2", "restitution must be in [0, 1]");
+  rejected("--x0 0,a,0,0,0 --v0 0,0,0,0,0 --duration 1", "--x0: expected comma-separated numbers");
+}
+
+// verify: every admissible SPP of the paper's chain returns, every other one leaves, with the time and reason.
+TEST(Cli, VerifyAgreesWithTheSolverOnThePaperChain) {
+  const fs::path res = dir() / "res_verify.json", out = dir() / "verify.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);
+  const CliRun r = run("verify " + res.string() + " --periods 3 --json " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("7 return to their initial state, 57 leave the orbit; 0 disagree"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(out));
+  ASSERT_EQ(j["checks"].size(), 64u);
+  for (const auto& c : j["checks"]) {
+    EXPECT_TRUE(c["consistent"].get<bool>());
+    if (c["admissible"].get<bool>()) {
+      EXPECT_LT(c["return_errors"][0].get<double>(), 1e-9);
+      EXPECT_EQ(c["verdict"], "returns");
+    } else {
+      EXPECT_EQ(c["verdict"], "leaves");
+      EXPECT_LE(c["departure"]["t"].get<double>(), 2.0 * c["t2"].get<double>() + 2.0 * c["t1"].get<double>());
+      EXPECT_FALSE(c["departure"]["what"].get<std::string>().empty());
+    }
+  }
+}
+
+TEST(Cli, VerifyRejectsWhatIsNotAResult) {
+  const CliRun r = run("verify " + kChain);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.out.find("expected a result of spp solve"), std::string::npos) << r.out;
+  const CliRun r2 = run("verify " + write("broken.json", "{\"system\": 1,"));
+  EXPECT_EQ(r2.code, 1);
+  EXPECT_NE(r2.out.find("malformed JSON"), std::string::npos) << r2.out;
+  const fs::path res = dir() / "res_small.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 4 --t2-max 4 --quiet --json " + res.string()).code, 0);
+  const CliRun r3 = run("verify " + res.string() + " --perturb 0.7");
+  EXPECT_EQ(r3.code, 1);
+  EXPECT_NE(r3.out.find("perturbation must be in [0, 0.5), got 0.7"), std::string::npos) << r3.out;
+}

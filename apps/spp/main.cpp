@@ -1,5 +1,6 @@
 // spp: command-line tool. parse -> options -> validate -> run -> write (atomically).
-// Exit codes: 0 success, 1 invalid input or failed run (message on stderr), 2 usage error (CLI11).
+// Exit codes: 0 success, 1 invalid input or failed run (message on stderr), 2 usage error (CLI11),
+// 3 verify: a simulation disagrees with the solver's admissibility.
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -9,7 +10,9 @@
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
+#include "spp/simulator.hpp"
 #include "spp/solver.hpp"
+#include "spp/verify.hpp"
 
 namespace {
 
@@ -67,6 +70,32 @@ int main(int argc, char** argv) {
   o_t1->needs(o_t2);
   o_t2->needs(o_t1);
   o_res->excludes(o_t1);
+
+  // simulate
+  auto* simc = app.add_subcommand("simulate", "exact event-driven simulation from any initial state");
+  std::string sim_sys, sim_x0, sim_v0, sim_csv, sim_events;
+  spp::SimulateOptions sim_opt;
+  double per_unit = 100.0;
+  simc->add_option("system", sim_sys, "system JSON file")->required();
+  simc->add_option("--x0", sim_x0, "initial positions, comma-separated")->required();
+  simc->add_option("--v0", sim_v0, "initial velocities, comma-separated")->required();
+  simc->add_option("--duration", sim_opt.duration, "simulated time T (last row at t = T)")->required();
+  simc->add_option("--restitution", sim_opt.restitution, "Newton's coefficient e in [0, 1] (default 0)");
+  simc->add_option("--csv", sim_csv, "output CSV: t, x1..xn, v1..vn, gap, force, contact")->required();
+  simc->add_option("--events", sim_events, "output CSV of the impacts, contact onsets and releases");
+  simc->add_option("--samples-per-unit", per_unit, "rows per unit of time (default 100), plus one per event");
+  simc->add_option("--max-events", sim_opt.max_events, "stop after this many events (default 1e7)");
+
+  // verify
+  auto* ver = app.add_subcommand("verify", "re-simulate every SPP of a result and check it");
+  std::string ver_result, ver_json;
+  spp::VerifyOptions ver_opt;
+  ver->add_option("result", ver_result, "result JSON of spp solve")->required();
+  ver->add_option("--periods", ver_opt.periods, "simulated periods (default 1)");
+  ver->add_option("--perturb", ver_opt.perturbation,
+                  "relative size of a perturbation of the mid-flight state of each returning SPP");
+  ver->add_option("--restitution", ver_opt.restitution, "Newton's coefficient e for the simulations (default 0)");
+  ver->add_option("--json", ver_json, "write the verification as JSON");
 
   // generate
   auto* gen = app.add_subcommand("generate", "write a system JSON for one of the paper's models");
@@ -147,6 +176,36 @@ int main(int argc, char** argv) {
       std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period << ", "
                 << (s.admissible ? "admissible" : "not admissible") << ") written to " << traj_csv << "\n";
       return 0;
+    }
+    if (*simc) {
+      const spp::System sys = spp::load_system(sim_sys);
+      const std::vector<double> x0 = parse_list(sim_x0, "--x0"), v0 = parse_list(sim_v0, "--v0");
+      sim_opt.validate();
+      sim_opt.sample_times = spp::uniform_times(sim_opt.duration, per_unit);
+      const spp::SimulationResult r =
+          spp::simulate(sys, Eigen::Map<const Eigen::VectorXd>(x0.data(), static_cast<Eigen::Index>(x0.size())),
+                        Eigen::Map<const Eigen::VectorXd>(v0.data(), static_cast<Eigen::Index>(v0.size())), sim_opt);
+      const std::string csv = spp::simulation_csv(r);
+      const std::string events = sim_events.empty() ? "" : spp::events_csv(r);
+      std::cout << r.brief_report() << "\n";
+      spp::write_file_atomic(sim_csv, csv);
+      if (!sim_events.empty()) spp::write_file_atomic(sim_events, events);
+      if (r.status != spp::SimulationStatus::Success) {
+        std::cerr << "spp: error: simulation " << spp::to_string(r.status) << " before t = " << sim_opt.duration
+                  << " (--max-events " << sim_opt.max_events << "; output written up to t = " << r.end_time << ")\n";
+        return 1;
+      }
+      return 0;
+    }
+    if (*ver) {
+      const nlohmann::json j = spp::read_json_file(ver_result);
+      const spp::System sys = spp::result_system(j, ver_result);
+      const std::vector<spp::SppCandidate> spps = spp::result_candidates(j, ver_result);
+      const spp::VerifyResult r = spp::verify(sys, spps, ver_opt);
+      const std::string json_text = ver_json.empty() ? "" : spp::verify_to_json(r).dump(2) + "\n";
+      std::cout << spp::verify_table(r) << r.brief_report() << "\n";
+      if (!ver_json.empty()) spp::write_file_atomic(ver_json, json_text);
+      return r.all_consistent() ? 0 : 3;
     }
     if (*gen) {
       spp::System sys = [&]() {

@@ -7,8 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "spp/simulator.hpp"
 #include "spp/solver.hpp"
 #include "spp/system.hpp"
+#include "spp/verify.hpp"
 
 namespace spp {
 
@@ -21,13 +23,28 @@ nlohmann::json system_to_json(const System& system);
 /// Matrix Market "matrix array|coordinate real|integer general|symmetric".
 Eigen::MatrixXd read_matrix_market(const std::string& path);
 
+/// The result embeds the whole system (M, K, w, g0: after normalising w), so that it can be verified, plotted or
+/// animated alone.
 nlohmann::json result_to_json(const System& system, const SolveResult& result);
+/// Parses a result JSON of spp solve: its system and its solutions. Throws std::invalid_argument naming the field.
+nlohmann::json read_json_file(const std::string& path);
+System result_system(const nlohmann::json& result, const std::string& where);
+std::vector<SppCandidate> result_candidates(const nlohmann::json& result, const std::string& where);
 std::string result_to_csv(const SolveResult& result);
 /// Human-readable table (t1, t2, period, admissible, min gap, min force).
 std::string result_table(const SolveResult& result);
 
 /// Samples one period of an orbit: t, x1..xn, v1..vn, gap, force.
 std::string trajectory_csv(const ModalForm& modal, const Orbit& orbit, int samples);
+
+/// Simulation samples: t, x1..xn, v1..vn, gap, force, contact (0/1).
+std::string simulation_csv(const SimulationResult& result);
+/// Events: t, event, normal velocity before and after, force, x1..xn, v1..vn (after the event).
+std::string events_csv(const SimulationResult& result);
+
+nlohmann::json verify_to_json(const VerifyResult& result);
+/// Human-readable verification table.
+std::string verify_table(const VerifyResult& result);
 
 void write_file_atomic(const std::string& path, const std::string& content);
 std::string read_file(const std::string& path);

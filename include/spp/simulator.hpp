@@ -58,8 +58,9 @@ struct Sample {
 
 enum class SimulationStatus {
   NotRun,
-  Success,    ///< reached t = duration
-  EventLimit  ///< stopped at max_events before t = duration (samples end at the last event)
+  Success,     ///< reached t = duration
+  EventLimit,  ///< stopped at max_events before t = duration (samples end at the last event)
+  Stalled      ///< over 100 events in a row without time passing (samples end there): a defect to report
 };
 std::string to_string(SimulationStatus status);
 

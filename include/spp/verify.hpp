@@ -1,0 +1,69 @@
+#pragma once
+// Independent verification of SPPs with the event-driven simulator: an admissible SPP must come back to its
+// initial state after each period with the expected events (contact onset at 0, release at 2 t2); a potential
+// but inadmissible one must be seen to leave (an impact where its flight penetrates, or an early release where
+// its force would turn negative). With a perturbation, the distance to the orbit is followed period by period:
+// a measured indication of stability under the given impact law.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "spp/simulator.hpp"
+#include "spp/solver.hpp"
+
+namespace spp {
+
+struct VerifyOptions {
+  int periods = 1;               ///< simulated periods (>= 1)
+  double perturbation = 0.0;     ///< relative size of the perturbation of the mid-flight state; 0: none
+  double restitution = 0.0;      ///< Newton's e for the simulations (matters only once the orbit is left)
+  double return_tol = 1e-9;      ///< an admissible SPP must come back to this relative error after one period
+  double follow_tol = 1e-6;      ///< later periods count as followed while the return error stays below this
+  double event_time_tol = 1e-6;  ///< relative to the period: events within it of the expected times match
+  void validate() const;
+};
+
+/// What verify needs of a solution: its half-durations, initial state (contact onset) and the solver's verdict.
+struct SppCandidate {
+  double t1 = 0.0, t2 = 0.0;
+  Eigen::VectorXd x0, v0;
+  bool admissible = false;
+  double period() const { return 2.0 * (t1 + t2); }
+};
+std::vector<SppCandidate> candidates(const SolveResult& result);
+
+enum class Verdict {
+  Returns,  ///< over the first period: the expected events, and a return error below return_tol
+  Leaves,   ///< the simulation departs from the orbit within the first period (departure_* say when and how)
+};
+std::string to_string(Verdict v);
+
+struct SppCheck {
+  SppCandidate candidate;
+  Verdict verdict = Verdict::Leaves;
+  bool consistent = false;            ///< admissible <=> Returns
+  std::vector<double> return_errors;  ///< |X(kT) - X(0)| / |X(0)|, k = 1..periods
+  /// Leading periods followed: expected events and return error <= return_tol for the first, return error
+  /// <= follow_tol for the next ones.
+  int periods_followed = 0;
+  double departure_time = 0.0;  ///< first event that does not match the orbit's (none: departure is empty)
+  std::string departure;        ///< what happened there
+  long impacts = 0, contact_onsets = 0, releases = 0;
+  /// With a perturbation: distance of the perturbed state to the orbit (energy norm, relative to the orbit's),
+  /// at k = 0..periods periods after the perturbation; and the mean growth factor per period.
+  std::vector<double> perturbed_distances;
+  double growth_per_period = 0.0;
+};
+
+struct VerifyResult {
+  std::vector<SppCheck> checks;
+  int returned = 0, left = 0, inconsistent = 0;
+  bool all_consistent() const { return inconsistent == 0; }
+  std::string brief_report() const;
+};
+
+/// Re-simulates each candidate from (x0, v0). Throws std::invalid_argument on sizes that do not match the system.
+VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps, const VerifyOptions& options);
+
+}  // namespace spp
