@@ -33,7 +33,7 @@ std::string fmt(double x) {
 }
 
 // The first simulated event that differs from the orbit's sequence (onset at k T, release at k T + 2 t2).
-// Sets out.periods_followed (complete periods whose events all match) and, at the first mismatch, departure_*.
+// Sets departure_* at the first simulated event that does not match the orbit's; periods_followed to all.
 void compare_events(const SimulationResult& sim, const SppCandidate& c, int periods, double tol, SppCheck& out) {
   const double T = c.period();
   std::vector<ExpectedEvent> expected;
@@ -53,7 +53,6 @@ void compare_events(const SimulationResult& sim, const SppCandidate& c, int peri
       matches = false;
     }
     if (matches) continue;
-    out.periods_followed = static_cast<int>(std::min(i, expected.size()) / 2);
     const double t_exp = i < expected.size() ? expected[i].t : periods * T;
     if (i < expected.size() && ev.t > expected[i].t + tol) {  // the expected event did not happen in time
       out.departure_time = expected[i].t;
@@ -79,7 +78,6 @@ void compare_events(const SimulationResult& sim, const SppCandidate& c, int peri
     return;
   }
   if (sim.events.size() < expected.size()) {
-    out.periods_followed = static_cast<int>(sim.events.size() / 2);
     const ExpectedEvent& e = expected[sim.events.size()];
     out.departure_time = e.t;
     out.departure = e.kind == EventKind::Release
@@ -208,6 +206,9 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
     for (const Sample& s : r.samples)
       if (s.t > 0.0) chk.return_errors.push_back((stack(s.x, s.v) - X0).norm() / X0.norm());
     compare_events(r, c, opt.periods, opt.event_time_tol * T, chk);
+    if (!chk.departure.empty())  // periods completed before the first mismatch
+      chk.periods_followed =
+          std::min(opt.periods, static_cast<int>(std::floor((chk.departure_time + opt.event_time_tol * T) / T)));
     // Verdict on the first period; later departures (rounding errors growing on an unstable SPP) are reported
     // through periods_followed and departure_*, not counted against the solver.
     const bool returns = chk.periods_followed >= 1 && chk.return_errors[0] <= opt.return_tol;

@@ -1,0 +1,94 @@
+// verify(): the simulator's judgement of each SPP agrees with the solver's admissibility; departures carry a time
+// and a reason; a perturbation starts at the requested distance from the orbit.
+#include <gtest/gtest.h>
+
+#include "spp/io.hpp"
+#include "spp/solver.hpp"
+#include "spp/verify.hpp"
+
+using namespace spp;
+
+namespace {
+System rod4() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
+}
+System chain5() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+}
+
+std::vector<SppCandidate> spps_of(const System& s, double t1max, double t2max) {
+  SolveOptions o;
+  o.t1_max = t1max;
+  o.t2_max = t2max;
+  return candidates(solve(s, o));
+}
+}  // namespace
+
+TEST(Verify, RodSppsAgreeWithTheSolver) {
+  const auto spps = spps_of(rod4(), 8.0, 3.0);
+  VerifyOptions o;
+  o.periods = 3;
+  const VerifyResult r = verify(rod4(), spps, o);
+  EXPECT_TRUE(r.all_consistent()) << r.brief_report();
+  EXPECT_EQ(r.returned, 2);
+  EXPECT_EQ(r.returned + r.left, static_cast<int>(spps.size()));
+  for (const SppCheck& c : r.checks) {
+    ASSERT_EQ(c.return_errors.size(), 3u);
+    if (c.verdict == Verdict::Returns) {
+      EXPECT_LT(c.return_errors[0], 1e-9);
+      EXPECT_EQ(c.impacts, 0);
+      EXPECT_EQ(c.releases, 3);
+    } else {
+      EXPECT_FALSE(c.departure.empty());
+      EXPECT_GE(c.departure_time, 0.0);
+      EXPECT_LE(c.departure_time, c.candidate.period());
+      EXPECT_EQ(c.periods_followed, 0);
+    }
+  }
+}
+
+TEST(Verify, DepartureReasonsNameWhatBreaks) {
+  const VerifyResult r = verify(chain5(), spps_of(chain5(), 12.0, 12.0), VerifyOptions{});
+  int impacts = 0, releases = 0, no_onset = 0;
+  for (const SppCheck& c : r.checks) {
+    if (c.verdict == Verdict::Returns) continue;
+    impacts += c.departure.rfind("impact at", 0) == 0;
+    releases += c.departure.rfind("release at", 0) == 0;
+    no_onset += c.departure.rfind("no contact onset at t = 0", 0) == 0;
+  }
+  // the paper's chain has all three ways of failing (ineqs. 5.3): a penetrating flight, a negative force
+  // inside the contact phase, a negative force rate at its onset
+  EXPECT_GT(impacts, 0);
+  EXPECT_GT(releases, 0);
+  EXPECT_GT(no_onset, 0);
+  EXPECT_EQ(impacts + releases + no_onset, r.left);
+}
+
+TEST(Verify, PerturbationStartsAtTheRequestedDistance) {
+  auto spps = spps_of(rod4(), 8.0, 3.0);
+  std::erase_if(spps, [](const SppCandidate& c) { return !c.admissible; });
+  VerifyOptions o;
+  o.periods = 5;
+  o.perturbation = 1e-6;
+  o.restitution = 0.5;
+  const VerifyResult r = verify(rod4(), spps, o);
+  for (const SppCheck& c : r.checks) {
+    ASSERT_EQ(c.perturbed_distances.size(), 6u);
+    // the distance to the orbit (minimum over its phase) is at most the perturbation itself
+    EXPECT_LE(c.perturbed_distances[0], 1e-6 * (1 + 1e-6));
+    EXPECT_GT(c.perturbed_distances[0], 1e-8);
+    EXPECT_GT(c.growth_per_period, 0.0);
+  }
+}
+
+TEST(Verify, RejectsCandidatesOfTheWrongSize) {
+  SppCandidate c;
+  c.t1 = 1.0;
+  c.t2 = 1.0;
+  c.x0 = Eigen::VectorXd::Zero(3);
+  c.v0 = Eigen::VectorXd::Zero(5);
+  EXPECT_THROW(verify(chain5(), {c}, VerifyOptions{}), std::invalid_argument);
+  VerifyOptions o;
+  o.periods = 0;
+  EXPECT_THROW(verify(chain5(), {}, o), std::invalid_argument);
+}
