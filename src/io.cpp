@@ -340,17 +340,26 @@ std::string trajectory_csv(const ModalForm& md, const Orbit& o, int samples) {
   return os.str();
 }
 
-std::string simulation_csv(const SimulationResult& r) {
-  std::ostringstream os;
-  const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].x.size();
-  os << "t";
+namespace {
+// ",x1..xn,v1..vn" and the matching values: the state columns shared by every CSV of states.
+void state_columns(std::ostringstream& os, Eigen::Index n) {
   for (Eigen::Index i = 1; i <= n; ++i) os << ",x" << i;
   for (Eigen::Index i = 1; i <= n; ++i) os << ",v" << i;
+}
+void state_values(std::ostringstream& os, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+  for (Eigen::Index i = 0; i < x.size(); ++i) os << "," << num(x(i));
+  for (Eigen::Index i = 0; i < v.size(); ++i) os << "," << num(v(i));
+}
+}  // namespace
+
+std::string simulation_csv(const SimulationResult& r) {
+  std::ostringstream os;
+  os << "t";
+  state_columns(os, r.samples.empty() ? 0 : r.samples[0].x.size());
   os << ",gap,force,contact\n";
   for (const Sample& s : r.samples) {
     os << num(s.t);
-    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(s.x(i));
-    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(s.v(i));
+    state_values(os, s.x, s.v);
     os << "," << num(s.gap) << "," << num(s.force) << "," << (s.in_contact ? 1 : 0) << "\n";
   }
   return os.str();
@@ -358,16 +367,13 @@ std::string simulation_csv(const SimulationResult& r) {
 
 std::string events_csv(const SimulationResult& r) {
   std::ostringstream os;
-  const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].x.size();
   os << "t,event,normal_velocity_before,normal_velocity_after,force";
-  for (Eigen::Index i = 1; i <= n; ++i) os << ",x" << i;
-  for (Eigen::Index i = 1; i <= n; ++i) os << ",v" << i;
+  state_columns(os, r.samples.empty() ? 0 : r.samples[0].x.size());
   os << "\n";
   for (const Event& e : r.events) {
     os << num(e.t) << "," << to_string(e.kind) << "," << num(e.normal_velocity_before) << ","
        << num(e.normal_velocity_after) << "," << num(e.force);
-    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(e.x(i));
-    for (Eigen::Index i = 0; i < n; ++i) os << "," << num(e.v_after(i));
+    state_values(os, e.x, e.v_after);
     os << "\n";
   }
   return os.str();

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "spp/detail/cosine_sum.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -82,9 +83,7 @@ double tangent_touchdown(const detail::CosineSum& gap, double s, double tol) {
 
 void SimulateOptions::validate() const {
   auto bad = [](const std::string& field, double value, const std::string& rule) {
-    std::ostringstream os;
-    os << "simulate: " << field << " must be " << rule << ", got " << value;
-    fail(os.str());
+    detail::invalid_option("simulate", field, value, rule);
   };
   if (!(std::isfinite(duration) && duration > 0.0)) bad("duration", duration, "finite and > 0");
   if (!(restitution >= 0.0 && restitution <= 1.0)) bad("restitution", restitution, "in [0, 1]");

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "spp/detail/invalid.hpp"
+
 namespace spp {
 
 namespace {
@@ -150,9 +152,7 @@ class OrbitDistance {
 
 void VerifyOptions::validate() const {
   auto bad = [](const std::string& field, double value, const std::string& rule) {
-    std::ostringstream os;
-    os << "verify: " << field << " must be " << rule << ", got " << value;
-    fail(os.str());
+    detail::invalid_option("verify", field, value, rule);
   };
   if (periods < 1 || periods > 100000) bad("periods", periods, "in [1, 100000]");
   if (!(perturbation >= 0.0 && perturbation < 0.5)) bad("perturbation", perturbation, "in [0, 0.5)");
