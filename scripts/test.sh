@@ -4,5 +4,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
+cmake --install build --component python >/dev/null  # import spp from any directory
 cd build
 ctest -j "$(nproc)" --output-on-failure

@@ -1,0 +1,213 @@
+// pybind11 bindings: the C++ concepts under the same names. numpy arrays in and out (Eigen <-> numpy through
+// pybind11/eigen.h); std::invalid_argument becomes ValueError with the C++ message.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "spp/generators.hpp"
+#include "spp/io.hpp"
+#include "spp/simulator.hpp"
+#include "spp/solver.hpp"
+#include "spp/verify.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+PYBIND11_MODULE(_spp, m) {
+  m.doc() = "spp: periodic orbits with one lasting contact phase (SPPs) of vibro-impact systems";
+
+  py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
+      .def(py::init<Eigen::MatrixXd, Eigen::MatrixXd, Eigen::VectorXd, double, std::string>(), "M"_a, "K"_a, "w"_a,
+           "g0"_a, "name"_a = "",
+           "M, K: (n, n) symmetric positive definite; w: (n,) non-zero; g0: gap at rest. Raises ValueError.")
+      .def_static("from_json", &spp::load_system, "path"_a, "Loads a system JSON file (M/K may be Matrix Market).")
+      .def_property_readonly("n", &spp::System::n)
+      .def_property_readonly("M", &spp::System::M, "(n, n) mass matrix")
+      .def_property_readonly("K", &spp::System::K, "(n, n) stiffness matrix")
+      .def_property_readonly("w", &spp::System::w, "(n,) unit contact direction")
+      .def_property_readonly("g0", &spp::System::g0)
+      .def_property_readonly("name", &spp::System::name)
+      .def("gap", &spp::System::gap, "x"_a, "w^T x + g0 for x of shape (n,)")
+      .def("contact_stiffness", &spp::System::contact_stiffness, "K~ of eq. (2.4), (n, n)")
+      .def("__repr__",
+           [](const spp::System& s) { return "<spp.System '" + s.name() + "' n=" + std::to_string(s.n()) + ">"; });
+
+  m.def(
+      "chain",
+      [](int n, std::vector<double> masses, std::vector<double> stiffnesses, int contact_dof, bool upper, double g0) {
+        return spp::chain(n, masses, stiffnesses, contact_dof < 0 ? n - 1 : contact_dof,
+                          upper ? spp::ContactSide::Upper : spp::ContactSide::Lower, g0);
+      },
+      "n"_a, "masses"_a = std::vector<double>{1.0}, "stiffnesses"_a = std::vector<double>{1.0}, "contact_dof"_a = -1,
+      "upper"_a = true, "g0"_a = 1.0,
+      "Spring-mass chain fixed at one end (paper §5.2); contact_dof is 0-based (default: the last).");
+  m.def("rod_with_slip", &spp::rod_with_slip, "a"_a = -0.25, "b"_a = 0.25,
+        "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b.");
+  m.def("two_dof", &spp::two_dof, "m1"_a = 1.0, "m2"_a = 1.0, "k1"_a = 1.0, "k2"_a = 1.0, "g0"_a = 1.0,
+        "2-dof system of paper §2.3.");
+
+  py::class_<spp::Solution>(m, "Solution", "One potential SPP")
+      .def_readonly("t1", &spp::Solution::t1, "flight half-duration")
+      .def_readonly("t2", &spp::Solution::t2, "contact half-duration")
+      .def_readonly("period", &spp::Solution::period)
+      .def_readonly("admissible", &spp::Solution::admissible)
+      .def_readonly("min_gap", &spp::Solution::min_gap)
+      .def_readonly("min_force", &spp::Solution::min_force)
+      .def_readonly("energy", &spp::Solution::energy)
+      .def_readonly("residual", &spp::Solution::residual)
+      .def_readonly("return_error", &spp::Solution::return_error)
+      .def_readonly("flags", &spp::Solution::flags)
+      .def_property_readonly(
+          "x0", [](const spp::Solution& s) { return s.orbit.x0; }, "(n,) state at contact onset")
+      .def_property_readonly(
+          "v0", [](const spp::Solution& s) { return s.orbit.v0; }, "(n,)")
+      .def("__repr__", [](const spp::Solution& s) {
+        return "<spp.Solution t1=" + std::to_string(s.t1) + " t2=" + std::to_string(s.t2) +
+               (s.admissible ? " admissible>" : " not admissible>");
+      });
+
+  py::class_<spp::SolveResult>(m, "SolveResult")
+      .def_property_readonly("status", [](const spp::SolveResult& r) { return std::string(spp::to_string(r.status)); })
+      .def_readonly("solutions", &spp::SolveResult::solutions)
+      .def_readonly("warnings", &spp::SolveResult::warnings)
+      .def_readonly("t1_min", &spp::SolveResult::t1_min)
+      .def_readonly("t1_max", &spp::SolveResult::t1_max)
+      .def_readonly("t2_min", &spp::SolveResult::t2_min)
+      .def_readonly("t2_max", &spp::SolveResult::t2_max)
+      .def("brief_report", &spp::SolveResult::brief_report)
+      .def(
+          "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_to_json(s, r).dump(); },
+          "system"_a, "The result JSON text, as spp solve --json writes it.");
+
+  m.def(
+      "solve",
+      [](const spp::System& s, double t1_max, double t2_max, double t1_min, double t2_min, bool admissible_only,
+         int threads) {
+        spp::SolveOptions o;
+        o.t1_max = t1_max;
+        o.t2_max = t2_max;
+        o.t1_min = t1_min;
+        o.t2_min = t2_min;
+        o.admissible_only = admissible_only;
+        o.threads = threads;
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::solve(s, o);
+      },
+      "system"_a, "t1_max"_a, "t2_max"_a, "t1_min"_a = 0.0, "t2_min"_a = 0.0, "admissible_only"_a = false,
+      "threads"_a = 0, "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]. Raises ValueError.");
+
+  py::class_<spp::Event>(m, "Event")
+      .def_readonly("t", &spp::Event::t)
+      .def_property_readonly("kind", [](const spp::Event& e) { return spp::to_string(e.kind); })
+      .def_readonly("x", &spp::Event::x)
+      .def_readonly("v_before", &spp::Event::v_before)
+      .def_readonly("v_after", &spp::Event::v_after)
+      .def_readonly("normal_velocity_before", &spp::Event::normal_velocity_before)
+      .def_readonly("normal_velocity_after", &spp::Event::normal_velocity_after)
+      .def_readonly("force", &spp::Event::force);
+
+  py::class_<spp::SimulationResult>(m, "SimulationResult")
+      .def_property_readonly("status", [](const spp::SimulationResult& r) { return spp::to_string(r.status); })
+      .def_property_readonly(
+          "t",
+          [](const spp::SimulationResult& r) {
+            Eigen::VectorXd t(static_cast<Eigen::Index>(r.samples.size()));
+            for (size_t k = 0; k < r.samples.size(); ++k) t(static_cast<Eigen::Index>(k)) = r.samples[k].t;
+            return t;
+          },
+          "(N,) sample times")
+      .def_property_readonly(
+          "x",
+          [](const spp::SimulationResult& r) {
+            const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].x.size();
+            Eigen::MatrixXd X(static_cast<Eigen::Index>(r.samples.size()), n);
+            for (size_t k = 0; k < r.samples.size(); ++k)
+              X.row(static_cast<Eigen::Index>(k)) = r.samples[k].x.transpose();
+            return X;
+          },
+          "(N, n) positions")
+      .def_property_readonly(
+          "v",
+          [](const spp::SimulationResult& r) {
+            const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].v.size();
+            Eigen::MatrixXd V(static_cast<Eigen::Index>(r.samples.size()), n);
+            for (size_t k = 0; k < r.samples.size(); ++k)
+              V.row(static_cast<Eigen::Index>(k)) = r.samples[k].v.transpose();
+            return V;
+          },
+          "(N, n) velocities")
+      .def_property_readonly(
+          "gap",
+          [](const spp::SimulationResult& r) {
+            Eigen::VectorXd g(static_cast<Eigen::Index>(r.samples.size()));
+            for (size_t k = 0; k < r.samples.size(); ++k) g(static_cast<Eigen::Index>(k)) = r.samples[k].gap;
+            return g;
+          },
+          "(N,)")
+      .def_property_readonly(
+          "force",
+          [](const spp::SimulationResult& r) {
+            Eigen::VectorXd f(static_cast<Eigen::Index>(r.samples.size()));
+            for (size_t k = 0; k < r.samples.size(); ++k) f(static_cast<Eigen::Index>(k)) = r.samples[k].force;
+            return f;
+          },
+          "(N,)")
+      .def_readonly("events", &spp::SimulationResult::events)
+      .def_readonly("impacts", &spp::SimulationResult::impacts)
+      .def_readonly("contact_onsets", &spp::SimulationResult::contact_onsets)
+      .def_readonly("releases", &spp::SimulationResult::releases)
+      .def_readonly("energy_initial", &spp::SimulationResult::energy_initial)
+      .def_readonly("energy_final", &spp::SimulationResult::energy_final)
+      .def_readonly("impact_energy_loss", &spp::SimulationResult::impact_energy_loss)
+      .def("brief_report", &spp::SimulationResult::brief_report);
+
+  m.def(
+      "simulate",
+      [](const spp::System& s, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double duration,
+         double restitution, double samples_per_unit) {
+        spp::SimulateOptions o;
+        o.duration = duration;
+        o.restitution = restitution;
+        o.validate();
+        o.sample_times = spp::uniform_times(duration, samples_per_unit);
+        py::gil_scoped_release release;
+        return spp::simulate(s, x0, v0, o);
+      },
+      "system"_a, "x0"_a, "v0"_a, "duration"_a, "restitution"_a = 0.0, "samples_per_unit"_a = 100.0,
+      "Exact event-driven simulation from (x0, v0), shapes (n,). Raises ValueError.");
+
+  py::class_<spp::SppCheck>(m, "SppCheck")
+      .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.candidate.t1; })
+      .def_property_readonly("t2", [](const spp::SppCheck& c) { return c.candidate.t2; })
+      .def_property_readonly("admissible", [](const spp::SppCheck& c) { return c.candidate.admissible; })
+      .def_property_readonly("verdict", [](const spp::SppCheck& c) { return spp::to_string(c.verdict); })
+      .def_readonly("consistent", &spp::SppCheck::consistent)
+      .def_readonly("return_errors", &spp::SppCheck::return_errors)
+      .def_readonly("periods_followed", &spp::SppCheck::periods_followed)
+      .def_readonly("departure_time", &spp::SppCheck::departure_time)
+      .def_readonly("departure", &spp::SppCheck::departure)
+      .def_readonly("perturbed_distances", &spp::SppCheck::perturbed_distances)
+      .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period);
+
+  py::class_<spp::VerifyResult>(m, "VerifyResult")
+      .def_readonly("checks", &spp::VerifyResult::checks)
+      .def_readonly("returned", &spp::VerifyResult::returned)
+      .def_readonly("left", &spp::VerifyResult::left)
+      .def_readonly("inconsistent", &spp::VerifyResult::inconsistent)
+      .def("all_consistent", &spp::VerifyResult::all_consistent)
+      .def("brief_report", &spp::VerifyResult::brief_report);
+
+  m.def(
+      "verify",
+      [](const spp::System& s, const spp::SolveResult& r, int periods, double perturbation, double restitution) {
+        spp::VerifyOptions o;
+        o.periods = periods;
+        o.perturbation = perturbation;
+        o.restitution = restitution;
+        py::gil_scoped_release release;
+        return spp::verify(s, spp::candidates(r), o);
+      },
+      "system"_a, "result"_a, "periods"_a = 1, "perturbation"_a = 0.0, "restitution"_a = 0.0,
+      "Re-simulates every solution of a solve() result. Raises ValueError.");
+}

@@ -1,0 +1,72 @@
+"""The Python package mirrors the C++ tests: the paper's examples, simulation, verification, errors."""
+import os
+
+import numpy as np
+import pytest
+
+import spp
+
+SRC = os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def chain5():
+    return spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+
+
+def test_system_round_trip_and_arrays():
+    M, K = np.eye(2), np.array([[2.0, -1.0], [-1.0, 1.0]])
+    s = spp.System(M, K, np.array([0.0, -2.0]), 1.0, "two")
+    assert s.n == 2 and s.name == "two"
+    assert s.M.shape == (2, 2) and np.allclose(s.K, K)
+    assert np.allclose(s.w, [0.0, -1.0]) and s.g0 == pytest.approx(0.5)  # w normalised, g0 divided by |w|
+
+
+def test_invalid_input_raises_value_error_with_the_cpp_message():
+    with pytest.raises(ValueError, match="symmetric"):
+        spp.System(np.eye(2), np.array([[2.0, -1.0], [0.0, 1.0]]), np.array([0.0, 1.0]), 1.0)
+    with pytest.raises(ValueError, match="t1_max"):
+        spp.solve(chain5(), t1_max=-1.0, t2_max=1.0)
+    with pytest.raises(ValueError, match="expected x0 and v0 of size 5"):
+        spp.simulate(chain5(), np.zeros(3), np.zeros(5), 1.0)
+    with pytest.raises(ValueError, match="No such file|cannot open"):
+        spp.System.from_json("/nonexistent/system.json")
+
+
+def test_paper_chain_has_seven_admissible_spps():
+    r = spp.solve(chain5(), t1_max=12, t2_max=12)
+    assert r.status == "success"
+    assert len(r.solutions) == 64
+    adm = [s for s in r.solutions if s.admissible]
+    assert len(adm) == 7
+    assert adm[0].t1 == pytest.approx(3.2160302, abs=1e-7)
+    assert adm[0].x0.shape == (5,)
+    assert all(s.return_error < 1e-10 for s in adm)
+
+
+def test_simulation_returns_to_an_admissible_spp_and_balances_energy():
+    s = chain5()
+    sol = [x for x in spp.solve(s, t1_max=12, t2_max=12, admissible_only=True).solutions][0]
+    sim = spp.simulate(s, sol.x0, sol.v0, sol.period)
+    assert sim.status == "success"
+    assert sim.t[-1] == sol.period
+    X0 = np.r_[sol.x0, sol.v0]
+    assert np.linalg.norm(np.r_[sim.x[-1], sim.v[-1]] - X0) / np.linalg.norm(X0) < 1e-9
+    assert [e.kind for e in sim.events][:2] == ["contact_onset", "release"]
+    sim2 = spp.simulate(s, np.zeros(5), np.array([0.3, -0.2, 0.5, 0.1, 0.9]), 40.0, restitution=0.5)
+    assert sim2.impacts > 0
+    assert sim2.energy_final == pytest.approx(sim2.energy_initial - sim2.impact_energy_loss, rel=1e-12)
+    assert np.all(sim2.gap >= -1e-10) and np.all(sim2.force >= -1e-10)
+
+
+def test_verify_agrees_with_the_solver():
+    s = chain5()
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    v = spp.verify(s, r)
+    assert v.all_consistent()
+    assert (v.returned, v.left) == (7, 57)
+
+
+def test_generators():
+    assert spp.chain(5).n == 5
+    assert spp.rod_with_slip().n == 4
+    assert spp.two_dof(k2=2.0).n == 2
