@@ -13,6 +13,22 @@
 namespace py = pybind11;
 using namespace pybind11::literals;
 
+namespace {
+// One column of the samples as an (N,) array, or a vector field as an (N, n) array.
+Eigen::VectorXd scalars(const spp::SimulationResult& r, double spp::Sample::*field) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(r.samples.size()));
+  for (size_t k = 0; k < r.samples.size(); ++k) out(static_cast<Eigen::Index>(k)) = r.samples[k].*field;
+  return out;
+}
+Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample::*field) {
+  const Eigen::Index n = r.samples.empty() ? 0 : (r.samples[0].*field).size();
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(r.samples.size()), n);
+  for (size_t k = 0; k < r.samples.size(); ++k)
+    out.row(static_cast<Eigen::Index>(k)) = (r.samples[k].*field).transpose();
+  return out;
+}
+}  // namespace
+
 PYBIND11_MODULE(_spp, m) {
   m.doc() = "spp: periodic orbits with one lasting contact phase (SPPs) of vibro-impact systems";
 
@@ -110,49 +126,16 @@ PYBIND11_MODULE(_spp, m) {
   py::class_<spp::SimulationResult>(m, "SimulationResult")
       .def_property_readonly("status", [](const spp::SimulationResult& r) { return spp::to_string(r.status); })
       .def_property_readonly(
-          "t",
-          [](const spp::SimulationResult& r) {
-            Eigen::VectorXd t(static_cast<Eigen::Index>(r.samples.size()));
-            for (size_t k = 0; k < r.samples.size(); ++k) t(static_cast<Eigen::Index>(k)) = r.samples[k].t;
-            return t;
-          },
-          "(N,) sample times")
+          "t", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::t); }, "(N,) sample times")
       .def_property_readonly(
-          "x",
-          [](const spp::SimulationResult& r) {
-            const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].x.size();
-            Eigen::MatrixXd X(static_cast<Eigen::Index>(r.samples.size()), n);
-            for (size_t k = 0; k < r.samples.size(); ++k)
-              X.row(static_cast<Eigen::Index>(k)) = r.samples[k].x.transpose();
-            return X;
-          },
-          "(N, n) positions")
+          "x", [](const spp::SimulationResult& r) { return rows(r, &spp::Sample::x); }, "(N, n) positions")
       .def_property_readonly(
-          "v",
-          [](const spp::SimulationResult& r) {
-            const Eigen::Index n = r.samples.empty() ? 0 : r.samples[0].v.size();
-            Eigen::MatrixXd V(static_cast<Eigen::Index>(r.samples.size()), n);
-            for (size_t k = 0; k < r.samples.size(); ++k)
-              V.row(static_cast<Eigen::Index>(k)) = r.samples[k].v.transpose();
-            return V;
-          },
-          "(N, n) velocities")
+          "v", [](const spp::SimulationResult& r) { return rows(r, &spp::Sample::v); }, "(N, n) velocities")
       .def_property_readonly(
-          "gap",
-          [](const spp::SimulationResult& r) {
-            Eigen::VectorXd g(static_cast<Eigen::Index>(r.samples.size()));
-            for (size_t k = 0; k < r.samples.size(); ++k) g(static_cast<Eigen::Index>(k)) = r.samples[k].gap;
-            return g;
-          },
-          "(N,)")
+          "gap", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::gap); }, "(N,) gap w^T x + g0")
       .def_property_readonly(
-          "force",
-          [](const spp::SimulationResult& r) {
-            Eigen::VectorXd f(static_cast<Eigen::Index>(r.samples.size()));
-            for (size_t k = 0; k < r.samples.size(); ++k) f(static_cast<Eigen::Index>(k)) = r.samples[k].force;
-            return f;
-          },
-          "(N,)")
+          "force", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::force); },
+          "(N,) normal contact force (0 in flight)")
       .def_readonly("events", &spp::SimulationResult::events)
       .def_readonly("impacts", &spp::SimulationResult::impacts)
       .def_readonly("contact_onsets", &spp::SimulationResult::contact_onsets)
