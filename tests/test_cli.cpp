@@ -256,3 +256,23 @@ TEST(Cli, VerifyRejectsWhatIsNotAResult) {
   EXPECT_EQ(r3.code, 1);
   EXPECT_NE(r3.out.find("perturbation must be in [0, 0.5), got 0.7"), std::string::npos) << r3.out;
 }
+
+// plot (delegated to the Python package): one PNG per admissible SPP and the frequency-energy plot.
+TEST(Cli, PlotWritesOneFigurePerAdmissibleSpp) {
+  const fs::path res = dir() / "res_plot.json", out = dir() / "figs";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);
+  const CliRun r = run("plot " + res.string() + " --out " + out.string() + " --formats png");
+  ASSERT_EQ(r.code, 0) << r.out;
+  int pngs = 0;
+  for (const auto& e : fs::directory_iterator(out)) {
+    std::ifstream f(e.path(), std::ios::binary);
+    char sig[8] = {};
+    f.read(sig, 8);
+    EXPECT_EQ(std::string(sig + 1, 3), "PNG") << e.path();
+    ++pngs;
+  }
+  EXPECT_EQ(pngs, 8);  // 7 admissible SPPs + frequency-energy
+  const CliRun bad = run("plot " + kChain + " --out " + (dir() / "figs_bad").string());
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("expected a result of spp solve"), std::string::npos) << bad.out;
+}

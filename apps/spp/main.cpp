@@ -2,7 +2,10 @@
 // Exit codes: 0 success, 1 invalid input or failed run (message on stderr), 2 usage error (CLI11),
 // 3 verify: a simulation disagrees with the solver's admissibility.
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -96,6 +99,13 @@ int main(int argc, char** argv) {
                   "relative size of a perturbation of the mid-flight state of each returning SPP");
   ver->add_option("--restitution", ver_opt.restitution, "Newton's coefficient e for the simulations (default 0)");
   ver->add_option("--json", ver_json, "write the verification as JSON");
+
+  // plot (delegated to the Python package: python3 -m spp plot)
+  auto* plotc = app.add_subcommand("plot", "figures of a result: one per admissible SPP, frequency-energy");
+  std::string plot_result, plot_out, plot_formats = "png,svg";
+  plotc->add_option("result", plot_result, "result JSON of spp solve")->required();
+  plotc->add_option("--out", plot_out, "output directory")->required();
+  plotc->add_option("--formats", plot_formats, "comma-separated png, svg, pdf (default png,svg)");
 
   // generate
   auto* gen = app.add_subcommand("generate", "write a system JSON for one of the paper's models");
@@ -206,6 +216,17 @@ int main(int argc, char** argv) {
       std::cout << spp::verify_table(r) << r.brief_report() << "\n";
       if (!ver_json.empty()) spp::write_file_atomic(ver_json, json_text);
       return r.all_consistent() ? 0 : 3;
+    }
+    if (*plotc) {
+      // The build tree's package first, then wherever Debian's python3 finds an installed one.
+      const char* old = std::getenv("PYTHONPATH");
+      const std::string path = std::string(SPP_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+      ::setenv("PYTHONPATH", path.c_str(), 1);
+      const char* args[] = {
+          "/usr/bin/python3",   "-m",   "spp", "plot", plot_result.c_str(), "--out", plot_out.c_str(), "--formats",
+          plot_formats.c_str(), nullptr};
+      ::execv(args[0], const_cast<char* const*>(args));
+      throw std::runtime_error("cannot run /usr/bin/python3 for spp plot (install python3 and the spp package)");
     }
     if (*gen) {
       spp::System sys = [&]() {
