@@ -42,11 +42,12 @@ PhaseState modal_state(const Simulator::Phase& p, const Eigen::MatrixXd& M, cons
   return {p.Phi.transpose() * (M * (x - p.x_s)), p.Phi.transpose() * (M * v)};
 }
 
-// a_k cos(w s) + b_k sin(w s) coefficients of q(s).
-Eigen::VectorXd sin_coefficients(const Simulator::Phase& p, const PhaseState& s) {
+// The phase's watched quantity (gap or force) along the flow from s: offset + sum_k weights_k q_k(t), with
+// q_k(t) = q_k cos(w_k t) + (qd_k / w_k) sin(w_k t).
+detail::CosineSum watched(const Simulator::Phase& p, const PhaseState& s) {
   Eigen::VectorXd b(s.qd.size());
   for (Eigen::Index k = 0; k < b.size(); ++k) b(k) = p.omega(k) > 0.0 ? s.qd(k) / p.omega(k) : 0.0;
-  return b;
+  return detail::CosineSum::from_cos_sin(p.offset, p.weights.cwiseProduct(s.q), p.weights.cwiseProduct(b), p.omega);
 }
 
 void state_at(const Simulator::Phase& p, const PhaseState& s, double t, Eigen::VectorXd& x, Eigen::VectorXd& v) {
@@ -168,11 +169,11 @@ Simulator::Simulator(const System& system) : system_(system) {
   const Eigen::VectorXd Kinv_w = Kllt.solve(w);
   contact_.x_s = -system_.g0() / w.dot(Kinv_w) * Kinv_w;
   // force from w^T x'' = 0: lambda = w^T M^-1 K x / (w^T M^-1 w)
-  const Eigen::RowVectorXd row = (K * Minv_w_).transpose() / w_Minv_w_;
-  flight_.force_row = row;
-  contact_.force_row = row;
-  flight_.w_phi = w.transpose() * flight_.Phi;
-  contact_.w_phi = w.transpose() * contact_.Phi;
+  force_row_ = (K * Minv_w_).transpose() / w_Minv_w_;
+  flight_.offset = system_.g0();  // gap = g0 + w^T Phi q
+  flight_.weights = (w.transpose() * flight_.Phi).transpose();
+  contact_.offset = force_row_.dot(contact_.x_s);  // force = force_row (x_s + Phi q)
+  contact_.weights = (force_row_ * contact_.Phi).transpose();
 }
 
 double Simulator::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
@@ -208,7 +209,7 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     s.x = xs;
     s.v = vs;
     s.gap = system_.gap(xs);
-    s.force = in_contact ? contact_.force_row.dot(xs) : 0.0;
+    s.force = in_contact ? force_row_.dot(xs) : 0.0;
     s.in_contact = in_contact;
     res.samples.push_back(std::move(s));
   };
@@ -216,11 +217,6 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   auto project_velocity = [&](Eigen::VectorXd& vv) { vv -= (w.dot(vv) / w_Minv_w_) * Minv_w_; };
   auto project_position = [&](Eigen::VectorXd& xx) { xx -= (system_.gap(xx) / w_Minv_w_) * Minv_w_; };
 
-  auto contact_force = [&](const PhaseState& ps) {
-    const Eigen::VectorXd rphi = (contact_.force_row * contact_.Phi).transpose();
-    return detail::CosineSum::from_cos_sin(contact_.force_row.dot(contact_.x_s), rphi.cwiseProduct(ps.q),
-                                           rphi.cwiseProduct(sin_coefficients(contact_, ps)), contact_.omega);
-  };
   auto tolerance = [&](const detail::CosineSum& f, int k) {
     return opt.event_rel_tol * ((k == 0 ? std::abs(f.c0) : 0.0) + f.bound(k));
   };
@@ -229,17 +225,12 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   // non-negative, decided by its first derivative that is not negligible (lambda, lambda', lambda''), with the
   // tolerance of the contact phase's own event search (so that the two never contradict each other).
   auto needs_contact = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& vv) {
-    const detail::CosineSum f = contact_force(modal_state(contact_, M, xx, vv));
+    const detail::CosineSum f = watched(contact_, modal_state(contact_, M, xx, vv));
     for (int k = 0; k <= 2; ++k) {
       const double d = f.derivative(0.0, k);
       if (std::abs(d) > tolerance(f, k)) return d > 0.0;
     }
     return true;  // at rest on the obstacle to every order we can see: contact holds
-  };
-
-  auto flight_gap = [&](const PhaseState& s) {
-    return detail::CosineSum::from_cos_sin(system_.g0(), flight_.w_phi.cwiseProduct(s.q),
-                                           flight_.w_phi.cwiseProduct(sin_coefficients(flight_, s)), flight_.omega);
   };
 
   auto record = [&](EventKind kind, const Eigen::VectorXd& vb, const Eigen::VectorXd& va, double force) {
@@ -280,7 +271,7 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     if (vn < -v_rest) record(EventKind::Impact, vb, v, 0.0);
     if (needs_contact(x, v)) {
       project_position(x);
-      record(EventKind::ContactOnset, vb, v, contact_.force_row.dot(x));
+      record(EventKind::ContactOnset, vb, v, force_row_.dot(x));
       contact = true;
     }
   };
@@ -297,9 +288,9 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     res.energy_initial = energy(x, v);
     push_sample(0.0, x, v, false);
     if (g <= gtol) {
-      const detail::CosineSum f = flight_gap(modal_state(flight_, M, x, v));
+      const detail::CosineSum f = watched(flight_, modal_state(flight_, M, x, v));
       touchdown(f, tolerance(f, 0), false);
-      if (contact) res.samples.back() = Sample{0.0, x, v, system_.gap(x), contact_.force_row.dot(x), true};
+      if (contact) push_sample(0.0, x, v, true);  // replaces the sample before the onset
     }
   }
 
@@ -316,7 +307,7 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     }
     const Phase& ph = contact ? contact_ : flight_;
     const PhaseState ps = modal_state(ph, M, x, v);
-    const detail::CosineSum f = contact ? contact_force(ps) : flight_gap(ps);  // must stay >= 0 in this phase
+    const detail::CosineSum f = watched(ph, ps);  // must stay >= 0 in this phase
     const double f_tol = tolerance(f, 0);
     const double remaining = opt.duration - t;
     const detail::Crossing cr = detail::first_crossing_below_zero(f, 0.0, remaining, f_tol);

@@ -89,11 +89,13 @@ class Simulator {
   double energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
 
   struct Phase {
-    Eigen::VectorXd omega;         ///< modal frequencies
-    Eigen::MatrixXd Phi;           ///< mass-normalised mode shapes (n x m): Phi^T M Phi = I
-    Eigen::VectorXd x_s;           ///< equilibrium of the phase
-    Eigen::VectorXd w_phi;         ///< w^T Phi (flight: the gap's modal weights)
-    Eigen::RowVectorXd force_row;  ///< w^T M^-1 K / (w^T M^-1 w): force = force_row * x (contact)
+    Eigen::VectorXd omega;  ///< modal frequencies
+    Eigen::MatrixXd Phi;    ///< mass-normalised mode shapes (n x m): Phi^T M Phi = I
+    Eigen::VectorXd x_s;    ///< equilibrium of the phase
+    /// The quantity that must stay >= 0 in this phase (flight: the gap; contact: the force), affine in x:
+    /// watched = offset + weights^T q in the phase's modal coordinates q.
+    double offset = 0.0;
+    Eigen::VectorXd weights;
   };
 
  private:
@@ -101,6 +103,7 @@ class Simulator {
   Eigen::LLT<Eigen::MatrixXd> M_llt_;
   Eigen::VectorXd Minv_w_;  ///< M^-1 w
   double w_Minv_w_ = 0.0;
+  Eigen::RowVectorXd force_row_;  ///< w^T M^-1 K / (w^T M^-1 w): contact force = force_row_ * x
   Phase flight_, contact_;
 };
 
