@@ -161,20 +161,13 @@ int main(int argc, char** argv) {
       const spp::System sys = spp::load_system(traj_sys);
       if (!traj_result.empty()) {
         if (solution_index < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
-        nlohmann::json r;
-        try {
-          r = nlohmann::json::parse(spp::read_file(traj_result));
-        } catch (const nlohmann::json::parse_error& e) {
-          throw std::invalid_argument(traj_result + ": malformed JSON: " + e.what());
-        }
-        if (!r.contains("solutions") || !r["solutions"].is_array())
-          throw std::invalid_argument(traj_result + ": missing field \"solutions\" (expected a result of spp solve)");
-        const auto& sols = r["solutions"];
+        const std::vector<spp::SppCandidate> sols =
+            spp::result_candidates(spp::read_json_file(traj_result), traj_result);
         if (static_cast<size_t>(solution_index) >= sols.size())
           throw std::invalid_argument(traj_result + ": --solution " + std::to_string(solution_index) +
                                       " out of range, the file has " + std::to_string(sols.size()) + " solutions");
-        t1 = sols[static_cast<size_t>(solution_index)].at("t1").get<double>();
-        t2 = sols[static_cast<size_t>(solution_index)].at("t2").get<double>();
+        t1 = sols[static_cast<size_t>(solution_index)].t1;
+        t2 = sols[static_cast<size_t>(solution_index)].t2;
       } else if (o_t1->count() == 0) {
         throw std::invalid_argument("trajectory: give --t1 and --t2, or --result and --solution");
       }
