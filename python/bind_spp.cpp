@@ -6,6 +6,7 @@
 
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/root_map.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"
 #include "spp/verify.hpp"
@@ -159,6 +160,67 @@ PYBIND11_MODULE(_spp, m) {
       },
       "system"_a, "x0"_a, "v0"_a, "duration"_a, "restitution"_a = 0.0, "samples_per_unit"_a = 100.0,
       "Exact event-driven simulation from (x0, v0), shapes (n,). Raises ValueError.");
+
+  py::class_<spp::SppCandidate>(m, "SppCandidate", "An SPP as stored in a result file (what verify and plots need)")
+      .def_readonly("t1", &spp::SppCandidate::t1)
+      .def_readonly("t2", &spp::SppCandidate::t2)
+      .def_property_readonly("period", &spp::SppCandidate::period)
+      .def_readonly("admissible", &spp::SppCandidate::admissible)
+      .def_readonly("energy", &spp::SppCandidate::energy)
+      .def_readonly("x0", &spp::SppCandidate::x0, "(n,) state at contact onset")
+      .def_readonly("v0", &spp::SppCandidate::v0, "(n,)")
+      .def("__repr__", [](const spp::SppCandidate& s) {
+        return "<spp.SppCandidate t1=" + std::to_string(s.t1) + " t2=" + std::to_string(s.t2) +
+               (s.admissible ? " admissible>" : " not admissible>");
+      });
+  m.def(
+      "load_result",
+      [](const std::string& path) {
+        const nlohmann::json r = spp::read_json_file(path);
+        spp::System system = spp::result_system(r, path);
+        std::vector<spp::SppCandidate> spps = spp::result_candidates(r, path);
+        py::dict window;
+        for (const char* key : {"t1_min", "t1_max", "t2_min", "t2_max"}) {
+          if (!r.contains("window") || !r.at("window").contains(key) || !r.at("window").at(key).is_number())
+            throw std::invalid_argument(path + ": field \"window\" must hold the number \"" + key + "\"");
+          window[key] = r.at("window").at(key).get<double>();
+        }
+        return py::make_tuple(std::move(system), std::move(spps), window);
+      },
+      "path"_a,
+      "(System, [SppCandidate], window dict t1_min/t1_max/t2_min/t2_max) of a result JSON written by "
+      "spp solve --json or SolveResult.to_json. Raises ValueError naming the file and the field.");
+
+  py::class_<spp::RootMapCell>(m, "RootMapCell", "One rectangle between pole lines, sampled on its own grid")
+      .def_readonly("t1", &spp::RootMapCell::t1, "(n1,) ascending")
+      .def_readonly("t2", &spp::RootMapCell::t2, "(n2,) ascending")
+      .def_readonly("symmetric", &spp::RootMapCell::symmetric,
+                    "(n2, n1) sign(det H) min|eig H|: its zero curves are eq. (5.1a)")
+      .def_readonly("onset", &spp::RootMapCell::onset,
+                    "(n2, n1) the same for P^T H P on z-perp: its zero curves are eq. (5.1b)");
+  py::class_<spp::RootMap>(m, "RootMap")
+      .def_readonly("flight_poles", &spp::RootMap::flight_poles, "pole lines t1 = (k + 1/2) pi / omega_i")
+      .def_readonly("contact_poles", &spp::RootMap::contact_poles, "pole lines t2 = (k + 1/2) pi / d_j")
+      .def_readonly("cells", &spp::RootMap::cells)
+      .def_readonly("evaluations", &spp::RootMap::evaluations);
+  m.def(
+      "root_map",
+      [](const spp::System& s, double t1_max, double t2_max, double t1_min, double t2_min, int t1_points,
+         int t2_points) {
+        spp::RootMapOptions o;
+        o.t1_min = t1_min;
+        o.t1_max = t1_max;
+        o.t2_min = t2_min;
+        o.t2_max = t2_max;
+        o.t1_points = t1_points;
+        o.t2_points = t2_points;
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::root_map(s, o);
+      },
+      "system"_a, "t1_max"_a, "t2_max"_a, "t1_min"_a = 0.0, "t2_min"_a = 0.0, "t1_points"_a = 400, "t2_points"_a = 400,
+      "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4). "
+      "Raises ValueError.");
 
   py::class_<spp::SppCheck>(m, "SppCheck")
       .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.candidate.t1; })

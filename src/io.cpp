@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -282,6 +283,7 @@ std::vector<SppCandidate> result_candidates(const json& r, const std::string& wh
     if (!o.contains("admissible") || !o.at("admissible").is_boolean())
       fail(at + ": field \"admissible\" must be true or false");
     c.admissible = o.at("admissible").get<bool>();
+    c.energy = o.contains("energy") ? number("energy") : std::numeric_limits<double>::quiet_NaN();
     out.push_back(std::move(c));
   }
   return out;

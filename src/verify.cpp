@@ -160,7 +160,8 @@ void VerifyOptions::validate() const {
 
 std::vector<SppCandidate> candidates(const SolveResult& result) {
   std::vector<SppCandidate> out;
-  for (const Solution& s : result.solutions) out.push_back({s.t1, s.t2, s.orbit.x0, s.orbit.v0, s.admissible});
+  for (const Solution& s : result.solutions)
+    out.push_back({s.t1, s.t2, s.orbit.x0, s.orbit.v0, s.admissible, s.energy});
   return out;
 }
 

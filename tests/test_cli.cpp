@@ -261,7 +261,7 @@ TEST(Cli, VerifyRejectsWhatIsNotAResult) {
 TEST(Cli, PlotWritesOneFigurePerAdmissibleSpp) {
   const fs::path res = dir() / "res_plot.json", out = dir() / "figs";
   ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);
-  const CliRun r = run("plot " + res.string() + " --out " + out.string() + " --formats png");
+  const CliRun r = run("plot " + res.string() + " --out " + out.string() + " --formats png --root-map-points 60");
   ASSERT_EQ(r.code, 0) << r.out;
   int pngs = 0;
   for (const auto& e : fs::directory_iterator(out)) {
@@ -271,8 +271,29 @@ TEST(Cli, PlotWritesOneFigurePerAdmissibleSpp) {
     EXPECT_EQ(std::string(sig + 1, 3), "PNG") << e.path();
     ++pngs;
   }
-  EXPECT_EQ(pngs, 8);  // 7 admissible SPPs + frequency-energy
+  EXPECT_EQ(pngs, 9);  // 7 admissible SPPs + frequency-energy + root map
+  EXPECT_TRUE(fs::exists(out / "root_map.png"));
   const CliRun bad = run("plot " + kChain + " --out " + (dir() / "figs_bad").string());
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.out.find("expected a result of spp solve"), std::string::npos) << bad.out;
+}
+
+TEST(Cli, AnimateWritesAGifWithTheFramesAsked) {
+  const fs::path res = dir() / "res_anim.json", gif = dir() / "spp.gif";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);
+  const CliRun r = run("animate " + res.string() + " --solution 1 --frames 7 --dpi 40 --out " + gif.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("solution 1, 7 frames, layout chain"), std::string::npos) << r.out;
+  std::ifstream f(gif, std::ios::binary);
+  char head[10] = {};
+  f.read(head, 10);
+  EXPECT_EQ(std::string(head, 6), "GIF89a");
+  const int width = static_cast<unsigned char>(head[6]) | static_cast<unsigned char>(head[7]) << 8;
+  const int height = static_cast<unsigned char>(head[8]) | static_cast<unsigned char>(head[9]) << 8;
+  EXPECT_EQ(width, 256);
+  EXPECT_EQ(height, 192);
+  const CliRun bad = run("animate " + res.string() + " --solution 64 --out " + (dir() / "bad.gif").string());
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("--solution 64"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(dir() / "bad.gif"));
 }

@@ -100,12 +100,25 @@ int main(int argc, char** argv) {
   ver->add_option("--restitution", ver_opt.restitution, "Newton's coefficient e for the simulations (default 0)");
   ver->add_option("--json", ver_json, "write the verification as JSON");
 
-  // plot (delegated to the Python package: python3 -m spp plot)
-  auto* plotc = app.add_subcommand("plot", "figures of a result: one per admissible SPP, frequency-energy");
+  // plot and animate (delegated to the Python package: python3 -m spp plot|animate)
+  auto* plotc = app.add_subcommand("plot", "figures of a result: root map, one per admissible SPP, frequency-energy");
   std::string plot_result, plot_out, plot_formats = "png,svg";
+  int plot_points = 400;
   plotc->add_option("result", plot_result, "result JSON of spp solve")->required();
   plotc->add_option("--out", plot_out, "output directory")->required();
   plotc->add_option("--formats", plot_formats, "comma-separated png, svg, pdf (default png,svg)");
+  plotc->add_option("--root-map-points", plot_points, "root map grid points per axis; 0: no root map (default 400)");
+  auto* anim = app.add_subcommand("animate", "animation of one SPP of a result (GIF, or MP4 with ffmpeg)");
+  std::string anim_result, anim_out, anim_layout = "auto";
+  int anim_solution = -1, anim_frames = 120, anim_periods = 1, anim_fps = 25, anim_dpi = 80;
+  anim->add_option("result", anim_result, "result JSON of spp solve")->required();
+  anim->add_option("--solution", anim_solution, "index of the solution in the result (default: first admissible)");
+  anim->add_option("--out", anim_out, "output file, .gif or .mp4")->required();
+  anim->add_option("--frames", anim_frames, "frames per period (default 120)");
+  anim->add_option("--periods", anim_periods, "periods shown (default 1)");
+  anim->add_option("--fps", anim_fps, "frames per second (default 25)");
+  anim->add_option("--dpi", anim_dpi, "resolution: the frame is 6.4 x 4.8 inches (default 80: 512 x 384)");
+  anim->add_option("--layout", anim_layout, "auto, chain, plane or dofs (default auto: from M, K and w)");
 
   // generate
   auto* gen = app.add_subcommand("generate", "write a system JSON for one of the paper's models");
@@ -210,16 +223,26 @@ int main(int argc, char** argv) {
       if (!ver_json.empty()) spp::write_file_atomic(ver_json, json_text);
       return r.all_consistent() ? 0 : 3;
     }
-    if (*plotc) {
+    if (*plotc || *anim) {
       // The build tree's package first, then wherever Debian's python3 finds an installed one.
       const char* old = std::getenv("PYTHONPATH");
       const std::string path = std::string(SPP_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
       ::setenv("PYTHONPATH", path.c_str(), 1);
-      const char* args[] = {
-          "/usr/bin/python3",   "-m",   "spp", "plot", plot_result.c_str(), "--out", plot_out.c_str(), "--formats",
-          plot_formats.c_str(), nullptr};
-      ::execv(args[0], const_cast<char* const*>(args));
-      throw std::runtime_error("cannot run /usr/bin/python3 for spp plot (install python3 and the spp package)");
+      std::vector<std::string> args = {"/usr/bin/python3", "-m", "spp"};
+      if (*plotc)
+        args.insert(args.end(), {"plot", plot_result, "--out", plot_out, "--formats", plot_formats, "--root-map-points",
+                                 std::to_string(plot_points)});
+      else
+        args.insert(args.end(),
+                    {"animate", anim_result, "--out", anim_out, "--solution", std::to_string(anim_solution), "--frames",
+                     std::to_string(anim_frames), "--periods", std::to_string(anim_periods), "--fps",
+                     std::to_string(anim_fps), "--dpi", std::to_string(anim_dpi), "--layout", anim_layout});
+      std::vector<char*> argv;
+      for (std::string& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      throw std::runtime_error("cannot run /usr/bin/python3 for spp " + args[3] +
+                               " (install python3 and the spp package)");
     }
     if (*gen) {
       spp::System sys = [&]() {

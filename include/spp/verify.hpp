@@ -29,6 +29,7 @@ struct SppCandidate {
   double t1 = 0.0, t2 = 0.0;
   Eigen::VectorXd x0, v0;
   bool admissible = false;
+  double energy = 0.0;  ///< 1/2 v0^T M v0 + 1/2 x0^T K x0 (NaN when read from a result without it)
   double period() const { return 2.0 * (t1 + t2); }
 };
 std::vector<SppCandidate> candidates(const SolveResult& result);

@@ -1,71 +1,86 @@
-"""python3 -m spp plot RESULT.json --out DIR: the figures of a result of `spp solve --json` (also run by
-`spp plot`). Writes DIR/frequency_energy.{png,svg} and DIR/spp_K.{png,svg} for each admissible SPP K."""
+"""python3 -m spp plot|animate: figures and animations of a result of `spp solve --json` (also run by `spp plot`
+and `spp animate`).
+
+plot RESULT.json --out DIR: DIR/root_map.*, DIR/frequency_energy.* and DIR/spp_K.* for each admissible SPP K.
+animate RESULT.json --out FILE.gif|FILE.mp4 [--solution K]: one SPP over its period.
+"""
 import argparse
-import json
 import os
 import sys
-from types import SimpleNamespace
 
-import numpy as np
-
-from ._spp import System
+from ._spp import load_result
 
 
-def load_result(path):
-    """The system and the solutions (attribute access, numpy x0/v0) of a result JSON."""
-    try:
-        with open(path) as f:
-            r = json.load(f)
-    except (OSError, ValueError) as e:
-        raise ValueError(f"{path}: cannot read a result JSON: {e}") from None
-    if not isinstance(r, dict) or "system" not in r or "solutions" not in r:
-        raise ValueError(f'{path}: expected a result of spp solve (fields "system" and "solutions")')
-    s = r["system"]
-    if "M" not in s or "K" not in s:
-        raise ValueError(f'{path}: field "system" has no "M" and "K" (a result from an older spp): run spp solve again')
-    system = System(np.array(s["M"], float), np.array(s["K"], float), np.array(s["w"], float), float(s["g0"]),
-                    s.get("name", ""))
-    sols = []
-    for k, o in enumerate(r["solutions"]):
-        try:
-            sols.append(SimpleNamespace(t1=float(o["t1"]), t2=float(o["t2"]), period=float(o["period"]),
-                                        admissible=bool(o["admissible"]), energy=float(o["energy"]),
-                                        x0=np.array(o["x0"], float), v0=np.array(o["v0"], float)))
-        except (KeyError, TypeError, ValueError) as e:
-            raise ValueError(f"{path}: solutions[{k}]: missing or invalid field {e}") from None
-    return system, SimpleNamespace(solutions=sols)
+def _plot(a):
+    from . import plot
+    import matplotlib.pyplot as plt
+    formats = [f.strip() for f in a.formats.split(",") if f.strip()]
+    bad = [f for f in formats if f not in ("png", "svg", "pdf")]
+    if bad or not formats:
+        raise ValueError(f"--formats: expected png, svg or pdf, got {a.formats!r}")
+    if a.root_map_points != 0 and a.root_map_points < 16:
+        raise ValueError(f"--root-map-points must be 0 (no root map) or >= 16, got {a.root_map_points}")
+    system, spps, window = load_result(a.result)
+    os.makedirs(a.out, exist_ok=True)
+    written = []
+
+    def save(fig, name):
+        for fmt in formats:
+            p = os.path.join(a.out, f"{name}.{fmt}")
+            plot.save_atomic(fig, p)
+            written.append(p)
+        plt.close(fig)
+
+    if a.root_map_points:
+        save(plot.root_map_figure(system, spps, window, points=a.root_map_points), "root_map")
+    save(plot.frequency_energy_figure(spps), "frequency_energy")
+    for k, sol in enumerate(spps):
+        if sol.admissible:
+            save(plot.spp_figure(system, sol), f"spp_{k}")
+    print(f"wrote {len(written)} figures to {a.out}")
+
+
+def _animate(a):
+    from . import animate
+    system, spps, _ = load_result(a.result)
+    if a.solution < 0:
+        admissible = [k for k, s in enumerate(spps) if s.admissible]
+        if not admissible:
+            raise ValueError(f"{a.result}: no admissible SPP; choose one with --solution K (0..{len(spps) - 1})")
+        k = admissible[0]
+    elif a.solution >= len(spps):
+        raise ValueError(f"--solution {a.solution}: {a.result} has {len(spps)} solutions (0..{len(spps) - 1})")
+    else:
+        k = a.solution
+    frames = animate.animate(system, spps[k], a.out, frames=a.frames, periods=a.periods, fps=a.fps, dpi=a.dpi,
+                             layout=a.layout)
+    layout = animate.layout_of(system) if a.layout == "auto" else a.layout
+    print(f"wrote {a.out}: solution {k}, {frames} frames, layout {layout}")
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="spp plot", description="figures of a result of spp solve")
-    ap.add_argument("command", choices=["plot"])
-    ap.add_argument("result", help="result JSON of spp solve --json")
-    ap.add_argument("--out", required=True, help="output directory (created if missing)")
-    ap.add_argument("--formats", default="png,svg", help="comma-separated: png, svg, pdf (default png,svg)")
+    ap = argparse.ArgumentParser(prog="spp", description="figures and animations of a result of spp solve")
+    sub = ap.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("plot", help="root map, one figure per admissible SPP, frequency-energy")
+    p.add_argument("result", help="result JSON of spp solve --json")
+    p.add_argument("--out", required=True, help="output directory (created if missing)")
+    p.add_argument("--formats", default="png,svg", help="comma-separated: png, svg, pdf (default png,svg)")
+    p.add_argument("--root-map-points", type=int, default=400, help="grid points per axis; 0: no root map")
+    q = sub.add_parser("animate", help="animation of one SPP (GIF, or MP4 with ffmpeg)")
+    q.add_argument("result", help="result JSON of spp solve --json")
+    q.add_argument("--out", required=True, help="output file, .gif or .mp4")
+    q.add_argument("--solution", type=int, default=-1, help="index in the result (default: first admissible)")
+    q.add_argument("--frames", type=int, default=120, help="frames per period (default 120)")
+    q.add_argument("--periods", type=int, default=1)
+    q.add_argument("--fps", type=int, default=25)
+    q.add_argument("--dpi", type=int, default=80, help="the frame is 6.4 x 4.8 inches (default 80: 512 x 384)")
+    q.add_argument("--layout", default="auto", help="auto, chain, plane or dofs")
     a = ap.parse_args(argv)
     try:
-        from . import plot
-        system, result = load_result(a.result)
-        formats = [f.strip() for f in a.formats.split(",") if f.strip()]
-        bad = [f for f in formats if f not in ("png", "svg", "pdf")]
-        if bad:
-            raise ValueError(f"--formats: expected png, svg or pdf, got {', '.join(bad)}")
-        os.makedirs(a.out, exist_ok=True)
-        written = []
-        import matplotlib.pyplot as plt
-        for fmt in formats:
-            p = os.path.join(a.out, f"frequency_energy.{fmt}")
-            plt.close(plot.frequency_energy_figure(result, path=p))
-            written.append(p)
-            for k, sol in enumerate(result.solutions):
-                if sol.admissible:
-                    p = os.path.join(a.out, f"spp_{k}.{fmt}")
-                    plt.close(plot.spp_figure(system, sol, path=p))
-                    written.append(p)
+        _plot(a) if a.command == "plot" else _animate(a)
     except ValueError as e:
         print(f"spp: error: {e}", file=sys.stderr)
         return 1
-    print(f"wrote {len(written)} figures to {a.out}")
     return 0
 
 

@@ -1,5 +1,5 @@
-"""Figures like the paper's (matplotlib, Agg): an SPP over one period (Figs. 5 and 7) and the frequency-energy
-plot of the SPPs found. Each function returns the matplotlib Figure and, given a path, saves it (the suffix
+"""Figures like the paper's (matplotlib, Agg): the root map of a window (Fig. 4), an SPP over one period (Figs. 5
+and 7) and the frequency-energy plot of the SPPs found. Each function returns the matplotlib Figure and, given a path, saves it (the suffix
 picks PNG, SVG or PDF)."""
 import numpy as np
 
@@ -8,14 +8,23 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from ._spp import simulate  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+from ._files import atomic_path  # noqa: E402
+from ._spp import root_map, simulate  # noqa: E402
 
 COLUMN_WIDTH_IN = 3.5  # one journal column
 
 
+def save_atomic(fig, path, dpi=200):
+    """Saves to a temporary file beside path, then renames it over path: never a half-written figure."""
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=dpi, bbox_inches="tight")
+
+
 def _save(fig, path, dpi=200):
     if path is not None:
-        fig.savefig(path, dpi=dpi, bbox_inches="tight")
+        save_atomic(fig, path, dpi)
     return fig
 
 
@@ -53,16 +62,53 @@ def spp_figure(system, solution, samples=2000, path=None):
     return _save(fig, path)
 
 
-def frequency_energy_figure(result, path=None):
-    """Frequency 2 pi / T against energy of every SPP of a solve() result; admissible ones filled."""
-    sols = list(result.solutions)
-    fig, ax = plt.subplots(figsize=(COLUMN_WIDTH_IN, 2.8))
-    for admissible, style in ((False, dict(facecolors="none", edgecolors="0.5", label="potential SPP")),
+def _scatter_spps(ax, solutions, x, y):
+    """Potential SPPs as open circles (gid "potential"), admissible ones filled (gid "admissible")."""
+    for admissible, style in ((False, dict(facecolors="none", edgecolors="0.35", label="potential SPP")),
                               (True, dict(color="C3", label="admissible SPP"))):
-        pts = [(s.energy, 2 * np.pi / s.period) for s in sols if s.admissible == admissible]
+        pts = [(x(s), y(s)) for s in solutions if s.admissible == admissible]
         if pts:
-            e, f = np.array(pts).T
-            ax.scatter(e, f, s=14, lw=0.8, gid="admissible" if admissible else "potential", **style)
+            a, b = np.array(pts).T
+            ax.scatter(a, b, s=16, lw=0.8, zorder=3, gid="admissible" if admissible else "potential", **style)
+
+
+def root_map_figure(system, solutions, window, points=400, path=None):
+    """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
+    (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
+    anything with t1, t2, admissible) marked, potential open, admissible filled. An SPP is where a dashed curve
+    touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max; points: grid points per axis."""
+    w = window
+    rm = root_map(system, w["t1_max"], w["t2_max"], w["t1_min"], w["t2_min"], points, points)
+    fig, ax = plt.subplots(figsize=(COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
+    for p in rm.flight_poles:
+        ax.axvline(p, color="0.8", lw=0.5, zorder=0)
+    for p in rm.contact_poles:
+        ax.axhline(p, color="0.8", lw=0.5, zorder=0)
+    for c in rm.cells:
+        for values, style in ((c.symmetric, dict(colors="C0", linewidths=0.9)),
+                              (c.onset, dict(colors="C2", linewidths=0.8, linestyles="--"))):
+            if len(c.t1) > 1 and len(c.t2) > 1 and values.min() < 0 < values.max():
+                ax.contour(c.t1, c.t2, values, levels=[0.0], **style)
+    _scatter_spps(ax, solutions, lambda s: s.t1, lambda s: s.t2)
+    ax.set_xlim(w["t1_min"], w["t1_max"])
+    ax.set_ylim(w["t2_min"], w["t2_max"])
+    ax.set_xlabel("flight half-duration $t_1$ (-)")
+    ax.set_ylabel("contact half-duration $t_2$ (-)")
+    handles = [Line2D([], [], color="C0", lw=0.9, label=r"(5.1a) $\det H = 0$"),
+               Line2D([], [], color="C2", lw=0.8, ls="--", label=r"(5.1b) $\det P^\top H P = 0$"),
+               Line2D([], [], color="0.8", lw=0.5, label="pole lines")]
+    handles += ax.get_legend_handles_labels()[0]
+    ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
+    fig.tight_layout()
+    return _save(fig, path)
+
+
+def frequency_energy_figure(solutions, path=None):
+    """Frequency 2 pi / T against energy of SPPs (solutions of a result: anything with period, energy,
+    admissible); admissible ones filled."""
+    sols = list(solutions)
+    fig, ax = plt.subplots(figsize=(COLUMN_WIDTH_IN, 2.8))
+    _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
     ax.set_xscale("log")
     ax.set_xlabel("energy $E$ (-)")
     ax.set_ylabel(r"frequency $2\pi/T$ (-)")

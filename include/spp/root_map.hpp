@@ -1,0 +1,46 @@
+#pragma once
+// The two conditions of the SPP equations sampled over a window, for root maps like the paper's Fig. 4.
+//   (5.1a)  det H(t1, t2) = 0          an orbit that is symmetric about -t1 and t2 exists;
+//   (5.1b)  det P^T H P (t1, t2) = 0   it also starts contact with zero normal acceleration (P: basis of z-perp).
+// An SPP is a point on both curves; there a curve of (5.1b) touches one of (5.1a) (Cauchy interlacing: a
+// tangency, modal form §3b), so in a root map the SPPs are where solid and dashed curves meet.
+// Each condition is sampled as sign(det A) * min_k |lambda_k(A)|: continuous inside a pole-line cell, linear
+// through its simple zeros, so a zero-level contour per cell draws its curves without pole artefacts.
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "spp/system.hpp"
+
+namespace spp {
+
+struct RootMapOptions {
+  double t1_min = 0.0, t1_max = 0.0;  ///< window (t1_max > t1_min >= 0 required)
+  double t2_min = 0.0, t2_max = 0.0;  ///< window (t2_max > t2_min >= 0 required)
+  int t1_points = 400;                ///< grid points across the whole window along t1 (>= 16)
+  int t2_points = 400;                ///< grid points across the whole window along t2 (>= 16)
+  int min_cell_points = 6;            ///< at least this many points per cell and axis (>= 2)
+  double pole_margin = 2e-3;          ///< distance kept from pole lines, relative to the cell width (in [0, 0.25))
+
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void validate() const;
+};
+
+/// One rectangle between consecutive pole lines, sampled on its own grid.
+struct RootMapCell {
+  Eigen::VectorXd t1, t2;     ///< grid, ascending, strictly inside the cell
+  Eigen::MatrixXd symmetric;  ///< (5.1a) at (t2(i), t1(j)): rows follow t2, columns t1 (matplotlib's layout)
+  Eigen::MatrixXd onset;      ///< (5.1b), same layout
+};
+
+struct RootMap {
+  std::vector<double> flight_poles;   ///< pole lines t1 = (k + 1/2) pi / omega_i in the window
+  std::vector<double> contact_poles;  ///< pole lines t2 = (k + 1/2) pi / d_j in the window
+  std::vector<RootMapCell> cells;
+  long evaluations = 0;  ///< grid points evaluated
+};
+
+/// Samples both conditions over the window, cell by cell. Throws std::invalid_argument for invalid options.
+RootMap root_map(const System& system, const RootMapOptions& options);
+
+}  // namespace spp

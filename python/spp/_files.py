@@ -1,0 +1,23 @@
+"""Output files are written whole or not at all: a temporary file beside the target, renamed over it."""
+import contextlib
+import os
+import tempfile
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yields a temporary path in path's directory; on success renames it to path with the usual permissions
+    (0666 minus the umask, as open() would give), on failure removes it."""
+    path = os.fspath(path)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp.", suffix=os.path.splitext(path)[1],
+                               dir=os.path.dirname(os.path.abspath(path)))
+    os.close(fd)
+    try:
+        yield tmp
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)

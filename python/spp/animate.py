@@ -1,0 +1,228 @@
+"""Animations of an SPP over its period (matplotlib.animation): GIF with Pillow, MP4 with ffmpeg when installed.
+
+The picture follows the system's structure, read from M, K and w (no extra metadata needed):
+  - "chain": M diagonal, K tridiagonal (springs between neighbours and to the ground), w on one dof: masses as
+    boxes along a line, zigzag springs, the obstacle as a wall at the contact dof, the contact force as an arrow;
+  - "plane": w on exactly two dofs (the rod with slip of §5.3: x2, y2 of its contact node): the contact point in
+    that plane, the oblique obstacle line w_i x_i + w_j x_j + g0 = 0, its path, and the force along the normal;
+    beside it, every dof as a bar;
+  - "dofs": anything else: every dof's position as a stem plot.
+Below each picture, gap and contact force over the period with a cursor. Curves come from spp.simulate (exact
+flows) started at the SPP's x0, v0; time origin at contact onset.
+"""
+import os
+import shutil
+
+import numpy as np
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import animation  # noqa: E402
+
+from ._files import atomic_path  # noqa: E402
+from ._spp import simulate  # noqa: E402
+
+LAYOUTS = ("auto", "chain", "plane", "dofs")
+
+
+def layout_of(system):
+    """'chain', 'plane' or 'dofs' (see the module's docstring)."""
+    M, K, w = system.M, system.K, system.w
+    n = system.n
+    scale = max(np.abs(K).max(), 1e-300)
+    support = np.flatnonzero(np.abs(w) > 1e-12)
+    tridiagonal = all(abs(K[i, j]) <= 1e-12 * scale for i in range(n) for j in range(n) if abs(i - j) > 1)
+    diagonal_mass = np.allclose(M, np.diag(np.diag(M)), atol=1e-12 * np.abs(M).max())
+    if n >= 1 and len(support) == 1 and diagonal_mass and tridiagonal:
+        return "chain"
+    if len(support) == 2:
+        return "plane"
+    return "dofs"
+
+
+def _zigzag(x0, x1, y, coils=6, width=0.12):
+    t = np.linspace(0.0, 1.0, 2 * coils + 3)
+    xs = x0 + (x1 - x0) * t
+    ys = np.full_like(t, y)
+    ys[1:-1] += width * np.where(np.arange(1, len(t) - 1) % 2, 1.0, -1.0)
+    ys[1] = ys[-2] = y
+    return xs, ys
+
+
+class _Chain:
+    """Masses at rest positions 1..n (ground at 0), displacements scaled so that the largest is 0.35."""
+
+    def __init__(self, ax, system, x, force):
+        n = system.n
+        self.c = int(np.flatnonzero(np.abs(system.w) > 1e-12)[0])
+        wc = system.w[self.c]
+        self.s = 0.35 / max(np.abs(x).max(), abs(system.g0 / wc), 1e-300)
+        self.rest = np.arange(1, n + 1, dtype=float)
+        # g = wc x_c + g0 >= 0: the obstacle sits where x_c = -g0 / wc, on the side of -sign(wc).
+        self.wall = self.rest[self.c] + self.s * (-system.g0 / wc)
+        self.side = -np.sign(wc)
+        self.fmax = max(force.max(), 1e-300)
+        h = 0.18
+        ax.plot([0, 0], [-0.5, 0.5], color="k", lw=2)
+        ax.fill_betweenx([-0.5, 0.5], -0.15, 0, color="0.85", hatch="///", lw=0)
+        wall_x = self.wall + self.side * h
+        ax.plot([wall_x, wall_x], [-0.45, 0.45], color="k", lw=2.5)
+        ax.fill_betweenx([-0.45, 0.45], wall_x, wall_x + 0.12 * self.side, color="0.85", hatch="///", lw=0)
+        self.springs = [ax.plot([], [], color="0.3", lw=1)[0] for _ in range(n)]
+        self.boxes = [plt.Rectangle((0, -h), 2 * h, 2 * h, fc="C0", ec="k", lw=0.8, zorder=3) for _ in range(n)]
+        for b in self.boxes:
+            ax.add_patch(b)
+        self.arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0),
+                                 arrowprops=dict(arrowstyle="-|>", color="C3", lw=2))
+        self.h = h
+        ax.set_xlim(-0.3, n + 1.0)
+        ax.set_ylim(-0.9, 0.9)
+        ax.set_aspect("equal")
+        ax.axis("off")
+
+    def draw(self, x, force):
+        pos = self.rest + self.s * x
+        left = 0.0
+        for i in range(len(pos)):
+            self.springs[i].set_data(*_zigzag(left, pos[i] - self.h, 0.0))
+            self.boxes[i].set_xy((pos[i] - self.h, -self.h))
+            left = pos[i] + self.h
+        # The force pushes the contact mass away from the wall: arrow from the wall into the mass.
+        length = 0.6 * force / self.fmax
+        tip = self.wall + self.side * self.h
+        self.arrow.set_position((tip, 0.32))
+        self.arrow.xy = (tip - self.side * length, 0.32)
+        self.arrow.set_visible(force > 0)
+        return [*self.springs, *self.boxes, self.arrow]
+
+
+class _Plane:
+    """The contact point (x_i, x_j) in its plane, with the oblique obstacle; beside it, all dofs as bars."""
+
+    def __init__(self, ax, system, x, force, bars_ax):
+        self.i, self.j = np.flatnonzero(np.abs(system.w) > 1e-12)
+        wi, wj = system.w[self.i], system.w[self.j]
+        self.normal = np.array([wi, wj])  # unit (w is stored unit-length, and only these two are non-zero)
+        self.normal /= np.linalg.norm(self.normal)
+        pts = x[:, [self.i, self.j]]
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        pad = 0.25 * max((hi - lo).max(), abs(system.g0), 1e-300)
+        lo, hi = lo - pad, hi + pad
+        # Obstacle line w_i a + w_j b + g0 = 0 across the box, forbidden side hatched.
+        foot = -system.g0 * self.normal / np.linalg.norm([wi, wj])
+        tangent = np.array([-self.normal[1], self.normal[0]])
+        span = 2.0 * np.linalg.norm(hi - lo)
+        a, b = foot - span * tangent, foot + span * tangent
+        ax.plot([a[0], b[0]], [a[1], b[1]], color="k", lw=2)
+        ax.fill([a[0], b[0], b[0] - span * self.normal[0], a[0] - span * self.normal[0]],
+                [a[1], b[1], b[1] - span * self.normal[1], a[1] - span * self.normal[1]],
+                color="0.85", hatch="///", lw=0, zorder=0)
+        ax.plot(pts[:, 0], pts[:, 1], color="0.6", lw=0.8)
+        self.dot = ax.plot([], [], "o", color="C0", ms=8, zorder=3)[0]
+        self.arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0),
+                                 arrowprops=dict(arrowstyle="-|>", color="C3", lw=2))
+        self.fmax = max(force.max(), 1e-300)
+        self.len = 0.3 * (hi - lo).max()
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+        ax.set_aspect("equal")
+        ax.set_xlabel(f"$x_{{{self.i + 1}}}$ (-)")
+        ax.set_ylabel(f"$x_{{{self.j + 1}}}$ (-)")
+        ax.set_title("contact point and obstacle", fontsize=8)
+        self.bars = _Dofs(bars_ax, x)
+
+    def draw(self, x, force):
+        p = np.array([x[self.i], x[self.j]])
+        self.dot.set_data([p[0]], [p[1]])
+        self.arrow.set_position(tuple(p))
+        self.arrow.xy = tuple(p + self.len * force / self.fmax * self.normal)
+        self.arrow.set_visible(force > 0)
+        return [self.dot, self.arrow, *self.bars.draw(x, force)]
+
+
+class _Dofs:
+    """Every dof's position as a stem plot, fixed limits over the period."""
+
+    def __init__(self, ax, x):
+        n = x.shape[1]
+        self.k = np.arange(1, n + 1)
+        lim = 1.1 * max(np.abs(x).max(), 1e-300)
+        self.stems = ax.vlines(self.k, 0, np.zeros(n), color="C0", lw=2)
+        self.tops = ax.plot(self.k, np.zeros(n), "o", color="C0", ms=4)[0]
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_xlim(0.3, n + 0.7)
+        ax.set_ylim(-lim, lim)
+        ax.set_xlabel("dof (-)")
+        ax.set_ylabel("position (-)")
+        if n <= 12:
+            ax.set_xticks(self.k)
+
+    def draw(self, x, force):
+        self.stems.set_segments([[(k, 0.0), (k, v)] for k, v in zip(self.k, x)])
+        self.tops.set_ydata(x)
+        return [self.stems, self.tops]
+
+
+def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=80, layout="auto"):
+    """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
+    (ffmpeg). frames: per period. Returns the number of frames written. Raises ValueError on bad arguments."""
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in (".gif", ".mp4"):
+        raise ValueError(f"{path}: the animation file must end in .gif or .mp4")
+    if ext == ".mp4" and shutil.which("ffmpeg") is None:
+        raise ValueError(f"{path}: MP4 needs ffmpeg (apt-get install ffmpeg); write a .gif instead")
+    for name, value, lo in (("frames", frames, 2), ("periods", periods, 1), ("fps", fps, 1), ("dpi", dpi, 20)):
+        if not isinstance(value, (int, np.integer)) or value < lo:
+            raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+    if layout not in LAYOUTS:
+        raise ValueError(f"layout must be one of {', '.join(LAYOUTS)}, got {layout!r}")
+    kind = layout_of(system) if layout == "auto" else layout
+    if kind == "chain" and layout_of(system) != "chain":
+        raise ValueError("layout 'chain' needs a diagonal M, a tridiagonal K and w on one dof")
+    if kind == "plane" and np.count_nonzero(np.abs(system.w) > 1e-12) != 2:
+        raise ValueError("layout 'plane' needs w on exactly two dofs")
+
+    T = spp.period
+    count = frames * periods
+    times = np.arange(count) * (T / frames)
+    # Dense samples for the curves, then the frame states from the same exact flows.
+    sim = simulate(system, spp.x0, spp.v0, periods * T, 0.0, max(2000, 20 * frames) / T)
+    t, x, gap, force = sim.t, sim.x, sim.gap, sim.force
+    at = np.clip(np.searchsorted(t, times), 0, len(t) - 1)
+
+    fig = plt.figure(figsize=(6.4, 4.8))
+    grid = fig.add_gridspec(2, 2 if kind == "plane" else 1, height_ratios=[1.6, 1])
+    if kind == "plane":
+        scene = _Plane(fig.add_subplot(grid[0, 0]), system, x, force, fig.add_subplot(grid[0, 1]))
+        hist = fig.add_subplot(grid[1, :])
+    else:
+        top = fig.add_subplot(grid[0, 0])
+        scene = _Chain(top, system, x, force) if kind == "chain" else _Dofs(top, x)
+        hist = fig.add_subplot(grid[1, 0])
+    hist.plot(t, gap, color="C0", lw=1.2, label="gap $g$ (-)")
+    hist.plot(t, force, color="C3", lw=1.2, label=r"force $\lambda$ (-)")
+    hist.axhline(0.0, color="k", lw=0.6)
+    hist.set_xlim(0.0, periods * T)
+    hist.set_xlabel("time $t$ since contact onset (-)")
+    hist.legend(fontsize=7, loc="upper right", frameon=False)
+    cursor = hist.axvline(0.0, color="k", lw=1)
+    state = "admissible" if spp.admissible else "not admissible"
+    fig.suptitle(f"SPP $t_1$ = {spp.t1:.5g}, $t_2$ = {spp.t2:.5g}, $T$ = {T:.5g} ({state})", fontsize=9)
+    fig.tight_layout()
+
+    def update(k):
+        i = at[k]
+        cursor.set_xdata([t[i], t[i]])
+        return [cursor, *scene.draw(x[i], force[i])]
+
+    anim = animation.FuncAnimation(fig, update, frames=count, blit=False)
+    writer = animation.PillowWriter(fps=fps) if ext == ".gif" else animation.FFMpegWriter(fps=fps)
+    try:
+        with atomic_path(path) as tmp:
+            anim.save(tmp, writer=writer, dpi=dpi)
+    finally:
+        plt.close(fig)
+    return count

@@ -1,0 +1,77 @@
+"""Animations: valid GIF/MP4 files with the expected frame count and size, the layout read from the system,
+the frames drawn from the solver's orbit, clear errors and no file left behind on failure."""
+import os
+import shutil
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import spp
+from spp import animate
+
+SRC = os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def first_admissible(system, t1_max, t2_max):
+    r = spp.solve(system, t1_max=t1_max, t2_max=t2_max, admissible_only=True)
+    return r.solutions[0]
+
+
+def test_layouts_follow_the_structure():
+    assert animate.layout_of(spp.chain(5)) == "chain"
+    assert animate.layout_of(spp.two_dof()) == "chain"
+    assert animate.layout_of(spp.rod_with_slip()) == "plane"
+    M = np.eye(3)
+    K = np.array([[2.0, -1, -1], [-1, 2, -1], [-1, -1, 3]])  # springs between every pair: not a chain
+    assert animate.layout_of(spp.System(M, K, np.array([0, 0, 1.0]), 1.0)) == "dofs"
+
+
+@pytest.mark.parametrize("system,window,frames,dpi", [
+    (spp.chain(5), (12, 12), 12, 80),
+    (spp.rod_with_slip(), (8, 3), 9, 50),
+])
+def test_gif_has_the_frames_and_size_asked(tmp_path, system, window, frames, dpi):
+    sol = first_admissible(system, *window)
+    path = tmp_path / "a.gif"
+    assert animate.animate(system, sol, path, frames=frames, periods=2, dpi=dpi) == 2 * frames
+    with Image.open(path) as im:
+        assert im.format == "GIF"
+        assert im.size == (round(6.4 * dpi), round(4.8 * dpi))
+        assert im.n_frames == 2 * frames
+    assert [p.name for p in tmp_path.iterdir()] == ["a.gif"]  # no temporary file left
+
+
+def test_frames_change_and_the_dofs_layout_works_for_any_system(tmp_path):
+    system = spp.chain(5)
+    sol = first_admissible(system, 12, 12)
+    path = tmp_path / "d.gif"
+    animate.animate(system, sol, path, frames=6, layout="dofs", dpi=40)
+    with Image.open(path) as im:
+        frames = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            frames.append(np.asarray(im.convert("L"), dtype=float))
+    assert im.n_frames == 6
+    assert max(np.abs(f - frames[0]).max() for f in frames[1:]) > 0  # the picture moves
+
+
+@pytest.mark.skipif(shutil.which("ffmpeg") is None, reason="ffmpeg not installed")
+def test_mp4_with_ffmpeg(tmp_path):
+    system = spp.chain(5)
+    path = tmp_path / "a.mp4"
+    animate.animate(system, first_admissible(system, 12, 12), path, frames=5, dpi=40)
+    head = path.read_bytes()[:12]
+    assert head[4:8] == b"ftyp"
+
+
+def test_bad_arguments_are_refused_before_any_file(tmp_path):
+    system = spp.chain(5)
+    sol = first_admissible(system, 12, 12)
+    for kwargs, words in ((dict(path=tmp_path / "a.png"), ".gif or .mp4"),
+                          (dict(path=tmp_path / "a.gif", frames=1), "frames"),
+                          (dict(path=tmp_path / "a.gif", layout="plane"), "two dofs"),
+                          (dict(path=tmp_path / "a.gif", layout="nope"), "layout")):
+        with pytest.raises(ValueError, match=words):
+            animate.animate(system, sol, **kwargs)
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,114 @@
+#include "spp/root_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "spp/detail/invalid.hpp"
+#include "spp/modal.hpp"
+
+namespace spp {
+
+void RootMapOptions::validate() const {
+  constexpr const char* where = "root map options";
+  if (!(t1_min >= 0.0) || !std::isfinite(t1_min)) detail::invalid_option(where, "t1_min", t1_min, ">= 0 and finite");
+  if (!(t2_min >= 0.0) || !std::isfinite(t2_min)) detail::invalid_option(where, "t2_min", t2_min, ">= 0 and finite");
+  if (!(t1_max > t1_min) || !std::isfinite(t1_max))
+    detail::invalid_option(where, "t1_max", t1_max, "> t1_min and finite");
+  if (!(t2_max > t2_min) || !std::isfinite(t2_max))
+    detail::invalid_option(where, "t2_max", t2_max, "> t2_min and finite");
+  if (t1_points < 16 || t1_points > 100000) detail::invalid_option(where, "t1_points", t1_points, "in [16, 100000]");
+  if (t2_points < 16 || t2_points > 100000) detail::invalid_option(where, "t2_points", t2_points, "in [16, 100000]");
+  if (min_cell_points < 2 || min_cell_points > 10000)
+    detail::invalid_option(where, "min_cell_points", min_cell_points, "in [2, 10000]");
+  if (!(pole_margin >= 0.0 && pole_margin < 0.25))
+    detail::invalid_option(where, "pole_margin", pole_margin, "in [0, 0.25)");
+}
+
+namespace {
+
+/// sign(det A) * min |lambda(A)| of a symmetric matrix (0 for an empty one is never used: m >= 1 here).
+double signed_min_eigenvalue(const Eigen::MatrixXd& A) {
+  if (A.rows() == 0) return 1.0;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A, Eigen::EigenvaluesOnly);
+  const Eigen::VectorXd& lam = es.eigenvalues();
+  int negatives = 0;
+  double smallest = std::abs(lam(0));
+  for (Eigen::Index k = 0; k < lam.size(); ++k) {
+    negatives += lam(k) < 0.0;
+    smallest = std::min(smallest, std::abs(lam(k)));
+  }
+  return negatives % 2 ? -smallest : smallest;
+}
+
+/// Cells of [lo, hi] cut by the poles: (begin, end) pairs.
+std::vector<std::pair<double, double>> cells_between(double lo, double hi, const std::vector<double>& poles) {
+  std::vector<std::pair<double, double>> out;
+  double a = lo;
+  for (double p : poles) {
+    if (p > a) out.emplace_back(a, p);
+    a = std::max(a, p);
+  }
+  if (hi > a) out.emplace_back(a, hi);
+  return out;
+}
+
+Eigen::VectorXd cell_grid(double a, double b, bool pole_at_a, bool pole_at_b, const RootMapOptions& o, double step) {
+  const double margin = o.pole_margin * (b - a);
+  const double lo = pole_at_a ? a + margin : a, hi = pole_at_b ? b - margin : b;
+  const int points = std::max(o.min_cell_points, static_cast<int>(std::ceil((hi - lo) / step)) + 1);
+  Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(points, lo, hi);
+  // Lower ends at 0 are the trivial line t1 = 0 (H singular for every t2) or pure flight: step off them.
+  if (t(0) == 0.0) t(0) = 1e-3 * (t(1) - t(0));
+  return t;
+}
+
+}  // namespace
+
+RootMap root_map(const System& system, const RootMapOptions& options) {
+  options.validate();
+  const ModalForm modal(system);
+  RootMap map;
+  map.flight_poles = modal.flight_poles(options.t1_min, options.t1_max);
+  map.contact_poles = modal.contact_poles(options.t2_min, options.t2_max);
+
+  // P: orthonormal basis of z-perp (the last m-1 columns of a Householder Q of z).
+  const int m = modal.m();
+  Eigen::MatrixXd P(m, std::max(0, m - 1));
+  if (m > 1) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(modal.z());
+    P = qr.householderQ() * Eigen::MatrixXd::Identity(m, m).rightCols(m - 1);
+  }
+
+  const double step1 = (options.t1_max - options.t1_min) / (options.t1_points - 1);
+  const double step2 = (options.t2_max - options.t2_min) / (options.t2_points - 1);
+  const auto cols = cells_between(options.t1_min, options.t1_max, map.flight_poles);
+  const auto rows = cells_between(options.t2_min, options.t2_max, map.contact_poles);
+  auto is_pole = [](const std::vector<double>& poles, double t) {
+    return std::find(poles.begin(), poles.end(), t) != poles.end();
+  };
+  for (const auto& [b2, e2] : rows) {
+    const Eigen::VectorXd t2 =
+        cell_grid(b2, e2, is_pole(map.contact_poles, b2), is_pole(map.contact_poles, e2), options, step2);
+    for (const auto& [b1, e1] : cols) {
+      RootMapCell cell;
+      cell.t1 = cell_grid(b1, e1, is_pole(map.flight_poles, b1), is_pole(map.flight_poles, e1), options, step1);
+      cell.t2 = t2;
+      cell.symmetric.resize(t2.size(), cell.t1.size());
+      cell.onset.resize(t2.size(), cell.t1.size());
+      for (Eigen::Index i = 0; i < t2.size(); ++i) {
+        const Eigen::MatrixXd C = modal.contact_part(t2(i));
+        for (Eigen::Index j = 0; j < cell.t1.size(); ++j) {
+          Eigen::MatrixXd H = C;
+          H.diagonal() += modal.flight_part(cell.t1(j));
+          cell.symmetric(i, j) = signed_min_eigenvalue(H);
+          cell.onset(i, j) = signed_min_eigenvalue(P.transpose() * H * P);
+        }
+      }
+      map.evaluations += t2.size() * cell.t1.size();
+      map.cells.push_back(std::move(cell));
+    }
+  }
+  return map;
+}
+
+}  // namespace spp

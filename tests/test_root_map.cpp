@@ -1,0 +1,113 @@
+// root_map(): both conditions vanish at every SPP; the grid keeps off the pole lines; the zero crossings of the
+// symmetric condition along a line are the roots the solver's count predicts; bad options are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "spp/io.hpp"
+#include "spp/modal.hpp"
+#include "spp/root_map.hpp"
+#include "spp/solver.hpp"
+
+using namespace spp;
+
+namespace {
+System chain5() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+}
+}  // namespace
+
+TEST(RootMap, BothConditionsVanishAtEverySpp) {
+  const System s = chain5();
+  SolveOptions so;
+  so.t1_max = 6.0;
+  so.t2_max = 6.0;
+  const SolveResult r = solve(s, so);
+  ASSERT_GT(r.solutions.size(), 5u);
+  for (const Solution& sol : r.solutions) {
+    RootMapOptions o;
+    const double h = 1e-4;
+    o.t1_min = sol.t1 - h;
+    o.t1_max = sol.t1 + h;
+    o.t2_min = sol.t2 - h;
+    o.t2_max = sol.t2 + h;
+    o.t1_points = o.t2_points = 17;
+    o.min_cell_points = 2;
+    const RootMap map = root_map(s, o);
+    if (!map.flight_poles.empty() || !map.contact_poles.empty()) continue;  // an SPP on a pole line
+    ASSERT_EQ(map.cells.size(), 1u);
+    const RootMapCell& c = map.cells[0];
+    ASSERT_EQ(c.t1.size(), 17);
+    EXPECT_NEAR(c.t1(8), sol.t1, 1e-12);
+    EXPECT_NEAR(c.t2(8), sol.t2, 1e-12);
+    const double scale = c.symmetric.cwiseAbs().maxCoeff();
+    EXPECT_LT(std::abs(c.symmetric(8, 8)), 1e-6 * scale) << sol.t1 << " " << sol.t2;
+    EXPECT_LT(std::abs(c.onset(8, 8)), 1e-6 * c.onset.cwiseAbs().maxCoeff()) << sol.t1 << " " << sol.t2;
+    // (5.1a) is a curve through the SPP: its sign changes across the grid.
+    EXPECT_LT(c.symmetric.minCoeff() * c.symmetric.maxCoeff(), 0.0);
+  }
+}
+
+TEST(RootMap, CellsKeepOffThePoleLines) {
+  RootMapOptions o;
+  o.t1_max = 12.0;
+  o.t2_max = 12.0;
+  o.t1_points = o.t2_points = 60;
+  const RootMap map = root_map(chain5(), o);
+  const ModalForm modal(chain5());
+  EXPECT_EQ(map.flight_poles, modal.flight_poles(0.0, 12.0));
+  EXPECT_EQ(map.contact_poles, modal.contact_poles(0.0, 12.0));
+  EXPECT_EQ(map.cells.size(), (map.flight_poles.size() + 1) * (map.contact_poles.size() + 1));
+  long points = 0;
+  for (const RootMapCell& c : map.cells) {
+    EXPECT_EQ(c.symmetric.rows(), c.t2.size());
+    EXPECT_EQ(c.symmetric.cols(), c.t1.size());
+    EXPECT_TRUE(c.symmetric.allFinite());
+    EXPECT_TRUE(c.onset.allFinite());
+    for (double p : map.flight_poles) EXPECT_GT((c.t1.array() - p).abs().minCoeff(), 1e-6);
+    for (double p : map.contact_poles) EXPECT_GT((c.t2.array() - p).abs().minCoeff(), 1e-6);
+    points += c.t1.size() * c.t2.size();
+  }
+  EXPECT_EQ(points, map.evaluations);
+}
+
+TEST(RootMap, SignChangesAlongALineAreTheCountedRoots) {
+  // Design note §3: on t1 = c the zeros of det H(c, .) in a cell of t2 are nu(bottom) - nu(top) (no pole inside).
+  const System s = chain5();
+  const ModalForm modal(s);
+  RootMapOptions o;
+  o.t1_min = 1.2345;
+  o.t1_max = 1.2345 + 1e-3;
+  o.t2_max = 12.0;
+  o.t1_points = 16;
+  o.t2_points = 4000;
+  o.min_cell_points = 2;
+  const RootMap map = root_map(s, o);
+  auto negatives = [&](double t1, double t2) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(modal.H(t1, t2), Eigen::EigenvaluesOnly);
+    return static_cast<int>((es.eigenvalues().array() < 0).count());
+  };
+  int changes = 0, counted = 0;
+  for (const RootMapCell& c : map.cells) {
+    for (Eigen::Index i = 1; i < c.t2.size(); ++i) changes += c.symmetric(i - 1, 0) * c.symmetric(i, 0) < 0;
+    counted += negatives(c.t1(0), c.t2(0)) - negatives(c.t1(0), c.t2(c.t2.size() - 1));
+  }
+  EXPECT_GT(counted, 5);
+  EXPECT_EQ(changes, counted);
+}
+
+TEST(RootMap, RefusesBadOptions) {
+  RootMapOptions o;
+  o.t1_max = 1.0;
+  o.t2_max = 1.0;
+  o.t1_points = 3;
+  try {
+    root_map(chain5(), o);
+    FAIL() << "expected invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("t1_points"), std::string::npos) << e.what();
+  }
+  o.t1_points = 100;
+  o.t2_max = -1.0;
+  EXPECT_THROW(root_map(chain5(), o), std::invalid_argument);
+}
