@@ -68,4 +68,27 @@ System two_dof(double m1, double m2, double k1, double k2, double g0) {
   return System(M, K, w, g0, "two_dof");
 }
 
+ParametricSystem parametrize(const std::function<System(double)>& make, const Parameter& p) {
+  if (!(p.min < p.max)) {
+    std::ostringstream os;
+    os << "parameter \"" << p.name << "\": needs min < max, got " << p.min << ", " << p.max;
+    throw std::invalid_argument(os.str());
+  }
+  const System a = make(p.min), b = make(p.max), mid = make(0.5 * (p.min + p.max));
+  const double span = p.max - p.min;
+  const Eigen::MatrixXd M1 = (b.M() - a.M()) / span, K1 = (b.K() - a.K()) / span;
+  const Eigen::VectorXd w1 = (b.w() - a.w()) / span;
+  const Eigen::MatrixXd M0 = a.M() - p.min * M1, K0 = a.K() - p.min * K1;
+  const Eigen::VectorXd w0 = a.w() - p.min * w1;
+  const double mu = 0.5 * (p.min + p.max);
+  const double scale = a.M().norm() + a.K().norm() + b.M().norm() + b.K().norm() + 1.0;
+  const bool affine = (M0 + mu * M1 - mid.M()).norm() <= 1e-12 * scale &&
+                      (K0 + mu * K1 - mid.K()).norm() <= 1e-12 * scale && (w0 + mu * w1 - mid.w()).norm() <= 1e-12 &&
+                      a.g0() == b.g0() && a.g0() == mid.g0();
+  if (!affine)
+    throw std::invalid_argument("parameter \"" + p.name +
+                                "\": the system is not affine in it (M, K and w must be affine, g0 fixed)");
+  return ParametricSystem(M0, M1, K0, K1, w0, w1, a.g0(), p, a.name() + " (" + p.name + ")");
+}
+
 }  // namespace spp

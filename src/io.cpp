@@ -106,20 +106,113 @@ System load_system(const std::string& path) {
   } catch (const json::exception& e) {  // parse errors, and numbers out of double range (e.g. 1e999)
     fail(path + ": malformed JSON: " + e.what());
   }
+  if (declares_parameter(j))
+    fail(path + ": declares the parameter \"" + j.at("parameter").value("name", std::string("?")) +
+         "\" (a parametric system): use spp continue, or spp solve --at VALUE (or with g0 = 0 spp solve alone)");
   const std::string dir = fs::path(path).parent_path().string();
   return system_from_json(j, path, dir.empty() ? "." : dir);
 }
 
+bool declares_parameter(const json& j) {
+  return j.is_object() && j.contains("parameter");
+}
+
+namespace {
+json parse_file(const std::string& path) {
+  const std::string text = read_file(path);
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    fail(path + ": malformed JSON: " + e.what());
+  }
+}
+
+// {"constant": A, "<name>": B} -> (A, B); a plain value -> (value, empty).
+template <typename Read>
+auto affine_field(const json& j, const char* key, const std::string& name, const std::string& where, Read read) {
+  using T = decltype(read(j, key));
+  if (!j.contains(key)) fail(where + ": missing field \"" + key + "\"");
+  const json& v = j.at(key);
+  if (v.is_object() && v.contains("constant")) {
+    for (const auto& [k, _] : v.items())
+      if (k != "constant" && k != name)
+        fail(where + ": field \"" + key + "\" has a part \"" + k + "\": expected only \"constant\" and \"" + name +
+             "\" (the declared parameter)");
+    T c = read(v, "constant");
+    T m = v.contains(name) ? read(v, name.c_str()) : T();
+    return std::make_pair(std::move(c), std::move(m));
+  }
+  return std::make_pair(read(j, key), T());
+}
+
+Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where) {
+  if (!j.contains(key)) fail(where + ": missing field \"" + key + "\"");
+  const json& jw = j.at(key);
+  if (!jw.is_array() || jw.empty()) fail(where + ": field \"" + key + "\" must be a non-empty list of numbers");
+  Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
+  for (size_t i = 0; i < jw.size(); ++i) {
+    if (!jw[i].is_number())
+      fail(where + ": field \"" + key + "\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
+    w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
+  }
+  return w;
+}
+}  // namespace
+
+ParametricSystem parametric_system_from_json(const json& j, const std::string& where, const std::string& dir) {
+  if (!j.is_object()) fail(where + ": expected a JSON object with fields M, K, w, g0, parameter");
+  if (!j.contains("parameter"))
+    fail(where + ": no field \"parameter\" (e.g. \"parameter\": {\"name\": \"k2\", \"min\": 1, \"max\": 10})");
+  const json& p = j.at("parameter");
+  if (!p.is_object() || !p.contains("name") || !p.at("name").is_string() || p.at("name").get<std::string>().empty())
+    fail(where + ": field \"parameter\" must be {\"name\": \"...\", \"min\": number, \"max\": number}");
+  Parameter par;
+  par.name = p.at("name").get<std::string>();
+  for (const char* k : {"min", "max"})
+    if (!p.contains(k) || !p.at(k).is_number())
+      fail(where + ": field \"parameter\" needs the number \"" + std::string(k) + "\"");
+  par.min = p.at("min").get<double>();
+  par.max = p.at("max").get<double>();
+  if (par.name == "constant") fail(where + ": the parameter cannot be named \"constant\"");
+  auto mat = [&](const json& o, const char* k) { return matrix_field(o, k, where, dir); };
+  auto vec = [&](const json& o, const char* k) { return vector_field(o, k, where); };
+  auto [M0, M1] = affine_field(j, "M", par.name, where, mat);
+  auto [K0, K1] = affine_field(j, "K", par.name, where, mat);
+  auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
+  if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
+  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + j.at("g0").dump());
+  const std::string name = j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+  try {
+    return ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0), std::move(w1),
+                            j.at("g0").get<double>(), par, name);
+  } catch (const std::invalid_argument& e) {
+    fail(where + ": " + e.what());
+  }
+}
+
+ParametricSystem load_parametric_system(const std::string& path) {
+  const json j = parse_file(path);
+  const std::string dir = fs::path(path).parent_path().string();
+  return parametric_system_from_json(j, path, dir.empty() ? "." : dir);
+}
+
+namespace {
+json matrix_json(const Eigen::MatrixXd& A) {
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < A.rows(); ++i) {
+    json r = json::array();
+    for (Eigen::Index c = 0; c < A.cols(); ++c) r.push_back(A(i, c));
+    rows.push_back(r);
+  }
+  return rows;
+}
+json vector_json(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+}  // namespace
+
 json system_to_json(const System& s) {
-  auto mat = [](const Eigen::MatrixXd& A) {
-    json rows = json::array();
-    for (Eigen::Index i = 0; i < A.rows(); ++i) {
-      json r = json::array();
-      for (Eigen::Index c = 0; c < A.cols(); ++c) r.push_back(A(i, c));
-      rows.push_back(r);
-    }
-    return rows;
-  };
+  const auto mat = matrix_json;
   json j;
   j["name"] = s.name();
   j["M"] = mat(s.M());
@@ -462,6 +555,106 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     fs::remove(tmp, ec);
     fail("cannot write \"" + path + "\": rename failed");
   }
+}
+
+json parametric_system_to_json(const ParametricSystem& s) {
+  const std::string& p = s.parameter().name;
+  json j;
+  j["name"] = s.name();
+  j["parameter"] = {{"name", p}, {"min", s.parameter().min}, {"max", s.parameter().max}};
+  j["M"] = {{"constant", matrix_json(s.M_constant())}, {p, matrix_json(s.M_mu())}};
+  j["K"] = {{"constant", matrix_json(s.K_constant())}, {p, matrix_json(s.K_mu())}};
+  j["w"] = {{"constant", vector_json(s.w_constant())}, {p, vector_json(s.w_mu())}};
+  j["g0"] = s.g0();
+  return j;
+}
+
+namespace {
+json point_json(const BranchPoint& p, const std::string& parameter) {
+  json j = {{parameter, p.mu},
+            {"t1", p.t1},
+            {"t2", p.t2},
+            {"period", p.period},
+            {"closure", p.closure},
+            {"energy", p.energy},
+            {"x0", vector_json(p.x0)},
+            {"v0", vector_json(p.v0)}};
+  // NaN is not JSON: the margin is null where it means nothing (g0 = 0 away from a closure, diverging orbit).
+  j["margin"] = std::isfinite(p.margin) ? json(p.margin) : json(nullptr);
+  j["admissible"] = p.admissible;
+  return j;
+}
+}  // namespace
+
+json continuation_to_json(const ParametricSystem& s, const ContinuationResult& r) {
+  json j;
+  j["system"] = parametric_system_to_json(s);
+  j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
+  j["warnings"] = r.warnings;
+  j["stats"] = {{"seed_spps", r.seed_spps},
+                {"seed_crossings", r.seed_crossings},
+                {"corrector_solves", r.corrector_solves},
+                {"seconds", r.seconds}};
+  const std::string& p = r.parameter.name;
+  json branches = json::array();
+  for (const Branch& b : r.branches) {
+    json jb;
+    jb["points"] = json::array();
+    for (const BranchPoint& q : b.points) jb["points"].push_back(point_json(q, p));
+    jb["events"] = json::array();
+    for (const BranchEvent& e : b.events) {
+      json je = point_json(e.at, p);
+      je["event"] = to_string(e.kind);
+      je["detail"] = e.detail;
+      jb["events"].push_back(je);
+    }
+    branches.push_back(jb);
+  }
+  j["branches"] = branches;
+  return j;
+}
+
+std::string continuation_table(const ContinuationResult& r) {
+  std::ostringstream os;
+  os << std::setw(7) << "branch" << std::setw(22) << "event" << std::setw(15) << r.parameter.name << std::setw(13)
+     << "t1" << std::setw(13) << "t2" << std::setw(12) << "margin"
+     << "  detail\n";
+  for (size_t b = 0; b < r.branches.size(); ++b)
+    for (const BranchEvent& e : r.branches[b].events)
+      os << std::setw(7) << b << std::setw(22) << to_string(e.kind) << std::setw(15) << std::setprecision(10) << e.at.mu
+         << std::setw(13) << std::setprecision(7) << e.at.t1 << std::setw(13) << e.at.t2 << std::setw(12)
+         << std::setprecision(3) << e.at.margin << "  " << e.detail << "\n";
+  return os.str();
+}
+
+json zero_gap_to_json(const ParametricSystem& s, const ContinuationResult& r) {
+  json j;
+  j["system"] = parametric_system_to_json(s);
+  j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
+  j["status"] = r.warnings.empty() ? "success" : "incomplete";
+  j["warnings"] = r.warnings;
+  j["normalization"] = "unit energy (g0 = 0: eq. 5.2 leaves the scale free); the sign that makes the force >= 0";
+  j["solutions"] = json::array();
+  for (const BranchPoint& p : gap_closures(r)) {
+    json q = point_json(p, r.parameter.name);
+    q.erase(r.parameter.name);
+    q.erase("closure");
+    q["parameter"] = {{"name", r.parameter.name}, {"value", p.mu}};
+    j["solutions"].push_back(q);
+  }
+  return j;
+}
+
+std::string zero_gap_table(const ContinuationResult& r) {
+  std::ostringstream os;
+  os << std::setw(4) << "#" << std::setw(18) << r.parameter.name << std::setw(15) << "t1" << std::setw(15) << "t2"
+     << std::setw(15) << "period" << std::setw(12) << "admissible" << std::setw(12) << "margin\n";
+  int k = 0;
+  for (const BranchPoint& p : gap_closures(r))
+    os << std::setw(4) << k++ << std::setw(18) << std::setprecision(12) << p.mu << std::setw(15) << std::setprecision(9)
+       << p.t1 << std::setw(15) << p.t2 << std::setw(15) << p.period << std::setw(12) << (p.admissible ? "yes" : "no")
+       << std::setw(12) << std::setprecision(3) << p.margin << "\n";
+  return os.str();
 }
 
 }  // namespace spp

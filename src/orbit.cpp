@@ -1,8 +1,11 @@
 #include "spp/orbit.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "spp/detail/cosine_sum.hpp"
 
@@ -28,21 +31,17 @@ void flight_flow(const ModalForm& md, double t, const Eigen::VectorXd& p0, const
 }
 }  // namespace
 
-Orbit make_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a_in) {
-  if (md.g0() == 0.0)
-    throw std::invalid_argument("orbit: g0 = 0, the scale of the initial conditions (eq. 5.2) is undefined");
+namespace {
+// Every field of the orbit from the null vector a of N, given the factor that scales it.
+Orbit scaled_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a_in, double scale) {
   Orbit o;
   o.t1 = t1;
   o.t2 = t2;
   const Eigen::ArrayXd& w = md.omega().array();
-  Eigen::VectorXd p0 = ((w * t1).cos() * a_in.array()).matrix();
-  const Eigen::VectorXd q0 = (p0.array() / w).matrix();
-  const double r = md.u().dot(q0);
-  o.closure_ratio = q0.norm() > 0 ? std::abs(r) / q0.norm() : 0.0;
-  if (r == 0.0) throw std::invalid_argument("orbit: u^T W^-1 p0 = 0, the gap cannot close (eq. 5.2)");
-  const double scale = -md.g0() / (md.beta() * r);  // eq. (5.2): w^T x0 = -g0
+  const Eigen::VectorXd q0 = ((w * t1).cos() * a_in.array() / w).matrix();
+  o.closure_ratio = q0.norm() > 0 ? std::abs(md.u().dot(q0)) / q0.norm() : 0.0;
   o.a = scale * a_in;
-  o.p0 = scale * p0;
+  o.p0 = ((w * t1).cos() * o.a.array()).matrix();
   o.p0dot = (-w * (w * t1).sin() * o.a.array()).matrix();  // p'(0) = -W tan(W t1) p0, pole-free
   Eigen::VectorXd cd;
   contact_flow(md, t2, o.p0, o.p0dot, o.c, cd);
@@ -50,6 +49,23 @@ Orbit make_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorX
   o.v0 = md.Phi() * (o.p0dot.array() / w).matrix();
   o.energy = 0.5 * (o.p0dot.array() / w).matrix().squaredNorm() + 0.5 * o.p0.squaredNorm();
   return o;
+}
+}  // namespace
+
+Orbit make_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a_in) {
+  if (md.g0() == 0.0)
+    throw std::invalid_argument("orbit: g0 = 0, the scale of the initial conditions (eq. 5.2) is undefined");
+  const Eigen::ArrayXd& w = md.omega().array();
+  const double r = md.u().dot(((w * t1).cos() * a_in.array() / w).matrix());
+  if (r == 0.0) throw std::invalid_argument("orbit: u^T W^-1 p0 = 0, the gap cannot close (eq. 5.2)");
+  return scaled_orbit(md, t1, t2, a_in, -md.g0() / (md.beta() * r));  // eq. (5.2): w^T x0 = -g0
+}
+
+Orbit make_unit_energy_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a) {
+  const Orbit one = scaled_orbit(md, t1, t2, a, 1.0);
+  if (!(one.energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
+  const double sign = md.z().dot(one.c) >= 0.0 ? 1.0 : -1.0;  // force at mid-contact z^T c / beta
+  return scaled_orbit(md, t1, t2, a, sign / std::sqrt(one.energy));
 }
 
 OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {
@@ -105,6 +121,87 @@ Admissibility check_admissibility(const ModalForm& md, const Orbit& o, double re
   adm.ends_ok = gap_end && force_end;
   adm.admissible = adm.ends_ok && gmin.lower_bound >= -gtol && fmin.lower_bound >= -ftol;
   return adm;
+}
+
+namespace {
+// (cos x - 1 + x^2/2) / x^3, (sin x - x) / x^3, (cos x - 1) / x and sin x / x without cancellation near 0.
+double cos_m2_x3(double x) {
+  if (std::abs(x) > 0.5) return (std::cos(x) - 1.0 + 0.5 * x * x) / (x * x * x);
+  const double x2 = x * x;  // x/24 - x^3/720 + x^5/40320 - x^7/3628800 + x^9/479001600
+  return x * (1.0 / 24 - x2 * (1.0 / 720 - x2 * (1.0 / 40320 - x2 * (1.0 / 3628800 - x2 / 479001600.0))));
+}
+double sin_m1_x3(double x) {
+  if (std::abs(x) > 0.5) return (std::sin(x) - x) / (x * x * x);
+  const double x2 = x * x;  // -1/6 + x^2/120 - x^4/5040 + x^6/362880 - x^8/39916800
+  return -1.0 / 6 + x2 * (1.0 / 120 - x2 * (1.0 / 5040 - x2 * (1.0 / 362880 - x2 / 39916800.0)));
+}
+double cos_m1_x(double x) {
+  if (std::abs(x) > 0.5) return (std::cos(x) - 1.0) / x;
+  const double x2 = x * x;
+  return -x * (0.5 - x2 * (1.0 / 24 - x2 * (1.0 / 720 - x2 * (1.0 / 40320 - x2 / 3628800.0))));
+}
+double sinc(double x) {
+  if (std::abs(x) > 0.5) return std::sin(x) / x;
+  const double x2 = x * x;
+  return 1.0 - x2 * (1.0 / 6 - x2 * (1.0 / 120 - x2 * (1.0 / 5040 - x2 / 362880.0)));
+}
+
+// Minimum over s in [0, len] of f: samples fine enough for the fastest term, then golden-section refinement
+// around the three best samples.
+template <typename F>
+double sampled_minimum(const F& f, double len, double fastest) {
+  const int samples = std::clamp(static_cast<int>(40.0 * fastest * len / std::numbers::pi), 200, 200000);
+  const double h = len / samples;
+  std::vector<std::pair<double, int>> v;
+  v.reserve(samples + 1);
+  for (int i = 0; i <= samples; ++i) v.emplace_back(f(i * h), i);
+  std::partial_sort(v.begin(), v.begin() + 3, v.end());
+  double best = v[0].first;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int k = 0; k < 3; ++k) {
+    double a = std::max(0.0, (v[k].second - 1) * h), b = std::min(len, (v[k].second + 1) * h);
+    double c = b - g * (b - a), d = a + g * (b - a), fc = f(c), fd = f(d);
+    for (int it = 0; it < 60 && b - a > 1e-15 * len; ++it) {
+      if (fc < fd) {
+        b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
+      } else {
+        a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
+      }
+    }
+    best = std::min({best, fc, fd});
+  }
+  return best;
+}
+}  // namespace
+
+double admissibility_margin(const ModalForm& md, const Orbit& o) {
+  const Eigen::ArrayXd& w = md.omega().array();
+  // Gap about the flight's end: g(t1 - s) over the axis form sum A_k cos(w_k tau), tau = t1 - s; the parts that
+  // make g, g', g'' at the end (zero by construction, rounding otherwise) are dropped, then divided by (s/t1)^3.
+  const Eigen::ArrayXd A = md.beta() * md.u().array() * o.a.array() / w;
+  const Eigen::ArrayXd C = (w * o.t1).cos(), S = (w * o.t1).sin();
+  const double gscale = std::abs(md.g0()) + A.abs().sum();
+  const double t13 = o.t1 * o.t1 * o.t1;
+  auto gap = [&](double s) {
+    double v = 0.0;
+    for (Eigen::Index k = 0; k < w.size(); ++k)
+      v += A(k) * w(k) * w(k) * w(k) * (C(k) * cos_m2_x3(w(k) * s) + S(k) * sin_m1_x3(w(k) * s));
+    return t13 * v / gscale;
+  };
+  // Force about the release: lambda(t2 - s) = sum B_j cos(d_j (t2 - s)) minus lambda(t2), divided by s/t2.
+  const Eigen::ArrayXd& d = md.d().array();
+  const Eigen::ArrayXd B = (md.G().transpose() * md.z()).array() * (md.G().transpose() * o.c).array() / md.beta();
+  const Eigen::ArrayXd Cd = (d * o.t2).cos(), Sd = (d * o.t2).sin();
+  const double fscale = B.abs().sum();
+  auto force = [&](double s) {
+    double v = 0.0;
+    for (Eigen::Index j = 0; j < d.size(); ++j)
+      v += B(j) * d(j) * (Cd(j) * cos_m1_x(d(j) * s) + Sd(j) * sinc(d(j) * s));
+    return o.t2 * v / fscale;
+  };
+  const double gmin = sampled_minimum(gap, o.t1, w.maxCoeff());
+  const double fmin = fscale > 0 ? sampled_minimum(force, o.t2, d.maxCoeff()) : 0.0;
+  return std::min(gmin, fmin);
 }
 
 double return_error(const System& sys, const Orbit& o) {

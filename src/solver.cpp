@@ -456,8 +456,9 @@ void require_nonzero_gap(const System& system) {
   if (system.g0() == 0.0)
     throw std::invalid_argument(
         "system: g0 = 0 (obstacle touching the rest position): SPPs then exist only for special parameter "
-        "values (paper §6.1) and need one more unknown; the zero-gap solver with a declared parameter is not "
-        "available yet. Use g0 != 0.");
+        "values (paper §6.1) and need one more unknown: declare a parameter in the system file (\"parameter\": "
+        "{\"name\", \"min\", \"max\"}, M/K/w affine in it) and run spp solve without --at, or "
+        "continue_branches() and gap_closures().");
 }
 
 Solution build_solution(const System& system, const ModalForm& md, const Polished& p, const SolveOptions& opt,

@@ -297,3 +297,36 @@ TEST(Cli, AnimateWritesAGifWithTheFramesAsked) {
   EXPECT_NE(bad.out.find("--solution 64"), std::string::npos) << bad.out;
   EXPECT_FALSE(fs::exists(dir() / "bad.gif"));
 }
+
+TEST(Cli, ZeroGapSolveAndContinueOnAGeneratedParametricSystem) {
+  const fs::path sys = dir() / "p61.json", res = dir() / "p61_res.json", cont = dir() / "p61_cont.json";
+  const CliRun g = run("generate two-dof --g0 0 --parameter k2 --range 1,10 --out " + sys.string());
+  ASSERT_EQ(g.code, 0) << g.out;
+  const CliRun s = run("solve " + sys.string() + " --t1-max 3 --t2-max 1 --json " + res.string());
+  ASSERT_EQ(s.code, 0) << s.out;
+  EXPECT_NE(s.out.find("2 SPPs with k2 in [1, 10]"), std::string::npos) << s.out;
+  const nlohmann::json r = nlohmann::json::parse(std::ifstream(res));
+  ASSERT_EQ(r.at("solutions").size(), 2u);
+  const auto& p = r.at("solutions")[1].at("parameter");
+  EXPECT_EQ(p.at("name"), "k2");
+  EXPECT_NEAR(p.at("value").get<double>(), 5.716265, 1e-6);
+  EXPECT_TRUE(r.at("solutions")[1].at("admissible").get<bool>());
+  const CliRun c = run("continue " + sys.string() + " --t1-max 3 --t2-max 1 --json " + cont.string());
+  ASSERT_EQ(c.code, 0) << c.out;
+  EXPECT_NE(c.out.find("gap_closure"), std::string::npos) << c.out;
+  const nlohmann::json cj = nlohmann::json::parse(std::ifstream(cont));
+  EXPECT_EQ(cj.at("branches").size(), 3u);
+  EXPECT_EQ(cj.at("system").at("parameter").at("name"), "k2");
+  // The same file at one parameter value, and the errors.
+  EXPECT_EQ(run("solve " + sys.string() + " --t1-max 3 --t2-max 1 --at 5").code, 1);  // g0 = 0 at a fixed k2
+  const CliRun plain =
+      run("simulate " + sys.string() + " --x0 0,0 --v0 1,0 --duration 1 --csv " + (dir() / "x.csv").string());
+  EXPECT_EQ(plain.code, 1);
+  EXPECT_NE(plain.out.find("declares the parameter \"k2\""), std::string::npos) << plain.out;
+  const CliRun bad = run("generate two-dof --parameter k3 --range 1,10 --out " + (dir() / "bad.json").string());
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("m<i> or k<i>"), std::string::npos) << bad.out;
+  const CliRun rod = run("continue " + kChain + " --t1-max 3 --t2-max 1");
+  EXPECT_EQ(rod.code, 1);
+  EXPECT_NE(rod.out.find("no field \"parameter\""), std::string::npos) << rod.out;
+}

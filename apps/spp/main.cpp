@@ -8,8 +8,10 @@
 #include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
+#include "spp/continuation.hpp"
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
@@ -57,6 +59,25 @@ int main(int argc, char** argv) {
   solve->add_flag("--admissible-only", opt.admissible_only, "keep only admissible SPPs");
   solve->add_flag("--quiet", quiet, "print only the one-line summary");
   solve->add_option("--threads", opt.threads, "worker threads (default 0: all hardware threads)");
+  double solve_at = 0.0;
+  auto* o_at = solve->add_option("--at", solve_at,
+                                 "parametric system: solve at this parameter value (without it, a parametric system "
+                                 "with g0 = 0 is solved for (t1, t2, parameter), paper §6.1)");
+
+  // continue
+  auto* cont = app.add_subcommand("continue", "follow every SPP of a window as the system's parameter varies");
+  std::string cont_sys, cont_json;
+  spp::ContinueOptions copt;
+  bool cont_quiet = false;
+  cont->add_option("system", cont_sys, "parametric system JSON file (with \"parameter\")")->required();
+  cont->add_option("--t1-max", copt.t1_max, "largest flight half-duration t1")->required();
+  cont->add_option("--t2-max", copt.t2_max, "largest contact half-duration t2")->required();
+  cont->add_option("--t1-min", copt.t1_min, "smallest t1 (default as solve)");
+  cont->add_option("--t2-min", copt.t2_min, "smallest t2 (default as solve)");
+  cont->add_option("--seeds", copt.seeds, "parameter values where solve seeds branches (default 9)");
+  cont->add_option("--max-step", copt.max_step, "largest step in scaled arclength (default 0.02)");
+  cont->add_option("--json", cont_json, "write branches, points and events as JSON");
+  cont->add_flag("--quiet", cont_quiet, "print only the one-line summary");
 
   // trajectory
   auto* traj = app.add_subcommand("trajectory", "sample one period of an SPP: t, x, v, gap, force");
@@ -136,6 +157,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"upper", "lower"}));
   gchain->add_option("--g0", cg0, "gap at rest");
   gchain->add_option("--out", gen_out, "output JSON")->required();
+  std::string gen_param, gen_range;
+  for (auto* g : {gchain}) {
+    g->add_option("--parameter", gen_param, "leave one value free: m<i> or k<i> (1-based); needs --range");
+    g->add_option("--range", gen_range, "MIN,MAX of the --parameter");
+  }
   auto* grod = gen->add_subcommand("rod", "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b");
   double ra = -0.25, rb = 0.25;
   grod->add_option("--a", ra, "slope of the obstacle line");
@@ -149,13 +175,39 @@ int main(int argc, char** argv) {
   g2->add_option("--k2", k2);
   g2->add_option("--g0", g2g0);
   g2->add_option("--out", gen_out, "output JSON")->required();
+  g2->add_option("--parameter", gen_param, "leave one value free: m1, m2, k1 or k2; needs --range");
+  g2->add_option("--range", gen_range, "MIN,MAX of the --parameter");
 
   CLI11_PARSE(app, argc, argv);
 
   try {
     if (*solve) {
       opt.validate();
-      const spp::System sys = spp::load_system(sys_path);
+      const nlohmann::json sys_json = spp::read_json_file(sys_path);
+      if (spp::declares_parameter(sys_json) && o_at->count() == 0) {
+        const spp::ParametricSystem ps = spp::load_parametric_system(sys_path);
+        if (ps.g0() != 0.0)
+          throw std::invalid_argument(sys_path + ": a parametric system with g0 != 0: give --at VALUE of \"" +
+                                      ps.parameter().name + "\", or follow its SPPs with spp continue");
+        spp::ContinueOptions co;
+        co.t1_max = opt.t1_max;
+        co.t2_max = opt.t2_max;
+        co.t1_min = opt.t1_min;
+        co.t2_min = opt.t2_min;
+        co.threads = opt.threads;
+        const spp::ContinuationResult cr = spp::continue_branches(ps, co);
+        const std::string json_text = json_out.empty() ? "" : spp::zero_gap_to_json(ps, cr).dump(2) + "\n";
+        if (!csv_out.empty()) throw std::invalid_argument("--csv: not available for the g0 = 0 solve (use --json)");
+        if (!quiet) std::cout << spp::zero_gap_table(cr);
+        std::cout << "spp: g0 = 0, solved for (t1, t2, " << ps.parameter().name << "): " << spp::gap_closures(cr).size()
+                  << " SPPs with " << ps.parameter().name << " in [" << ps.parameter().min << ", " << ps.parameter().max
+                  << "] (" << cr.brief_report() << ")\n";
+        for (const auto& w : cr.warnings) std::cerr << "warning: " << w << "\n";
+        if (!json_out.empty()) spp::write_file_atomic(json_out, json_text);
+        return 0;
+      }
+      const spp::System sys = spp::declares_parameter(sys_json) ? spp::load_parametric_system(sys_path).at(solve_at)
+                                                                : spp::load_system(sys_path);
       const spp::SolveResult res = spp::solve(sys, opt);
       // prepare every output before writing any
       const std::string json_text = json_out.empty() ? "" : spp::result_to_json(sys, res).dump(2) + "\n";
@@ -244,16 +296,54 @@ int main(int argc, char** argv) {
       throw std::runtime_error("cannot run /usr/bin/python3 for spp " + args[3] +
                                " (install python3 and the spp package)");
     }
+    if (*cont) {
+      const spp::ParametricSystem ps = spp::load_parametric_system(cont_sys);
+      const spp::ContinuationResult cr = spp::continue_branches(ps, copt);
+      const std::string json_text = cont_json.empty() ? "" : spp::continuation_to_json(ps, cr).dump(1) + "\n";
+      if (!cont_quiet) std::cout << spp::continuation_table(cr);
+      std::cout << cr.brief_report() << "\n";
+      for (const auto& w : cr.warnings) std::cerr << "warning: " << w << "\n";
+      if (!cont_json.empty()) spp::write_file_atomic(cont_json, json_text);
+      return 0;
+    }
     if (*gen) {
-      spp::System sys = [&]() {
+      // The generator with the --parameter's value replaced by v.
+      auto make = [&](std::optional<std::pair<std::string, double>> free) {
+        auto take = [&](const std::string& name, double value) {
+          return free && free->first == name ? free->second : value;
+        };
         if (*gchain) {
           const int dof = cdof == 0 ? cn - 1 : cdof - 1;
-          return spp::chain(cn, parse_list(cmass, "--masses"), parse_list(cstiff, "--stiffnesses"), dof,
-                            cside == "upper" ? spp::ContactSide::Upper : spp::ContactSide::Lower, cg0);
+          std::vector<double> ms = parse_list(cmass, "--masses"), ks = parse_list(cstiff, "--stiffnesses");
+          if (ms.size() == 1) ms.assign(static_cast<size_t>(cn), ms[0]);
+          if (ks.size() == 1) ks.assign(static_cast<size_t>(cn), ks[0]);
+          for (size_t i = 0; i < ms.size(); ++i) ms[i] = take("m" + std::to_string(i + 1), ms[i]);
+          for (size_t i = 0; i < ks.size(); ++i) ks[i] = take("k" + std::to_string(i + 1), ks[i]);
+          return spp::chain(cn, ms, ks, dof, cside == "upper" ? spp::ContactSide::Upper : spp::ContactSide::Lower, cg0);
         }
         if (*grod) return spp::rod_with_slip(ra, rb);
-        return spp::two_dof(m1, m2, k1, k2, g2g0);
-      }();
+        return spp::two_dof(take("m1", m1), take("m2", m2), take("k1", k1), take("k2", k2), g2g0);
+      };
+      if (!gen_param.empty() || !gen_range.empty()) {
+        if (gen_param.empty() || gen_range.empty())
+          throw std::invalid_argument("generate: --parameter and --range go together");
+        const std::vector<double> range = parse_list(gen_range, "--range");
+        if (range.size() != 2) throw std::invalid_argument("--range: expected MIN,MAX, got \"" + gen_range + "\"");
+        const int n = *gchain ? cn : 2;
+        bool known = false;
+        for (int i = 1; i <= n; ++i)
+          known |= gen_param == "m" + std::to_string(i) || gen_param == "k" + std::to_string(i);
+        if (!known)
+          throw std::invalid_argument("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) +
+                                      ", got \"" + gen_param + "\"");
+        const spp::ParametricSystem ps = spp::parametrize([&](double v) { return make(std::make_pair(gen_param, v)); },
+                                                          {gen_param, range[0], range[1]});
+        spp::write_file_atomic(gen_out, spp::parametric_system_to_json(ps).dump(2) + "\n");
+        std::cout << "wrote " << ps.name() << " (n = " << ps.n() << ", " << gen_param << " in [" << range[0] << ", "
+                  << range[1] << "]) to " << gen_out << "\n";
+        return 0;
+      }
+      spp::System sys = make(std::nullopt);
       spp::write_file_atomic(gen_out, spp::system_to_json(sys).dump(2) + "\n");
       std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ") to " << gen_out << "\n";
       return 0;

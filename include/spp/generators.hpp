@@ -1,8 +1,10 @@
 #pragma once
 // The paper's models as Systems (same file format as any other system once written with system_to_json).
 
+#include <functional>
 #include <vector>
 
+#include "spp/parametric.hpp"
 #include "spp/system.hpp"
 
 namespace spp {
@@ -24,5 +26,11 @@ System rod_with_slip(double a, double b);
 
 /// 2-dof system of paper §2.3 (eq. 2.5), obstacle on the second mass: g = g0 - x2.
 System two_dof(double m1, double m2, double k1, double k2, double g0);
+
+/// A generator with one argument left free: the family mu -> make(mu) as a ParametricSystem (masses and
+/// stiffnesses of chain and two_dof enter M and K linearly). The parts come from make(min) and make(max); the
+/// family must be affine (checked at the midpoint) with g0 and |w| fixed, else std::invalid_argument (e.g. the
+/// rod's slope a enters w non-linearly).
+ParametricSystem parametrize(const std::function<System(double)>& make, const Parameter& parameter);
 
 }  // namespace spp

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "spp/continuation.hpp"
+#include "spp/parametric.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"
 #include "spp/system.hpp"
@@ -19,6 +21,23 @@ namespace spp {
 System load_system(const std::string& path);
 System system_from_json(const nlohmann::json& j, const std::string& where, const std::string& base_dir = ".");
 nlohmann::json system_to_json(const System& system);
+
+/// A parametric system file: a system file with "parameter": {"name": "k2", "min": 1, "max": 10} in which each
+/// of M, K and w is either a value or {"constant": value, "k2": value} (affine in the parameter). Throws
+/// std::invalid_argument naming the file and the field. load_system refuses such a file with a pointer here.
+ParametricSystem load_parametric_system(const std::string& path);
+ParametricSystem parametric_system_from_json(const nlohmann::json& j, const std::string& where,
+                                             const std::string& base_dir = ".");
+bool declares_parameter(const nlohmann::json& j);
+nlohmann::json parametric_system_to_json(const ParametricSystem& system);
+
+/// Branches, their points and events, and the §6.1 zero-gap SPPs (gap closures when g0 = 0).
+nlohmann::json continuation_to_json(const ParametricSystem& system, const ContinuationResult& result);
+/// Human-readable: one row per branch event.
+std::string continuation_table(const ContinuationResult& result);
+/// Zero-gap SPPs (g0 = 0, paper §6.1) as a solve result: each solution with "parameter": {"name", "value"}.
+nlohmann::json zero_gap_to_json(const ParametricSystem& system, const ContinuationResult& result);
+std::string zero_gap_table(const ContinuationResult& result);
 
 /// Matrix Market "matrix array|coordinate real|integer general|symmetric".
 Eigen::MatrixXd read_matrix_market(const std::string& path);

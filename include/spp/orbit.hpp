@@ -24,6 +24,10 @@ struct Orbit {
 /// if the gap cannot be closed (u^T W^-1 p0 = 0 exactly) or g0 = 0.
 Orbit make_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a);
 
+/// The orbit when its scale is free (g0 = 0, paper §6.1: eq. 5.2 does not fix it): scaled to unit energy,
+/// its sign chosen so that the contact force at mid-contact is >= 0 (the only sign that can be admissible).
+Orbit make_unit_energy_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a);
+
 struct OrbitState {
   Eigen::VectorXd x, v;
   double gap = 0.0, force = 0.0;
@@ -46,6 +50,15 @@ struct Admissibility {
 /// Checks ineqs. (5.3) with a certified global minimum of each cosine sum; rel_tol scales the tolerance on
 /// the amplitude of each sum.
 Admissibility check_admissibility(const ModalForm& modal, const Orbit& orbit, double rel_tol = 1e-9);
+
+/// Signed admissibility margin, continuous in (t1, t2) and in the system: the smaller of
+///   min over the flight of  g / (s / t1)^3  and  min over the contact phase of  lambda / (s / t2),
+/// s the time to the phase's nearer end, each divided by its amplitude (|g0| + sum |gap terms|, sum |force
+/// terms|). The end zeros of g (order 3) and lambda (order 1) are divided out analytically, so the margin is
+/// >= 0 exactly when ineqs. (5.3) hold, ends included, and it crosses zero where admissibility is lost or
+/// gained (an interior minimum touching zero, or a leading end coefficient changing sign). Sampled and refined
+/// (not certified like check_admissibility): meant for locating boundaries along branches.
+double admissibility_margin(const ModalForm& modal, const Orbit& orbit);
 
 /// Relative periodicity error |X(T) - X(0)| / |X(0)| of (x0, v0) after one period, propagated with the
 /// physical first-order flows exp(t A) of M x'' + K x = 0 and M x'' + K~ x = 0 (paper's eqs. 3.9-3.13),

@@ -1,0 +1,92 @@
+#pragma once
+// SPP branches of a parametric system (issue "parametric systems", paper §6): every SPP of a window followed
+// as the parameter mu runs over its range.
+//   - A branch is a curve in (t1, t2, mu) on which eqs. (5.1a-b) hold. It is traced by pseudo-arclength
+//     continuation of two smooth scalar equations: s = 0, s the bordering scalar of [[N, b], [b^T, 0]] (zero
+//     exactly when N(t1, t2; mu) is singular, b the previous null vector carried over in physical
+//     coordinates so that modal sign and ordering changes do not matter), and z^T cos(W t1) a = 0 (the null
+//     vector a of the bordered solve). Variables scaled by the window and the range.
+//   - Seeds: solve() at `seeds` parameter values across the range; a seed already crossed by a traced branch
+//     is not traced again, and every crossing of a seed value by a branch is matched with solve()'s solutions
+//     there (a branch that solve() does not confirm, or a seed no branch reaches, is a warning).
+//   - Events, located by bisection along the branch: the window's or the range's edge (the branch stops), a
+//     fold in mu, admissibility lost or gained (admissibility_margin changes sign), and the gap closing at
+//     rest, u^T W^-1 p0 = 0: for g0 = 0 these are the SPPs of paper §6.1 (their scale is free: unit energy),
+//     for g0 != 0 the orbit's amplitude diverges there.
+// Branches that exist only between two seed values (born and dying at folds in between) are not seen: raise
+// `seeds` to narrow that gap.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "spp/parametric.hpp"
+
+namespace spp {
+
+struct ContinueOptions {
+  double t1_max = 0.0, t2_max = 0.0;  ///< window (required, > 0)
+  double t1_min = 0.0, t2_min = 0.0;  ///< 0: as solve() (a small fraction of the fastest quarter period)
+  int seeds = 9;                      ///< parameter values (min, max and evenly between) where solve() seeds branches
+  double max_step = 0.02;             ///< largest step, in arclength of (t1/t1_max, t2/t2_max, mu/(max - min))
+  double min_step = 1e-9;             ///< a branch whose step falls below this stops with a "stalled" event
+  double max_turn = 0.25;             ///< largest angle (rad) between successive tangents
+  int max_points = 5000;              ///< per branch and direction
+  double locate_tol = 1e-13;          ///< events located to this, in the same scaled arclength
+  int threads = 0;                    ///< for the seeding solves
+
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void validate() const;
+};
+
+enum class BranchEventKind {
+  LeavesWindow,         ///< t1 or t2 reaches the window's edge (the branch stops there)
+  RangeEnd,             ///< mu reaches min or max (the branch stops there)
+  Fold,                 ///< dmu/ds changes sign: two SPPs meet and disappear
+  AdmissibilityLost,    ///< admissibility_margin goes from >= 0 to < 0 (in the direction of the branch)
+  AdmissibilityGained,  ///< and back
+  GapClosure,           ///< u^T W^-1 p0 = 0: with g0 = 0, an SPP (paper §6.1); with g0 != 0, amplitude diverges
+  ClosedLoop,           ///< the branch came back to its first point: an isola, traced once
+  Stalled,              ///< the step fell below min_step or max_points was reached
+};
+const char* to_string(BranchEventKind kind);
+
+struct BranchPoint {
+  double mu = 0.0, t1 = 0.0, t2 = 0.0, period = 0.0;
+  bool admissible = false;  ///< margin >= 0
+  double margin = 0.0;      ///< admissibility_margin (NaN where the orbit is undefined)
+  double closure = 0.0;     ///< u^T W^-1 p0 / |W^-1 a|, continuous along the branch: zero where the gap closes at rest
+  double energy = 0.0;
+  Eigen::VectorXd x0, v0;  ///< state at contact onset (g0 = 0: scaled to unit energy)
+};
+
+struct BranchEvent {
+  BranchEventKind kind = BranchEventKind::Stalled;
+  BranchPoint at;
+  std::string detail;
+};
+
+struct Branch {
+  std::vector<BranchPoint> points;  ///< in the order traced
+  std::vector<BranchEvent> events;  ///< in the same order
+};
+
+struct ContinuationResult {
+  Parameter parameter;
+  double t1_min = 0.0, t1_max = 0.0, t2_min = 0.0, t2_max = 0.0;
+  std::vector<Branch> branches;
+  std::vector<std::string> warnings;
+  long seed_spps = 0;         ///< SPPs solve() found at the seed values
+  long seed_crossings = 0;    ///< branch crossings of a seed value, each matched with one of those SPPs
+  long corrector_solves = 0;  ///< Newton solves on the branch equations
+  double seconds = 0.0;
+  /// One line: branches, points, events by kind, warnings, time.
+  std::string brief_report() const;
+};
+
+ContinuationResult continue_branches(const ParametricSystem& system, const ContinueOptions& options);
+
+/// The GapClosure events of a result (one per SPP), sorted by mu: with g0 = 0, the SPPs of paper §6.1.
+std::vector<BranchPoint> gap_closures(const ContinuationResult& result);
+
+}  // namespace spp

@@ -1,0 +1,556 @@
+#include "spp/continuation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <list>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "spp/detail/invalid.hpp"
+#include "spp/modal.hpp"
+#include "spp/orbit.hpp"
+#include "spp/solver.hpp"
+
+namespace spp {
+
+void ContinueOptions::validate() const {
+  constexpr const char* where = "continue options";
+  if (!(t1_max > 0.0) || !std::isfinite(t1_max)) detail::invalid_option(where, "t1_max", t1_max, "> 0 and finite");
+  if (!(t2_max > 0.0) || !std::isfinite(t2_max)) detail::invalid_option(where, "t2_max", t2_max, "> 0 and finite");
+  if (!(t1_min >= 0.0 && t1_min < t1_max)) detail::invalid_option(where, "t1_min", t1_min, "in [0, t1_max)");
+  if (!(t2_min >= 0.0 && t2_min < t2_max)) detail::invalid_option(where, "t2_min", t2_min, "in [0, t2_max)");
+  if (seeds < 2 || seeds > 100000) detail::invalid_option(where, "seeds", seeds, "in [2, 100000]");
+  if (!(max_step > 0.0 && max_step <= 0.5)) detail::invalid_option(where, "max_step", max_step, "in (0, 0.5]");
+  if (!(min_step > 0.0 && min_step < max_step)) detail::invalid_option(where, "min_step", min_step, "in (0, max_step)");
+  if (!(max_turn > 0.0 && max_turn < 1.5)) detail::invalid_option(where, "max_turn", max_turn, "in (0, 1.5)");
+  if (max_points < 10) detail::invalid_option(where, "max_points", max_points, ">= 10");
+  if (!(locate_tol > 0.0 && locate_tol < 1e-3)) detail::invalid_option(where, "locate_tol", locate_tol, "in (0, 1e-3)");
+  if (threads < 0) detail::invalid_option(where, "threads", threads, ">= 0");
+}
+
+const char* to_string(BranchEventKind k) {
+  switch (k) {
+    case BranchEventKind::LeavesWindow: return "leaves_window";
+    case BranchEventKind::RangeEnd: return "range_end";
+    case BranchEventKind::Fold: return "fold";
+    case BranchEventKind::AdmissibilityLost: return "admissibility_lost";
+    case BranchEventKind::AdmissibilityGained: return "admissibility_gained";
+    case BranchEventKind::GapClosure: return "gap_closure";
+    case BranchEventKind::ClosedLoop: return "closed_loop";
+    case BranchEventKind::Stalled: return "stalled";
+  }
+  return "?";
+}
+
+std::string ContinuationResult::brief_report() const {
+  long points = 0;
+  std::map<std::string, int> kinds;
+  for (const Branch& b : branches) {
+    points += static_cast<long>(b.points.size());
+    for (const BranchEvent& e : b.events) ++kinds[to_string(e.kind)];
+  }
+  std::ostringstream os;
+  os << "continue: " << branches.size() << " branches, " << points << " points over " << parameter.name << " in ["
+     << parameter.min << ", " << parameter.max << "]; events:";
+  if (kinds.empty()) os << " none";
+  for (const auto& [k, c] : kinds) os << " " << c << " " << k;
+  os << "; " << seed_spps << " seed SPPs, " << seed_crossings << " seed crossings; " << warnings.size() << " warnings; "
+     << corrector_solves << " corrector solves, " << seconds << " s";
+  return os.str();
+}
+
+std::vector<BranchPoint> gap_closures(const ContinuationResult& r) {
+  std::vector<BranchPoint> out;
+  for (const Branch& b : r.branches)
+    for (const BranchEvent& e : b.events)
+      if (e.kind == BranchEventKind::GapClosure) out.push_back(e.at);
+  std::sort(out.begin(), out.end(), [](const BranchPoint& a, const BranchPoint& b) { return a.mu < b.mu; });
+  return out;
+}
+
+namespace {
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+using V3 = Eigen::Vector3d;
+
+struct Eval {
+  Eigen::Vector2d F;
+  Vec a;  // null vector of N (modal), oriented by the border: b^T a = 1
+};
+
+// One traced point: scaled position, tangent, the physical mid-flight shape that orients the null vector.
+struct State {
+  V3 y, tau;
+  Vec xref;
+  BranchPoint point;
+};
+
+class Tracer {
+ public:
+  Tracer(const ParametricSystem& ps, const ContinueOptions& o, double t1_min, double t2_min)
+      : ps_(ps), o_(o), t1_min_(t1_min), t2_min_(t2_min) {
+    L_ << o.t1_max, o.t2_max, ps.parameter().max - ps.parameter().min;
+  }
+
+  long corrector_solves = 0;
+
+  double t1(const V3& y) const { return y(0) * L_(0); }
+  double t2(const V3& y) const { return y(1) * L_(1); }
+  double mu(const V3& y) const { return ps_.parameter().min + y(2) * L_(2); }
+  V3 scaled(double t1, double t2, double mu) const {
+    return V3(t1 / L_(0), t2 / L_(1), (mu - ps_.parameter().min) / L_(2));
+  }
+
+  struct Cached {
+    System system;
+    ModalForm modal;
+  };
+  const Cached& at(double mu) {
+    for (auto it = cache_.begin(); it != cache_.end(); ++it)
+      if (it->first == mu) {
+        cache_.splice(cache_.begin(), cache_, it);
+        return *cache_.front().second;
+      }
+    System s = ps_.at(mu);
+    ModalForm md(s);
+    cache_.emplace_front(mu, std::make_unique<Cached>(Cached{std::move(s), std::move(md)}));
+    if (cache_.size() > 6) cache_.pop_back();
+    return *cache_.front().second;
+  }
+
+  Eval eval(const V3& y, const Vec& xref) {
+    const Cached& c = at(mu(y));
+    const ModalForm& md = c.modal;
+    const int m = md.m();
+    Vec b = md.omega().asDiagonal() * (md.Phi().transpose() * (c.system.M() * xref));
+    b /= b.norm();
+    Mat B = Mat::Zero(m + 1, m + 1);
+    B.topLeftCorner(m, m) = md.N(t1(y), t2(y));
+    B.topRightCorner(m, 1) = b;
+    B.bottomLeftCorner(1, m) = b.transpose();
+    Vec rhs = Vec::Zero(m + 1);
+    rhs(m) = 1.0;
+    const Vec sol = B.partialPivLu().solve(rhs);
+    Eval e;
+    e.a = sol.head(m);
+    e.F(0) = sol(m);
+    e.F(1) = md.z().dot(((md.omega().array() * t1(y)).cos() * e.a.array()).matrix()) / md.z().norm();
+    return e;
+  }
+
+  Eigen::Matrix<double, 2, 3> jacobian(const V3& y, const Vec& xref) {
+    Eigen::Matrix<double, 2, 3> J;
+    for (int k = 0; k < 3; ++k) {
+      const double h = 1e-6 * std::max(1.0, std::abs(y(k)));
+      V3 yp = y, ym = y;
+      yp(k) += h;
+      ym(k) -= h;
+      J.col(k) = (eval(yp, xref).F - eval(ym, xref).F) / (2.0 * h);
+    }
+    return J;
+  }
+
+  V3 tangent(const V3& y, const Vec& xref, const V3& orient) {
+    const auto J = jacobian(y, xref);
+    V3 t = V3(J.row(0).transpose()).cross(V3(J.row(1).transpose()));
+    t.normalize();
+    return t.dot(orient) < 0 ? V3(-t) : t;
+  }
+
+  // Newton on F(y) = 0, tau . (y - ypred) = 0 from ypred. Returns false if it does not converge.
+  bool correct(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
+    ++corrector_solves;
+    y = ypred;
+    for (its = 1; its <= 12; ++its) {
+      e = eval(y, xref);
+      Eigen::Matrix3d A;
+      A.topRows(2) = jacobian(y, xref);
+      A.row(2) = tau.transpose();
+      V3 r;
+      r << e.F, tau.dot(y - ypred);
+      const V3 dy = A.fullPivLu().solve(-r);
+      if (!dy.allFinite() || dy.norm() > 0.2) return false;
+      y += dy;
+      if (dy.norm() <= 1e-14) break;
+    }
+    if (its > 12) return false;
+    e = eval(y, xref);
+    return y.allFinite();
+  }
+
+  BranchPoint point(const V3& y, const Eval& e) {
+    const Cached& c = at(mu(y));
+    const ModalForm& md = c.modal;
+    BranchPoint p;
+    p.mu = mu(y);
+    p.t1 = t1(y);
+    p.t2 = t2(y);
+    p.period = 2.0 * (p.t1 + p.t2);
+    const Eigen::ArrayXd& w = md.omega().array();
+    const Vec q0 = ((w * p.t1).cos() * e.a.array() / w).matrix();
+    p.closure = md.u().dot(q0) / (e.a.array() / w).matrix().norm();
+    p.margin = std::numeric_limits<double>::quiet_NaN();
+    try {
+      const bool free_scale = md.g0() == 0.0;
+      const Orbit o = free_scale ? make_unit_energy_orbit(md, p.t1, p.t2, e.a) : make_orbit(md, p.t1, p.t2, e.a);
+      p.energy = o.energy;
+      p.x0 = o.x0;
+      p.v0 = o.v0;
+      // With g0 = 0 the orbit closes the gap only where closure = 0: the margin means nothing elsewhere.
+      if (!free_scale) p.margin = admissibility_margin(md, o);
+    } catch (const std::invalid_argument&) {
+    }
+    p.admissible = p.margin >= 0.0;
+    return p;
+  }
+
+  // Zero-gap SPP at a located closure: its margin with the unit-energy orbit.
+  void finish_closure(BranchPoint& p, const V3& y, const Eval& e) {
+    const Cached& c = at(mu(y));
+    const ModalForm& md = c.modal;
+    const Orbit o = make_unit_energy_orbit(md, p.t1, p.t2, e.a);
+    p.margin = md.g0() == 0.0 ? admissibility_margin(md, o) : std::numeric_limits<double>::quiet_NaN();
+    p.admissible = p.margin >= 0.0;
+    p.energy = o.energy;
+    // The closure is located to rounding: put x0 exactly on the obstacle (g0 = 0: w^T x0 = 0), a correction of
+    // the order of the location tolerance, so that a simulation can start from it.
+    p.x0 = md.g0() == 0.0 ? Vec(o.x0 - c.system.w() * c.system.w().dot(o.x0)) : o.x0;
+    p.v0 = o.v0;
+  }
+
+  Vec mid_flight_shape(const V3& y, const Eval& e) {
+    const ModalForm& md = at(mu(y)).modal;
+    Vec x = md.Phi() * (e.a.array() / md.omega().array()).matrix();
+    return x / x.norm();
+  }
+
+  const V3& scale() const { return L_; }
+  double t1_min() const { return t1_min_; }
+  double t2_min() const { return t2_min_; }
+
+ private:
+  const ParametricSystem& ps_;
+  const ContinueOptions& o_;
+  double t1_min_, t2_min_;
+  V3 L_;
+  std::list<std::pair<double, std::unique_ptr<Cached>>> cache_;
+};
+
+struct SeedCrossing {
+  int seed = 0;
+  double t1 = 0.0, t2 = 0.0;
+};
+
+// Follows one direction of a branch from a converged state until it stops.
+class BranchWalker {
+ public:
+  BranchWalker(Tracer& tr, const ContinueOptions& o, const std::vector<double>& seed_mu, bool free_scale)
+      : tr_(tr), o_(o), seed_mu_(seed_mu), free_scale_(free_scale) {}
+
+  std::vector<SeedCrossing> crossings;
+
+  // points: traced points after the start; events in order.
+  // Returns true if the branch closed on itself (then the other direction need not be walked).
+  bool walk(State s, std::vector<BranchPoint>& points, std::vector<BranchEvent>& events) {
+    const V3 y_start = s.y, tau_start = s.tau;
+    double travelled = 0.0;
+    double h = 0.25 * o_.max_step;
+    int creeping = 0;  // consecutive steps far below max_step
+    for (int count = 0;; ++count) {
+      if (count >= o_.max_points) {
+        events.push_back({BranchEventKind::Stalled, s.point, "max_points reached"});
+        return false;
+      }
+      V3 y;
+      Eval e;
+      int its = 0;
+      bool ok = tr_.correct(s.y + h * s.tau, s.tau, s.xref, y, e, its);
+      V3 tau;
+      if (ok) {
+        tau = tr_.tangent(y, s.xref, s.tau);
+        ok = tau.allFinite() && tau.dot(s.tau) >= std::cos(o_.max_turn) && (y - s.y).norm() <= 2.0 * h;
+      }
+      if (!ok) {
+        h *= 0.5;
+        if (h < o_.min_step) {
+          events.push_back({BranchEventKind::Stalled, s.point, "step below min_step"});
+          return false;
+        }
+        continue;
+      }
+      State next{y, tau, tr_.mid_flight_shape(y, e), tr_.point(y, e)};
+      if (handle_step(s, next, h, points, events)) return false;
+      travelled += (next.y - s.y).norm();
+      // Back at the start, in the same direction: a closed branch.
+      if (travelled > 4.0 * h && (next.y - y_start).norm() <= std::max(h, (next.y - s.y).norm()) &&
+          next.tau.dot(tau_start) > 0.9 && (y_start - s.y).dot(s.tau) >= 0 && (y_start - next.y).dot(next.tau) <= 0) {
+        events.push_back({BranchEventKind::ClosedLoop, next.point, "back at the first point: a closed branch"});
+        return true;
+      }
+      points.push_back(next.point);
+      s = std::move(next);
+      if (its <= 3) h = std::min(1.5 * h, o_.max_step);
+      creeping = h < 1e-3 * o_.max_step ? creeping + 1 : 0;
+      if (creeping >= 200) {
+        events.push_back({BranchEventKind::Stalled, s.point,
+                          "200 steps below 1e-3 max_step: a degenerate point (e.g. a continuum of SPPs at one "
+                          "parameter value, or the t1 -> 0 axis)"});
+        return false;
+      }
+    }
+  }
+
+ private:
+  // Point on the branch at predictor distance hp from s (same tangent and orientation as the step).
+  struct Along {
+    V3 y;
+    Eval e;
+    BranchPoint p;
+  };
+  Along along(const State& s, double hp) {
+    Along a;
+    int its = 0;
+    if (!tr_.correct(s.y + hp * s.tau, s.tau, s.xref, a.y, a.e, its))
+      a.y = s.y + hp * s.tau, a.e = tr_.eval(a.y, s.xref);
+    a.p = tr_.point(a.y, a.e);
+    return a;
+  }
+
+  // Bisection on hp in [0, h] for a sign change of f (f(0) and f(h) of opposite signs).
+  Along locate(const State& s, double h, const std::function<double(const Along&)>& f, double f0) {
+    double lo = 0.0, hi = h;
+    Along best = along(s, h);
+    while (hi - lo > o_.locate_tol) {
+      const double mid = 0.5 * (lo + hi);
+      Along a = along(s, mid);
+      const double v = f(a);
+      if (!std::isfinite(v)) break;
+      if ((v < 0) == (f0 < 0)) {
+        lo = mid;
+      } else {
+        hi = mid;
+        best = std::move(a);
+      }
+    }
+    return best;
+  }
+
+  // Events between s and next; returns true when the branch stops.
+  bool handle_step(const State& s, State& next, double h, std::vector<BranchPoint>& points,
+                   std::vector<BranchEvent>& events) {
+    const V3 L = tr_.scale();
+    // Window and range: signed distances inside (>= 0 inside).
+    const double lo1 = tr_.t1_min() / L(0), lo2 = tr_.t2_min() / L(1);
+    const std::array<std::function<double(const V3&)>, 6> edges = {
+        [](const V3& y) { return 1.0 - y(0); }, [lo1](const V3& y) { return y(0) - lo1; },
+        [](const V3& y) { return 1.0 - y(1); }, [lo2](const V3& y) { return y(1) - lo2; },
+        [](const V3& y) { return 1.0 - y(2); }, [](const V3& y) { return y(2); }};
+    const std::array<const char*, 6> edge_names = {"t1 = t1_max", "t1 = t1_min", "t2 = t2_max",
+                                                   "t2 = t2_min", "mu = max",    "mu = min"};
+    double stop_h = h;
+    int stop_edge = -1;
+    Along stop;
+    for (int k = 0; k < 6; ++k) {
+      if (edges[k](next.y) >= 0.0) continue;
+      const double f0 = edges[k](s.y);
+      Along a = locate(
+          s, h, [&](const Along& x) { return edges[k](x.y); }, f0);
+      const double hp = (a.y - s.y).norm();
+      if (stop_edge < 0 || hp < stop_h) stop_h = hp, stop_edge = k, stop = std::move(a);
+    }
+    const BranchPoint end = stop_edge >= 0 ? stop.p : next.point;
+    const V3 end_y = stop_edge >= 0 ? stop.y : next.y;
+    const double end_h = stop_edge >= 0 ? std::min(h, stop_h * 1.0000001) : h;
+
+    struct Found {
+      double hp;
+      BranchEvent e;
+    };
+    std::vector<Found> found;
+    // Seed crossings (for de-duplication of seeds and the cross-check with solve()).
+    for (size_t k = 0; k < seed_mu_.size(); ++k) {
+      const double a = s.point.mu - seed_mu_[k], b = end.mu - seed_mu_[k];
+      if (a == 0.0 || (a < 0) == (b < 0)) continue;
+      Along x = locate(
+          s, end_h, [&](const Along& q) { return q.p.mu - seed_mu_[k]; }, a);
+      crossings.push_back({static_cast<int>(k), x.p.t1, x.p.t2});
+    }
+    // Fold: the mu component of the tangent changes sign.
+    const V3 end_tau = stop_edge >= 0 ? tr_.tangent(end_y, s.xref, s.tau) : next.tau;
+    if ((s.tau(2) < 0) != (end_tau(2) < 0)) {
+      Along x = locate(
+          s, end_h, [&](const Along& q) { return tr_.tangent(q.y, s.xref, s.tau)(2); }, s.tau(2));
+      found.push_back({(x.y - s.y).norm(), {BranchEventKind::Fold, x.p, "d mu / ds changes sign"}});
+    }
+    const bool closes = (s.point.closure < 0) != (end.closure < 0);
+    if (closes) {
+      Along x = locate(
+          s, end_h, [](const Along& q) { return q.p.closure; }, s.point.closure);
+      tr_.finish_closure(x.p, x.y, x.e);
+      std::ostringstream os;
+      if (free_scale_)
+        os << "g0 = 0: an SPP (paper §6.1), scaled to unit energy, "
+           << (x.p.admissible ? "admissible" : "not admissible") << " (margin " << x.p.margin << ")";
+      else
+        os << "u^T W^-1 p0 = 0: the orbit's amplitude diverges (the gap cannot close at g0 != 0)";
+      found.push_back({(x.y - s.y).norm(), {BranchEventKind::GapClosure, x.p, os.str()}});
+    }
+    if (!free_scale_ && !closes && std::isfinite(s.point.margin) && std::isfinite(end.margin) &&
+        (s.point.margin < 0) != (end.margin < 0)) {
+      Along x = locate(
+          s, end_h, [](const Along& q) { return q.p.margin; }, s.point.margin);
+      const bool lost = s.point.margin >= 0;
+      found.push_back({(x.y - s.y).norm(),
+                       {lost ? BranchEventKind::AdmissibilityLost : BranchEventKind::AdmissibilityGained, x.p,
+                        "admissibility_margin crosses zero"}});
+    }
+    std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.hp < b.hp; });
+    for (Found& f : found) events.push_back(std::move(f.e));
+    if (stop_edge >= 0) {
+      points.push_back(end);
+      const bool range = stop_edge >= 4;
+      events.push_back({range ? BranchEventKind::RangeEnd : BranchEventKind::LeavesWindow, end,
+                        std::string("reaches ") + edge_names[stop_edge]});
+      return true;
+    }
+    return false;
+  }
+
+  Tracer& tr_;
+  const ContinueOptions& o_;
+  const std::vector<double>& seed_mu_;
+  bool free_scale_;
+};
+
+BranchEvent reversed(BranchEvent e) {
+  if (e.kind == BranchEventKind::AdmissibilityLost)
+    e.kind = BranchEventKind::AdmissibilityGained;
+  else if (e.kind == BranchEventKind::AdmissibilityGained)
+    e.kind = BranchEventKind::AdmissibilityLost;
+  return e;
+}
+
+}  // namespace
+
+ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueOptions& options) {
+  options.validate();
+  const auto t_start = std::chrono::steady_clock::now();
+  const Parameter& par = ps.parameter();
+  ContinuationResult res;
+  res.parameter = par;
+  res.t1_max = options.t1_max;
+  res.t2_max = options.t2_max;
+  const bool free_scale = ps.g0() == 0.0;
+
+  // One window for every seed: the lower ends as solve() picks them, over both ends of the range.
+  double t1_min = options.t1_min, t2_min = options.t2_min;
+  if (t1_min == 0.0 || t2_min == 0.0) {
+    double w_max = 0.0, d_max = 0.0;
+    for (double mu : {par.min, par.max}) {
+      const ModalForm md(ps.at(mu));
+      w_max = std::max(w_max, md.omega().maxCoeff());
+      d_max = std::max(d_max, md.d().maxCoeff());
+    }
+    const double pi = std::numbers::pi;
+    if (t1_min == 0.0) t1_min = std::min(1e-4 * pi / (2.0 * w_max), 1e-3 * options.t1_max);
+    if (t2_min == 0.0)
+      t2_min = std::min(d_max > 0 ? 1e-4 * pi / (2.0 * d_max) : 1e-4 * options.t2_max, 1e-3 * options.t2_max);
+  }
+  res.t1_min = t1_min;
+  res.t2_min = t2_min;
+
+  std::vector<double> seed_mu(options.seeds);
+  for (int k = 0; k < options.seeds; ++k)
+    seed_mu[k] = k + 1 == options.seeds ? par.max : par.min + (par.max - par.min) * k / (options.seeds - 1);
+
+  // solve() at each seed (g0 = 0: the equations (5.1) do not involve g0; solve a copy with g0 = 1 for them).
+  SolveOptions so;
+  so.t1_min = t1_min;
+  so.t2_min = t2_min;
+  so.t1_max = options.t1_max;
+  so.t2_max = options.t2_max;
+  so.compute_return_error = false;
+  so.threads = options.threads;
+  std::vector<std::vector<Solution>> seed_sols(options.seeds);
+  for (int k = 0; k < options.seeds; ++k) {
+    System s = ps.at(seed_mu[k]);
+    if (free_scale) s = System(s.M(), s.K(), s.w(), 1.0, s.name());
+    SolveResult r = solve(s, so);
+    if (r.status != SolveStatus::Success)
+      res.warnings.push_back("solve at " + par.name + " = " + std::to_string(seed_mu[k]) + ": " + r.brief_report());
+    res.seed_spps += static_cast<long>(r.solutions.size());
+    seed_sols[k] = std::move(r.solutions);
+  }
+
+  Tracer tr(ps, options, t1_min, t2_min);
+  BranchWalker walker(tr, options, seed_mu, free_scale);
+  const double match_tol = 1e-7;
+  auto matched = [&](int k, double t1, double t2) {
+    for (const SeedCrossing& c : walker.crossings)
+      if (c.seed == k && std::abs(c.t1 - t1) <= match_tol * options.t1_max &&
+          std::abs(c.t2 - t2) <= match_tol * options.t2_max)
+        return true;
+    return false;
+  };
+
+  for (int k = 0; k < options.seeds; ++k) {
+    for (const Solution& sol : seed_sols[k]) {
+      if (matched(k, sol.t1, sol.t2)) continue;
+      const V3 y0 = tr.scaled(sol.t1, sol.t2, seed_mu[k]);
+      const ModalForm& md = tr.at(seed_mu[k]).modal;
+      Vec xref = md.Phi() * (sol.orbit.a.array() / md.omega().array()).matrix();
+      xref /= xref.norm();
+      const Eval e0 = tr.eval(y0, xref);
+      const V3 tau0 = tr.tangent(y0, xref, V3(0.0, 0.0, 1.0));
+      State start{y0, tau0, xref, tr.point(y0, e0)};
+      walker.crossings.push_back({k, sol.t1, sol.t2});
+
+      Branch br;
+      br.points.push_back(start.point);
+      std::vector<BranchPoint> fwd_pts;
+      std::vector<BranchEvent> fwd_ev;
+      const bool closed = walker.walk(start, fwd_pts, fwd_ev);
+      if (!closed) {
+        std::vector<BranchPoint> back_pts;
+        std::vector<BranchEvent> back_ev;
+        State back = start;
+        back.tau = -start.tau;
+        walker.walk(back, back_pts, back_ev);
+        br.points.clear();
+        for (auto it = back_pts.rbegin(); it != back_pts.rend(); ++it) br.points.push_back(*it);
+        for (auto it = back_ev.rbegin(); it != back_ev.rend(); ++it) br.events.push_back(reversed(*it));
+        br.points.push_back(start.point);
+      }
+      br.points.insert(br.points.end(), fwd_pts.begin(), fwd_pts.end());
+      br.events.insert(br.events.end(), fwd_ev.begin(), fwd_ev.end());
+      res.branches.push_back(std::move(br));
+    }
+  }
+
+  // Cross-check: every crossing of a seed value is one of solve()'s SPPs there.
+  for (const SeedCrossing& c : walker.crossings) {
+    const auto& sols = seed_sols[c.seed];
+    const bool found = std::any_of(sols.begin(), sols.end(), [&](const Solution& s) {
+      return std::abs(s.t1 - c.t1) <= match_tol * options.t1_max && std::abs(s.t2 - c.t2) <= match_tol * options.t2_max;
+    });
+    if (found) {
+      ++res.seed_crossings;
+    } else {
+      std::ostringstream os;
+      os << "a branch crosses " << par.name << " = " << seed_mu[c.seed] << " at (t1, t2) = (" << c.t1 << ", " << c.t2
+         << "), which solve() there does not list";
+      res.warnings.push_back(os.str());
+    }
+  }
+  res.corrector_solves = tr.corrector_solves;
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  return res;
+}
+
+}  // namespace spp

@@ -1,0 +1,135 @@
+// continue_branches(): branches agree with independent solve() runs, events are located where they happen,
+// and the zero-gap SPPs of paper §6.1 come out where the two flight frequencies are in an odd ratio.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "spp/continuation.hpp"
+#include "spp/modal.hpp"
+#include "spp/orbit.hpp"
+#include "spp/simulator.hpp"
+#include "spp/solver.hpp"
+
+using namespace spp;
+
+namespace {
+// Paper §6.1, eq. (6.1): M = I, K = [[1 + k2, -k2], [-k2, k2]], obstacle on the second mass, g = g0 - x2.
+ParametricSystem paper_61(double g0, double lo, double hi) {
+  Eigen::MatrixXd K0(2, 2), K1(2, 2);
+  K0 << 1, 0, 0, 0;
+  K1 << 1, -1, -1, 1;
+  return ParametricSystem(Eigen::MatrixXd::Identity(2, 2), {}, K0, K1, Eigen::Vector2d(0, -1), {}, g0, {"k2", lo, hi},
+                          "paper 6.1");
+}
+}  // namespace
+
+// The two roots of ω2/ω1 = r (r odd) for eq. (6.1): ω^2 = ((1 + 2k) ± sqrt(1 + 4k^2)) / 2, so with
+// q = (r^2 - 1) / (r^2 + 1): (1 + 4k^2) = q^2 (1 + 2k)^2, the larger root.
+double k2_for_ratio(double r) {
+  const double q = (r * r - 1) / (r * r + 1), a = 4 - 4 * q * q, b = -4 * q * q, c = 1 - q * q;
+  return (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+}
+
+TEST(Continuation, ZeroGapSppsOfSection61) {
+  const ParametricSystem ps = paper_61(0.0, 1.0, 10.0);
+  ContinueOptions o;
+  o.t1_max = 3.0;
+  o.t2_max = 1.0;
+  const ContinuationResult r = continue_branches(ps, o);
+  EXPECT_TRUE(r.warnings.empty()) << r.brief_report();
+  const std::vector<BranchPoint> spps = gap_closures(r);
+  ASSERT_EQ(spps.size(), 2u) << r.brief_report();
+  const double ratios[] = {3.0, 5.0};
+  for (int k = 0; k < 2; ++k) {
+    const BranchPoint& p = spps[k];
+    EXPECT_NEAR(p.mu, k2_for_ratio(ratios[k]), 1e-9);  // paper: k2 ≈ 5.716 for the ratio 5
+    const ModalForm md(ps.at(p.mu));
+    EXPECT_NEAR(md.omega()(1) / md.omega()(0), ratios[k], 1e-9);
+    EXPECT_NEAR(p.t1, std::numbers::pi / (2 * md.omega()(0)), 1e-9);        // flight: half a slow period
+    EXPECT_NEAR(p.t2, std::numbers::pi / (2 * std::sqrt(1 + p.mu)), 1e-9);  // contact: mass 1 half a period
+    EXPECT_LT(p.x0.norm(), 1e-8);  // contact starts at the rest position, all velocity
+    EXPECT_TRUE(p.admissible) << p.margin;
+    EXPECT_NEAR(p.energy, 1.0, 1e-12);
+    // Independent check: the event-driven simulator started there comes back after one period.
+    SimulateOptions so;
+    so.duration = p.period;
+    const SimulationResult sim = simulate(ps.at(p.mu), p.x0, p.v0, so);
+    ASSERT_FALSE(sim.samples.empty());
+    const Sample& last = sim.samples.back();
+    const double err = std::hypot((last.x - p.x0).norm(), (last.v - p.v0).norm()) / p.v0.norm();
+    EXPECT_LT(err, 1e-8) << sim.brief_report();
+    EXPECT_EQ(sim.impacts, 0) << sim.brief_report();
+  }
+  EXPECT_NEAR(spps[1].mu, 5.716, 5e-4);
+}
+
+TEST(Continuation, BranchesAgreeWithIndependentSolves) {
+  const ParametricSystem ps = paper_61(1.0, 1.0, 10.0);
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  const ContinuationResult r = continue_branches(ps, o);
+  ASSERT_GT(r.branches.size(), 10u);
+  EXPECT_EQ(r.seed_crossings, r.seed_spps);
+  int checked = 0;
+  for (double mu : {2.3, 4.9, 7.7}) {  // not seed values
+    SolveOptions so;
+    so.t1_max = o.t1_max;
+    so.t2_max = o.t2_max;
+    const System sys = ps.at(mu);
+    const SolveResult sr = solve(sys, so);
+    for (const Solution& sol : sr.solutions) {
+      // The branch segment that crosses mu, interpolated, then polished at fixed mu: the same SPP.
+      double best = 1e300;
+      Eigen::Vector2d guess;
+      for (const Branch& b : r.branches)
+        for (size_t i = 1; i < b.points.size(); ++i) {
+          const BranchPoint &p = b.points[i - 1], &q = b.points[i];
+          if ((p.mu - mu) * (q.mu - mu) > 0 || p.mu == q.mu) continue;
+          const double s = (mu - p.mu) / (q.mu - p.mu);
+          const Eigen::Vector2d x(p.t1 + s * (q.t1 - p.t1), p.t2 + s * (q.t2 - p.t2));
+          const double d = std::hypot(x(0) - sol.t1, x(1) - sol.t2);
+          if (d < best) best = d, guess = x;
+        }
+      ASSERT_LT(best, 1e-2) << "mu " << mu << ": SPP (" << sol.t1 << ", " << sol.t2 << ") on no branch";
+      const Solution again = solution_at(sys, guess(0), guess(1));
+      EXPECT_NEAR(again.t1, sol.t1, 1e-9);
+      EXPECT_NEAR(again.t2, sol.t2, 1e-9);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(Continuation, AdmissibilityBoundariesAreLocated) {
+  // The §5.2 chain with the last spring's stiffness k5 as the parameter.
+  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
+  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
+  K1(3, 3) = K1(4, 4) = 1;
+  K1(3, 4) = K1(4, 3) = -1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.6, 0.9});
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  const ContinuationResult r = continue_branches(ps, o);
+  int located = 0;
+  for (const Branch& b : r.branches)
+    for (const BranchEvent& e : b.events) {
+      if (e.kind != BranchEventKind::AdmissibilityLost && e.kind != BranchEventKind::AdmissibilityGained) continue;
+      if (e.at.t2 < 1e-2) continue;  // next to the t2 -> 0 axis
+      EXPECT_LT(std::abs(e.at.margin), 1e-8) << e.at.mu;
+      // Independent Newton at fixed parameter 1e-8 on each side: the margin changes sign across the event.
+      auto margin_at = [&](double mu) {
+        const System sys = ps.at(mu);
+        const Solution s = solution_at(sys, e.at.t1, e.at.t2);
+        return admissibility_margin(ModalForm(sys), s.orbit);
+      };
+      const double below = margin_at(e.at.mu - 1e-8), above = margin_at(e.at.mu + 1e-8);
+      EXPECT_LT(below * above, 0.0) << "k5 = " << e.at.mu << ": " << below << " " << above;
+      ++located;
+    }
+  EXPECT_GE(located, 2) << r.brief_report();
+}

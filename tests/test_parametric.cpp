@@ -1,0 +1,43 @@
+// ParametricSystem: the affine family, validation at the ends of the range, errors naming the parameter.
+#include <gtest/gtest.h>
+
+#include "spp/parametric.hpp"
+
+using namespace spp;
+
+TEST(Parametric, AffineInTheParameter) {
+  Eigen::MatrixXd K0(2, 2), K1(2, 2);
+  K0 << 1, 0, 0, 0;
+  K1 << 1, -1, -1, 1;
+  const ParametricSystem ps(Eigen::MatrixXd::Identity(2, 2), {}, K0, K1, Eigen::Vector2d(0, -2), {}, 0.0,
+                            {"k2", 1.0, 10.0});
+  const System s = ps.at(5.716);
+  EXPECT_DOUBLE_EQ(s.K()(0, 0), 6.716);
+  EXPECT_DOUBLE_EQ(s.K()(0, 1), -5.716);
+  EXPECT_DOUBLE_EQ(s.K()(1, 1), 5.716);
+  EXPECT_TRUE(s.M().isIdentity());
+  EXPECT_DOUBLE_EQ(s.w()(1), -1.0);  // normalised
+  EXPECT_EQ(ps.parameter().name, "k2");
+}
+
+TEST(Parametric, RefusesWhatIsNotAFamilyOfSystems) {
+  Eigen::MatrixXd K0(2, 2), K1(2, 2);
+  K0 << 1, 0, 0, 0;
+  K1 << 1, -1, -1, 1;
+  auto make = [&](double lo, double hi, Eigen::MatrixXd k1) {
+    return ParametricSystem(Eigen::MatrixXd::Identity(2, 2), {}, K0, std::move(k1), Eigen::Vector2d(0, -1), {}, 1.0,
+                            {"k2", lo, hi});
+  };
+  auto message = [&](double lo, double hi, Eigen::MatrixXd k1) {
+    try {
+      make(lo, hi, std::move(k1));
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(0.0, 10.0, K1).find("at k2 = 0"), std::string::npos) << message(0.0, 10.0, K1);  // K singular
+  EXPECT_NE(message(5.0, 1.0, K1).find("min < max"), std::string::npos);
+  EXPECT_NE(message(1.0, 2.0, Eigen::MatrixXd::Zero(2, 2)).find("do not depend"), std::string::npos);
+  EXPECT_NE(message(1.0, 2.0, Eigen::MatrixXd::Zero(3, 3)).find("3 x 3"), std::string::npos);
+}
