@@ -267,20 +267,26 @@ class Search {
       const double remaining = s_out - cur.s;
       const bool last = h >= remaining;
       const double step = last ? remaining : h;
+      // The turn of b is measured over both halves of the step: comparing only the ends would accept a b that
+      // swings away and comes back (near an avoided crossing of two eigenvalues), losing the orientation of g
+      // or a pair of roots in between.
+      const TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
       TracePoint p;
       if (last) {
-        p = point(out, &cur.b);
+        p = point(out, &mid.b);
       } else {
-        p = point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &cur.b);
+        p = point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &mid.b);
       }
-      const double turn = std::acos(std::min(1.0, std::abs(cur.b.dot(p.b))));
+      auto turn_of = [](const Vec& x, const Vec& y) { return std::acos(std::min(1.0, std::abs(x.dot(y)))); };
+      const double turn = turn_of(cur.b, mid.b) + turn_of(mid.b, p.b);
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
       if (turn > opt_.max_turn && step > hmin_) {
         h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));  // h < step <= remaining: not last
         continue;
       }
-      examine(r, k, cur, p, 0);
+      examine(r, k, cur, mid, 0);
+      examine(r, k, mid, p, 0);
       if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
       if (last) return p;
       cur = p;

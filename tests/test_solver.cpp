@@ -254,3 +254,20 @@ TEST(Solver, WindowEdgeJustPastAPoleLineLeavesNoSliver) {
   ASSERT_EQ(a.solutions.size(), b.solutions.size());
   for (size_t i = 0; i < a.solutions.size(); ++i) EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-12);
 }
+
+TEST(Solver, NullVectorThatSwingsAwayAndBackWithinAStepKeepsItsRoots) {
+  // Paper §6.1's 2-dof at k2 = 5.5, g0 = 1: on one curve piece (t1 between the flight poles 4.16 and 5.09) the
+  // null vector turns by ~80 degrees and back, so the ends of a single step differ by 0.18 rad only; the trace
+  // used to take that step and lose the SPP at (4.8788, 0.9535) and its pair. Found again by continuation.
+  const System s = two_dof(1.0, 1.0, 1.0, 5.5, 1.0);
+  SolveOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 2.0;
+  const SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.solutions.size(), 13u) << r.brief_report();
+  int found = 0;
+  for (const Solution& x : r.solutions)
+    found += std::abs(x.t1 - 4.8788176) < 1e-6 && std::abs(x.t2 - 0.95352151) < 1e-6;
+  EXPECT_EQ(found, 1);
+}
