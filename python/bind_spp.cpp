@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "spp/continuation.hpp"
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/root_map.hpp"
@@ -221,6 +222,74 @@ PYBIND11_MODULE(_spp, m) {
       "system"_a, "t1_max"_a, "t2_max"_a, "t1_min"_a = 0.0, "t2_min"_a = 0.0, "t1_points"_a = 400, "t2_points"_a = 400,
       "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4). "
       "Raises ValueError.");
+
+  py::class_<spp::ParametricSystem>(m, "ParametricSystem",
+                                    "M(mu) = M_constant + mu M_mu, K(mu) likewise, w(mu) likewise, g0 fixed")
+      .def(py::init([](Eigen::MatrixXd M0, Eigen::MatrixXd M1, Eigen::MatrixXd K0, Eigen::MatrixXd K1,
+                       Eigen::VectorXd w0, Eigen::VectorXd w1, double g0, const std::string& name, double lo, double hi,
+                       const std::string& label) {
+             return spp::ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0),
+                                          std::move(w1), g0, {name, lo, hi}, label);
+           }),
+           "M_constant"_a, "M_mu"_a, "K_constant"_a, "K_mu"_a, "w_constant"_a, "w_mu"_a, "g0"_a, "parameter"_a, "min"_a,
+           "max"_a, "name"_a = "",
+           "(n, n) parts (an empty (0, 0) array: does not depend on the parameter); raises ValueError.")
+      .def_static("from_json", &spp::load_parametric_system, "path"_a, "Loads a system file with \"parameter\".")
+      .def("at", &spp::ParametricSystem::at, "mu"_a, "The System at this parameter value.")
+      .def_property_readonly("n", &spp::ParametricSystem::n)
+      .def_property_readonly("g0", &spp::ParametricSystem::g0)
+      .def_property_readonly("parameter", [](const spp::ParametricSystem& s) { return s.parameter().name; })
+      .def_property_readonly(
+          "range", [](const spp::ParametricSystem& s) { return py::make_tuple(s.parameter().min, s.parameter().max); });
+  py::class_<spp::BranchPoint>(m, "BranchPoint")
+      .def_readonly("mu", &spp::BranchPoint::mu)
+      .def_readonly("t1", &spp::BranchPoint::t1)
+      .def_readonly("t2", &spp::BranchPoint::t2)
+      .def_readonly("period", &spp::BranchPoint::period)
+      .def_readonly("admissible", &spp::BranchPoint::admissible)
+      .def_readonly("margin", &spp::BranchPoint::margin, "admissibility margin (NaN where meaningless)")
+      .def_readonly("closure", &spp::BranchPoint::closure)
+      .def_readonly("energy", &spp::BranchPoint::energy)
+      .def_readonly("x0", &spp::BranchPoint::x0)
+      .def_readonly("v0", &spp::BranchPoint::v0);
+  py::class_<spp::BranchEvent>(m, "BranchEvent")
+      .def_property_readonly("kind", [](const spp::BranchEvent& e) { return std::string(spp::to_string(e.kind)); })
+      .def_readonly("at", &spp::BranchEvent::at)
+      .def_readonly("detail", &spp::BranchEvent::detail);
+  py::class_<spp::Branch>(m, "Branch")
+      .def_readonly("points", &spp::Branch::points)
+      .def_readonly("events", &spp::Branch::events)
+      .def_property_readonly(
+          "arrays",
+          [](const spp::Branch& b) {
+            Eigen::MatrixXd a(static_cast<Eigen::Index>(b.points.size()), 4);
+            for (size_t i = 0; i < b.points.size(); ++i)
+              a.row(static_cast<Eigen::Index>(i)) << b.points[i].mu, b.points[i].t1, b.points[i].t2, b.points[i].margin;
+            return a;
+          },
+          "(N, 4): mu, t1, t2, margin of every point");
+  py::class_<spp::ContinuationResult>(m, "ContinuationResult")
+      .def_readonly("branches", &spp::ContinuationResult::branches)
+      .def_readonly("warnings", &spp::ContinuationResult::warnings)
+      .def("brief_report", &spp::ContinuationResult::brief_report)
+      .def(
+          "gap_closures", [](const spp::ContinuationResult& r) { return spp::gap_closures(r); },
+          "GapClosure events sorted by mu: with g0 = 0, the SPPs of paper §6.1");
+  m.def(
+      "continue_branches",
+      [](const spp::ParametricSystem& s, double t1_max, double t2_max, int seeds, double max_step, int threads) {
+        spp::ContinueOptions o;
+        o.t1_max = t1_max;
+        o.t2_max = t2_max;
+        o.seeds = seeds;
+        o.max_step = max_step;
+        o.threads = threads;
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::continue_branches(s, o);
+      },
+      "system"_a, "t1_max"_a, "t2_max"_a, "seeds"_a = 9, "max_step"_a = 0.02, "threads"_a = 0,
+      "Every SPP of the window followed over the parameter's range. Raises ValueError.");
 
   py::class_<spp::SppCheck>(m, "SppCheck")
       .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.candidate.t1; })

@@ -91,3 +91,22 @@ def test_result_file_round_trip_through_the_cpp_reader(tmp_path):
         assert "bad.json" in str(e) and "M" in str(e)
     else:
         raise AssertionError("expected ValueError")
+
+
+def test_continuation_finds_the_zero_gap_spp_of_section_6_1():
+    ps = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                              np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 0.0, "k2", 1.0, 10.0)
+    r = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    k2 = sorted(p.mu for p in r.gap_closures())
+    assert len(k2) == 2 and abs(k2[1] - 5.716265) < 1e-6 and not r.warnings
+    assert all(b.arrays.shape == (len(b.points), 4) for b in r.branches)
+    s = ps.at(k2[1])
+    w = np.sqrt(np.linalg.eigvalsh(s.K))
+    assert abs(w[1] / w[0] - 5) < 1e-8
+    try:
+        spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                             np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 0.0, "k2", 0.0, 10.0)
+    except ValueError as e:
+        assert "k2 = 0" in str(e)
+    else:
+        raise AssertionError("expected ValueError")
