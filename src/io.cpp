@@ -290,6 +290,7 @@ json result_to_json(const System& s, const SolveResult& r) {
   j["system"]["w_input_norm"] = s.w_input_norm();
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["status"] = to_string(r.status);
+  j["symmetry"] = to_string(r.symmetry);
   j["warnings"] = r.warnings;
   j["stats"] = {{"flight_pole_lines", r.stats.flight_pole_lines},
                 {"contact_pole_lines", r.stats.contact_pole_lines},
@@ -322,6 +323,7 @@ json result_to_json(const System& s, const SolveResult& r) {
               {"onset_force_rate", x.admissibility.onset_force_rate},
               {"admissibility_certified", x.admissibility.certified},
               {"flags", x.flags}};
+    if (x.orbit.symmetry == Symmetry::Point) o["obstacle_velocity"] = x.orbit.obstacle_velocity;
     sols.push_back(o);
   }
   j["solutions"] = sols;

@@ -95,19 +95,32 @@ struct Candidate {
 class Search {
  public:
   Search(const ModalForm& md, const SolveOptions& opt, SolveStats& st)
-      : md_(md), opt_(opt), st_(st), hmin_(opt.min_step * (opt.t1_max + opt.t2_max)) {
-    zhat_ = md_.z().normalized();
-    d2_ = md_.d().array().square();
+      : md_(md), opt_(opt), st_(st), hmin_(opt.min_step * (opt.t1_max + opt.t2_max)), sym_(opt.symmetry) {}
+
+  // g = c^T b / |c| with c the onset direction (z for axial symmetry: z^T p0 = 0 with p0 along b), and dg/ds
+  // given db/ds and dt2/ds.
+  std::pair<double, double> onset_g(const Vec& b, double t2, const Vec* db = nullptr, double dt2_ds = 0.0) const {
+    const Vec c = md_.onset_direction(t2, sym_);
+    const double cn = c.norm();
+    const Vec ch = c / cn;
+    const double g = ch.dot(b);
+    if (!db) return {g, 0.0};
+    double dg = ch.dot(*db);
+    if (sym_ == Symmetry::Point) {
+      const Vec dc = md_.onset_direction_dt2(t2, sym_) * dt2_ds;
+      dg += (dc - ch * ch.dot(dc)).dot(b) / cn;
+    }
+    return {g, dg};
   }
 
   // ---- evaluations ----
   const Mat& H_at(double t1, double t2) {
     if (t2 != cached_t2_) {
-      C_ = md_.contact_part(t2);
+      C_ = md_.contact_part(t2, sym_);
       cached_t2_ = t2;
     }
     Hbuf_ = C_;
-    Hbuf_.diagonal() += md_.flight_part(t1);
+    Hbuf_.diagonal() += md_.flight_part(t1, sym_);
     ++st_.evaluations;
     return Hbuf_;
   }
@@ -129,9 +142,9 @@ class Search {
 
   // b^T dH/dt1 b and b^T dH/dt2 b (both >= 0).
   std::pair<double, double> grads(const Vec& b, double t1, double t2) const {
-    const double l1 = (md_.dflight_dt1(t1).array() * b.array().square()).sum();
+    const double l1 = (md_.dflight_dt1(t1, sym_).array() * b.array().square()).sum();
     const Vec y = md_.G().transpose() * b;
-    const double l2 = (d2_ / (md_.d().array() * t2).cos().square() * y.array().square()).sum();
+    const double l2 = (md_.dcontact_eigs(t2, sym_).array() * y.array().square()).sum();
     return {l1, l2};
   }
 
@@ -147,8 +160,8 @@ class Search {
     const auto [l1, l2] = grads(b0, q.t1, q.t2);
     const double tp = -l2 / (l1 + l2);  // dtau/ds on the curve
     const Vec y = md_.G().transpose() * b0;
-    const Vec e2 = (d2_ / (md_.d().array() * q.t2).cos().square()).matrix();
-    const Vec dHb = tp * md_.dflight_dt1(q.t1).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
+    const Vec e2 = md_.dcontact_eigs(q.t2, sym_);
+    const Vec dHb = tp * md_.dflight_dt1(q.t1, sym_).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
     const int m = static_cast<int>(b0.size());
     Mat B(m + 1, m + 1);
     B.topLeftCorner(m, m) = H_at(q.t1, q.t2);
@@ -161,8 +174,10 @@ class Search {
     rhs(m) = 0.0;
     const Vec db = B.partialPivLu().solve(rhs);
     p.b = sign * b0;
-    p.g = sign * zhat_.dot(b0);
-    p.dg = sign * zhat_.dot(db.head(m));
+    const Vec dbh = db.head(m);
+    const auto [g, dg] = onset_g(b0, q.t2, &dbh, tp + 1.0);
+    p.g = sign * g;
+    p.dg = sign * dg;
     return p;
   }
 
@@ -348,7 +363,7 @@ class Search {
       const Pair e = diagonal_root(r, s, guess(s), k);
       Vec b = e.b;
       if (b.dot(A.b) < 0) b = -b;
-      return zhat_.dot(b);
+      return onset_g(b, e.t2).first;
     };
     const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
     const Pair e = diagonal_root(r, s, guess(s), k);
@@ -383,8 +398,7 @@ class Search {
   const double hmin_;                         // smallest trace step in s
   static constexpr int kPieceBudget = 20000;  // trace steps and subdivisions per curve piece
   int budget_ = kPieceBudget;
-  Vec zhat_;
-  Eigen::ArrayXd d2_;
+  Symmetry sym_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
   Mat C_, Hbuf_;
 };
@@ -396,9 +410,9 @@ struct Polished {
   Vec a;
 };
 
-double residual_of(const ModalForm& md, double t1, double t2, const Vec& a) {
-  const Mat N = md.N(t1, t2);
-  const Vec p0 = ((md.omega().array() * t1).cos() * a.array()).matrix();
+double residual_of(const ModalForm& md, double t1, double t2, const Vec& a, Symmetry sym) {
+  const Mat N = md.N(t1, t2, sym);
+  const Vec p0 = md.onset_position(t1, a, sym);
   const double r1 = (N * a).norm() / (N.norm() * a.norm());
   const double r2 = std::abs(md.z().dot(p0)) / (md.z().norm() * std::max(p0.norm(), 1e-300));
   return std::max(r1, r2);
@@ -406,7 +420,7 @@ double residual_of(const ModalForm& md, double t1, double t2, const Vec& a) {
 
 // Starting vector: a = p0 ./ cos(W t1) from the traced null vector p0 of H when the cosines are not small
 // (near the axis t1 = 0, N has two small singular values and its SVD may pick the wrong one), else the SVD.
-Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec()) {
+Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec(), Symmetry sym = Symmetry::Axial) {
   const int m = md.m();
   Polished out;
   Vec a;
@@ -414,26 +428,25 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec())
   if (b.size() == m && c1.abs().minCoeff() > 1e-3) {
     a = (b.array() / c1).matrix().normalized();
   } else {
-    Eigen::JacobiSVD<Mat> svd(md.N(t1, t2), Eigen::ComputeFullV);
+    Eigen::JacobiSVD<Mat> svd(md.N(t1, t2, sym), Eigen::ComputeFullV);
     a = svd.matrixV().col(m - 1);
   }
   const Vec aref = a;
-  const Eigen::ArrayXd& w = md.omega().array();
   const double t1_start = t1, t2_start = t2;
-  double best = residual_of(md, t1, t2, a);
+  double best = residual_of(md, t1, t2, a, sym);
   out = {false, t1, t2, best, a};
   for (int it = 0; it < 12; ++it) {
-    const Mat N = md.N(t1, t2);
+    const Mat N = md.N(t1, t2, sym);
     Vec F(m + 2);
     F.head(m) = N * a;
-    F(m) = md.z().dot(((w * t1).cos() * a.array()).matrix());
+    F(m) = md.z().dot(md.onset_position(t1, a, sym));
     F(m + 1) = aref.dot(a) - 1.0;
     Mat J = Mat::Zero(m + 2, m + 2);
-    J.block(0, 0, m, 1) = md.dN_dt1(t1, t2) * a;
-    J.block(0, 1, m, 1) = md.dN_dt2(t1, t2) * a;
+    J.block(0, 0, m, 1) = md.dN_dt1(t1, t2, sym) * a;
+    J.block(0, 1, m, 1) = md.dN_dt2(t1, t2, sym) * a;
     J.block(0, 2, m, m) = N;
-    J(m, 0) = -md.z().dot((w * (w * t1).sin() * a.array()).matrix());
-    J.block(m, 2, 1, m) = ((w * t1).cos() * md.z().array()).matrix().transpose();
+    J(m, 0) = md.z().dot(md.onset_position_dt1(t1, a, sym));
+    J.block(m, 2, 1, m) = md.onset_position(t1, md.z(), sym).transpose();  // a diagonal map: its row is z's image
     J.block(m + 1, 2, 1, m) = aref.transpose();
     Vec dx = J.fullPivLu().solve(-F);
     // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0
@@ -446,7 +459,7 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b = Vec())
     t1 += dx(0);
     t2 += dx(1);
     a += dx.tail(m);
-    const double res = residual_of(md, t1, t2, a);
+    const double res = residual_of(md, t1, t2, a, sym);
     if (res < best) {
       best = res;
       out = {false, t1, t2, res, a};
@@ -474,9 +487,15 @@ Solution build_solution(const System& system, const ModalForm& md, const Polishe
   s.t2 = p.t2;
   s.period = 2.0 * (p.t1 + p.t2);
   s.residual = p.residual;
-  s.orbit = make_orbit(md, p.t1, p.t2, p.a);
+  if (opt.symmetry == Symmetry::Point) {
+    s.orbit = make_point_orbit(md, p.t1, p.t2, p.a);
+    s.admissibility = check_point_admissibility(md, s.orbit);
+    s.flags.push_back("point_symmetric");
+  } else {
+    s.orbit = make_orbit(md, p.t1, p.t2, p.a);
+    s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
+  }
   if (s.orbit.closure_ratio < 1e-10) s.flags.push_back("gap_closure_degenerate");
-  s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
   s.admissible = s.admissibility.admissible;
   s.min_gap = s.admissibility.min_gap;
   s.min_force = s.admissibility.min_force;
@@ -499,7 +518,7 @@ Solution solution_at(const System& system, double t1, double t2, const SolveOpti
   }
   require_nonzero_gap(system);
   const ModalForm md(system);
-  const Polished p = polish(md, t1, t2);
+  const Polished p = polish(md, t1, t2, Vec(), options.symmetry);
   if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > 1e-3 * (t1 + t2)) {
     std::ostringstream os;
     os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual " << p.residual
@@ -516,6 +535,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   SolveResult res;
   const ModalForm md(system);
   res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
+  res.symmetry = options.symmetry;
   res.repeated_groups = md.repeated_groups();
   SolveOptions opt = options;
   const double pi = std::numbers::pi;
@@ -646,7 +666,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   // Polish, deduplicate, build orbits.
   const double window_scale = opt.t1_max + opt.t2_max;
   for (const Candidate& c : candidates) {
-    const Polished p = polish(md, c.t1, c.t2, c.b);
+    const Polished p = polish(md, c.t1, c.t2, c.b, opt.symmetry);
     // Where Newton stalls with a small residual (N nearly rank-deficient in two directions, e.g. close to
     // the limit points on the axis t1 = 0) the root is reported with a flag. A candidate that does not
     // polish at all is not reported as an SPP: it is a gap in the search, and the status says so.

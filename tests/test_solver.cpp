@@ -7,6 +7,7 @@
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
+#include "spp/orbit.hpp"
 #include "spp/solver.hpp"
 
 using namespace spp;
@@ -270,4 +271,101 @@ TEST(Solver, NullVectorThatSwingsAwayAndBackWithinAStepKeepsItsRoots) {
   for (const Solution& x : r.solutions)
     found += std::abs(x.t1 - 4.8788176) < 1e-6 && std::abs(x.t2 - 0.95352151) < 1e-6;
   EXPECT_EQ(found, 1);
+}
+
+TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
+  // det T2 = 0 (paper §6.2): x(-t1) = 0 and x(t2) = 0, the force odd about t2, never admissible, and with
+  // g0 != 0 the obstacle moving at w^T v0 = g0 / t2 during contact. Checked with the physical flows (matrix
+  // exponentials of K and K~, not the modal form) and against Newton started from a grid.
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+  const ModalForm md(s);
+  SolveOptions o;
+  o.t1_max = 6.0;
+  o.t2_max = 6.0;
+  o.symmetry = Symmetry::Point;
+  const SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  ASSERT_GT(r.solutions.size(), 10u);
+  for (const Solution& x : r.solutions) {
+    EXPECT_FALSE(x.admissible);
+    EXPECT_LT(x.return_error, 1e-9) << x.t1 << " " << x.t2;
+    EXPECT_LT(x.orbit.c.norm(), 1e-9 * x.orbit.p0dot.norm());  // p(t2) = 0
+    const OrbitState mid_flight = orbit_state(md, x.orbit, 2 * x.t2 + x.t1);
+    EXPECT_LT(mid_flight.x.norm(), 1e-8 * x.orbit.v0.norm() * x.period);  // x(-t1) = 0
+    const OrbitState mid_contact = orbit_state(md, x.orbit, x.t2);
+    EXPECT_LT(mid_contact.x.norm(), 1e-8 * x.orbit.v0.norm() * x.period);  // x(t2) = 0
+    // odd force about t2: lambda(t2 + s) = -lambda(t2 - s)
+    const double f1 = orbit_state(md, x.orbit, 0.3 * x.t2).force, f2 = orbit_state(md, x.orbit, 1.7 * x.t2).force;
+    EXPECT_NEAR(f1, -f2, 1e-8 * (std::abs(f1) + 1e-3));
+    EXPECT_LT(x.min_force, 0.0);
+    EXPECT_NEAR(x.orbit.obstacle_velocity, s.g0() / x.t2, 1e-9 * s.g0() / x.t2);
+  }
+  // Brute force in the paper's style (its fig. 4 trick), independent of the search: on a 240 x 240 grid, cells
+  // where det N_T and two adjugate conditions z^T W^-1 sin(W t1) adj(N_T) e_i all change sign, refined by Newton
+  // on (det, condition 1); each root where condition 2 vanishes too must be in the list.
+  auto conditions = [&](double t1, double t2) {
+    const Eigen::MatrixXd N = md.N(t1, t2, Symmetry::Point);
+    const int m = static_cast<int>(N.rows());
+    Eigen::MatrixXd adj(m, m);
+    for (int r = 0; r < m; ++r)
+      for (int c = 0; c < m; ++c) {
+        Eigen::MatrixXd minor(m - 1, m - 1);
+        for (int a = 0, ia = 0; a < m; ++a) {
+          if (a == r) continue;
+          for (int b = 0, ib = 0; b < m; ++b) {
+            if (b == c) continue;
+            minor(ia, ib++) = N(a, b);
+          }
+          ++ia;
+        }
+        adj(c, r) = ((r + c) % 2 ? -1.0 : 1.0) * minor.determinant();
+      }
+    const Eigen::VectorXd zs = md.onset_position(t1, md.z(), Symmetry::Point);  // z^T W^-1 sin(W t1) (diagonal)
+    return Eigen::Vector3d(N.determinant(), zs.dot(adj.col(0)), zs.dot(adj.col(1)));
+  };
+  const int G = 240;
+  const double h = 6.0 / G;
+  std::vector<Eigen::Vector3d> F((G + 1) * (G + 1));
+  for (int a = 0; a <= G; ++a)
+    for (int b = 0; b <= G; ++b) F[a * (G + 1) + b] = conditions(a * h + 1e-9, b * h + 1e-9);
+  std::vector<Eigen::Vector2d> brute;
+  for (int a = 1; a < G; ++a)
+    for (int b = 1; b < G; ++b) {
+      bool all = true;
+      for (int c = 0; c < 3 && all; ++c) {
+        const double v[4] = {F[a * (G + 1) + b](c), F[(a + 1) * (G + 1) + b](c), F[a * (G + 1) + b + 1](c),
+                             F[(a + 1) * (G + 1) + b + 1](c)};
+        all = std::any_of(v, v + 4, [](double q) { return q > 0; }) &&
+              std::any_of(v, v + 4, [](double q) { return q < 0; });
+      }
+      if (!all) continue;
+      double x = (a + 0.5) * h, y = (b + 0.5) * h;
+      bool ok = false;
+      for (int it = 0; it < 40; ++it) {
+        const Eigen::Vector3d f = conditions(x, y);
+        const double e = 1e-7;
+        const Eigen::Vector3d fx = (conditions(x + e, y) - conditions(x - e, y)) / (2 * e);
+        const Eigen::Vector3d fy = (conditions(x, y + e) - conditions(x, y - e)) / (2 * e);
+        Eigen::Matrix2d J;
+        J << fx(0), fy(0), fx(1), fy(1);
+        const Eigen::Vector2d d = J.fullPivLu().solve(-Eigen::Vector2d(f(0), f(1)));
+        x += d(0);
+        y += d(1);
+        if (d.norm() < 1e-12 * (x + y)) {
+          const Eigen::Vector3d g = conditions(x, y);
+          ok = std::abs(g(2)) < 1e-6 * (std::abs(fx(2)) + std::abs(fy(2))) * h;
+          break;
+        }
+      }
+      if (!ok || x < 0.05 || x > 6.0 || y < 0.05 || y > 6.0) continue;
+      if (std::any_of(brute.begin(), brute.end(),
+                      [&](const Eigen::Vector2d& q) { return std::hypot(q(0) - x, q(1) - y) < 1e-7; }))
+        continue;
+      brute.emplace_back(x, y);
+      bool listed = false;
+      for (const Solution& q : r.solutions) listed |= std::hypot(q.t1 - x, q.t2 - y) < 1e-7;
+      EXPECT_TRUE(listed) << "(" << x << ", " << y << ") found by brute force, not listed";
+    }
+  // The grid sees every root of this window: the same count both ways.
+  EXPECT_EQ(brute.size(), r.solutions.size());
 }

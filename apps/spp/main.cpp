@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
   solve->add_flag("--admissible-only", opt.admissible_only, "keep only admissible SPPs");
   solve->add_flag("--quiet", quiet, "print only the one-line summary");
   solve->add_option("--threads", opt.threads, "worker threads (default 0: all hardware threads)");
+  std::string solve_symmetry = "axial";
+  solve
+      ->add_option("--symmetry", solve_symmetry,
+                   "axial: the SPPs (default); point: the point-symmetric potential SPPs of det T2 = 0 (paper "
+                   "§6.2, never admissible, a moving obstacle)")
+      ->check(CLI::IsMember({"axial", "point"}));
   double solve_at = 0.0;
   auto* o_at = solve->add_option("--at", solve_at,
                                  "parametric system: solve at this parameter value (without it, a parametric system "
@@ -182,6 +188,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*solve) {
+      opt.symmetry = solve_symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
       opt.validate();
       const nlohmann::json sys_json = spp::read_json_file(sys_path);
       if (spp::declares_parameter(sys_json) && o_at->count() == 0) {

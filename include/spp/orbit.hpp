@@ -17,12 +17,20 @@ struct Orbit {
   Eigen::VectorXd x0, v0;      ///< physical x(0), x'(0)
   double closure_ratio = 0.0;  ///< |u^T W^-1 p0| / |W^-1 p0|: near 0, the gap cannot close at g0 != 0
   double energy = 0.0;         ///< 1/2 v^T M v + 1/2 x^T K x (conserved in both phases)
+  Symmetry symmetry = Symmetry::Axial;
+  /// Point symmetry only: w^T x moves at this constant normal velocity during contact (w^T x'' = 0 under K~),
+  /// from -g0 at onset through 0 at t2: equal to g0 / t2, so the obstacle must move with it unless g0 = 0.
+  double obstacle_velocity = 0.0;
   double period() const { return 2.0 * (t1 + t2); }
 };
 
 /// Builds the orbit from the null vector a of N(t1, t2); a's scale is irrelevant. Throws std::invalid_argument
 /// if the gap cannot be closed (u^T W^-1 p0 = 0 exactly) or g0 = 0.
 Orbit make_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a);
+
+/// The point-symmetric orbit of Symmetry::Point (paper §6.2): x(-t1) = 0, x(t2) = 0, scaled so that
+/// w^T x0 = -g0 (g0 != 0). Throws std::invalid_argument if g0 = 0 or w^T x0 cannot be set (u^T W^-1 p0 = 0).
+Orbit make_point_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a);
 
 /// The orbit when its scale is free (g0 = 0, paper §6.1: eq. 5.2 does not fix it): scaled to unit energy,
 /// its sign chosen so that the contact force at mid-contact is >= 0 (the only sign that can be admissible).
@@ -49,6 +57,11 @@ struct Admissibility {
 
 /// Checks ineqs. (5.3) with a certified global minimum of each cosine sum; rel_tol scales the tolerance on
 /// the amplitude of each sum.
+/// Symmetry::Point: the force is odd about t2 (it changes sign in the contact phase), so never admissible
+/// (Remark 3.1). min_gap / min_force sampled (2000 points per phase); admissible = false unless the force
+/// vanishes identically.
+Admissibility check_point_admissibility(const ModalForm& modal, const Orbit& orbit);
+
 Admissibility check_admissibility(const ModalForm& modal, const Orbit& orbit, double rel_tol = 1e-9);
 
 /// Signed admissibility margin, continuous in (t1, t2) and in the system: the smaller of

@@ -35,6 +35,9 @@ struct SolveOptions {
   bool admissible_only = false;      ///< keep only admissible SPPs in the result
   bool compute_return_error = true;  ///< propagate each SPP over one period with the physical flows
   int threads = 0;                   ///< worker threads over t2-strips; 0 = every hardware thread
+  /// Axial: the SPPs (eqs. 5.1). Point: the point-symmetric potential SPPs of det T2 = 0 (paper §6.2), same
+  /// search on H_T (see Symmetry); never admissible, and with g0 != 0 they need a moving obstacle.
+  Symmetry symmetry = Symmetry::Axial;
 
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
@@ -55,9 +58,9 @@ struct Solution {
   double return_error = -1.0;  ///< relative periodicity error after one period (-1: not computed)
   Orbit orbit;
   Admissibility admissibility;
-  /// "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)), "near_double_root", "near_pole_line"
-  /// (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees the contact has the same
-  /// period: any amount of it can be added), "gap_closure_degenerate".
+  /// "point_symmetric" (Symmetry::Point), "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)),
+  /// "near_double_root", "near_pole_line" (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees
+  /// the contact has the same period: any amount of it can be added), "gap_closure_degenerate".
   std::vector<std::string> flags;
 };
 
@@ -78,6 +81,7 @@ struct SolveResult {
   SolveStats stats;
   double t1_min = 0.0, t2_min = 0.0, t1_max = 0.0, t2_max = 0.0;  ///< the window actually searched
   int decoupled_modes = 0, repeated_groups = 0;
+  Symmetry symmetry = Symmetry::Axial;
   std::vector<std::string> warnings;
   /// One line: status, counts, time.
   std::string brief_report() const;
@@ -86,6 +90,7 @@ struct SolveResult {
 /// Finds every potential SPP in the window, builds its initial conditions and checks admissibility.
 /// Throws std::invalid_argument for invalid options or g0 = 0 (the zero-gap case needs a parameter).
 SolveResult solve(const System& system, const SolveOptions& options);
+// (SolveResult::symmetry records which equations were solved.)
 
 /// The SPP nearest to (t1, t2): Newton on the bordered pole-free system from that point, then initial
 /// conditions and admissibility. Throws std::invalid_argument if Newton does not converge to a root within
