@@ -76,6 +76,9 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("return_error", &spp::Solution::return_error)
       .def_readonly("flags", &spp::Solution::flags)
       .def_property_readonly(
+          "obstacle_velocity", [](const spp::Solution& s) { return s.orbit.obstacle_velocity; },
+          "point symmetry: normal velocity of the obstacle during contact (g0 / t2); 0 for SPPs")
+      .def_property_readonly(
           "x0", [](const spp::Solution& s) { return s.orbit.x0; }, "(n,) state at contact onset")
       .def_property_readonly(
           "v0", [](const spp::Solution& s) { return s.orbit.v0; }, "(n,)")
@@ -100,8 +103,11 @@ PYBIND11_MODULE(_spp, m) {
   m.def(
       "solve",
       [](const spp::System& s, double t1_max, double t2_max, double t1_min, double t2_min, bool admissible_only,
-         int threads) {
+         int threads, const std::string& symmetry) {
         spp::SolveOptions o;
+        if (symmetry != "axial" && symmetry != "point")
+          throw std::invalid_argument("symmetry must be \"axial\" or \"point\", got \"" + symmetry + "\"");
+        o.symmetry = symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
         o.t1_max = t1_max;
         o.t2_max = t2_max;
         o.t1_min = t1_min;
@@ -113,7 +119,9 @@ PYBIND11_MODULE(_spp, m) {
         return spp::solve(s, o);
       },
       "system"_a, "t1_max"_a, "t2_max"_a, "t1_min"_a = 0.0, "t2_min"_a = 0.0, "admissible_only"_a = false,
-      "threads"_a = 0, "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]. Raises ValueError.");
+      "threads"_a = 0, "symmetry"_a = "axial",
+      "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max] (symmetry=\"point\": the point-symmetric "
+      "potential SPPs of paper §6.2). Raises ValueError.");
 
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)

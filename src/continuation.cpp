@@ -131,7 +131,7 @@ class Tracer {
     Vec b = md.omega().asDiagonal() * (md.Phi().transpose() * (c.system.M() * xref));
     b /= b.norm();
     Mat B = Mat::Zero(m + 1, m + 1);
-    B.topLeftCorner(m, m) = md.N(t1(y), t2(y));
+    B.topLeftCorner(m, m) = md.N(t1(y), t2(y), o_.symmetry);
     B.topRightCorner(m, 1) = b;
     B.bottomLeftCorner(1, m) = b.transpose();
     Vec rhs = Vec::Zero(m + 1);
@@ -140,7 +140,7 @@ class Tracer {
     Eval e;
     e.a = sol.head(m);
     e.F(0) = sol(m);
-    e.F(1) = md.z().dot(((md.omega().array() * t1(y)).cos() * e.a.array()).matrix()) / md.z().norm();
+    e.F(1) = md.z().dot(md.onset_position(t1(y), e.a, o_.symmetry)) / md.z().norm();
     return e;
   }
 
@@ -164,7 +164,17 @@ class Tracer {
   }
 
   // Newton on F(y) = 0, tau . (y - ypred) = 0 from ypred. Returns false if it does not converge.
+  // A system that is not valid at a trial parameter value (e.g. M not positive definite beyond the declared
+  // range, where a corrector may wander) makes the step fail instead of the whole run.
   bool correct(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
+    try {
+      return correct_unchecked(ypred, tau, xref, y, e, its);
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+  }
+
+  bool correct_unchecked(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
     ++corrector_solves;
     y = ypred;
     for (its = 1; its <= 12; ++its) {
@@ -193,17 +203,23 @@ class Tracer {
     p.t2 = t2(y);
     p.period = 2.0 * (p.t1 + p.t2);
     const Eigen::ArrayXd& w = md.omega().array();
+    // u^T W^-1 cos(W t1) a: the gap at onset (axial, p0 = cos(W t1) a) or the normal velocity at onset (point,
+    // p0' = cos(W t1) a), continuous along the branch.
     const Vec q0 = ((w * p.t1).cos() * e.a.array() / w).matrix();
     p.closure = md.u().dot(q0) / (e.a.array() / w).matrix().norm();
     p.margin = std::numeric_limits<double>::quiet_NaN();
+    const Symmetry sym = o_.symmetry;
     try {
       const bool free_scale = md.g0() == 0.0;
-      const Orbit o = free_scale ? make_unit_energy_orbit(md, p.t1, p.t2, e.a) : make_orbit(md, p.t1, p.t2, e.a);
+      const Orbit o = free_scale               ? make_unit_energy_orbit(md, p.t1, p.t2, e.a, sym)
+                      : sym == Symmetry::Point ? make_point_orbit(md, p.t1, p.t2, e.a)
+                                               : make_orbit(md, p.t1, p.t2, e.a);
       p.energy = o.energy;
       p.x0 = o.x0;
       p.v0 = o.v0;
-      // With g0 = 0 the orbit closes the gap only where closure = 0: the margin means nothing elsewhere.
-      if (!free_scale) p.margin = admissibility_margin(md, o);
+      // With g0 = 0 the orbit closes the gap only where closure = 0: the margin means nothing elsewhere; point
+      // symmetric orbits are never admissible (no margin).
+      if (!free_scale && sym == Symmetry::Axial) p.margin = admissibility_margin(md, o);
     } catch (const std::invalid_argument&) {
     }
     p.admissible = p.margin >= 0.0;
@@ -214,8 +230,9 @@ class Tracer {
   void finish_closure(BranchPoint& p, const V3& y, const Eval& e) {
     const Cached& c = at(mu(y));
     const ModalForm& md = c.modal;
-    const Orbit o = make_unit_energy_orbit(md, p.t1, p.t2, e.a);
-    p.margin = md.g0() == 0.0 ? admissibility_margin(md, o) : std::numeric_limits<double>::quiet_NaN();
+    const Orbit o = make_unit_energy_orbit(md, p.t1, p.t2, e.a, o_.symmetry);
+    p.margin = md.g0() == 0.0 && o_.symmetry == Symmetry::Axial ? admissibility_margin(md, o)
+                                                                : std::numeric_limits<double>::quiet_NaN();
     p.admissible = p.margin >= 0.0;
     p.energy = o.energy;
     // The closure is located to rounding: put x0 exactly on the obstacle (g0 = 0: w^T x0 = 0), a correction of
@@ -273,7 +290,11 @@ class BranchWalker {
       bool ok = tr_.correct(s.y + h * s.tau, s.tau, s.xref, y, e, its);
       V3 tau;
       if (ok) {
-        tau = tr_.tangent(y, s.xref, s.tau);
+        try {
+          tau = tr_.tangent(y, s.xref, s.tau);
+        } catch (const std::invalid_argument&) {
+          tau = V3::Constant(std::numeric_limits<double>::quiet_NaN());
+        }
         ok = tau.allFinite() && tau.dot(s.tau) >= std::cos(o_.max_turn) && (y - s.y).norm() <= 2.0 * h;
       }
       if (!ok) {
@@ -394,7 +415,12 @@ class BranchWalker {
           s, end_h, [](const Along& q) { return q.p.closure; }, s.point.closure);
       tr_.finish_closure(x.p, x.y, x.e);
       std::ostringstream os;
-      if (free_scale_)
+      if (o_.symmetry == Symmetry::Point)
+        os << "zero normal velocity at onset: "
+           << (free_scale_ ? "with g0 = 0 a point-symmetric potential SPP with a fixed obstacle (paper §6.2), "
+                             "never admissible (the force is odd about t2)"
+                           : "the moving obstacle of this point-symmetric branch stands still");
+      else if (free_scale_)
         os << "g0 = 0: an SPP (paper §6.1), scaled to unit energy, "
            << (x.p.admissible ? "admissible" : "not admissible") << " (margin " << x.p.margin << ")";
       else
@@ -444,6 +470,7 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   const Parameter& par = ps.parameter();
   ContinuationResult res;
   res.parameter = par;
+  res.symmetry = options.symmetry;
   res.t1_max = options.t1_max;
   res.t2_max = options.t2_max;
   const bool free_scale = ps.g0() == 0.0;
@@ -477,6 +504,7 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   so.t2_max = options.t2_max;
   so.compute_return_error = false;
   so.threads = options.threads;
+  so.symmetry = options.symmetry;
   std::vector<std::vector<Solution>> seed_sols(options.seeds);
   for (int k = 0; k < options.seeds; ++k) {
     System s = ps.at(seed_mu[k]);

@@ -591,6 +591,7 @@ json point_json(const BranchPoint& p, const std::string& parameter) {
 json continuation_to_json(const ParametricSystem& s, const ContinuationResult& r) {
   json j;
   j["system"] = parametric_system_to_json(s);
+  j["symmetry"] = to_string(r.symmetry);
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["warnings"] = r.warnings;
   j["stats"] = {{"seed_spps", r.seed_spps},
@@ -634,6 +635,7 @@ json zero_gap_to_json(const ParametricSystem& s, const ContinuationResult& r) {
   j["system"] = parametric_system_to_json(s);
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["status"] = r.warnings.empty() ? "success" : "incomplete";
+  j["symmetry"] = to_string(r.symmetry);
   j["warnings"] = r.warnings;
   j["normalization"] = "unit energy (g0 = 0: eq. 5.2 leaves the scale free); the sign that makes the force >= 0";
   j["solutions"] = json::array();

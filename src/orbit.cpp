@@ -109,11 +109,35 @@ Admissibility check_point_admissibility(const ModalForm& md, const Orbit& o) {
   return adm;
 }
 
-Orbit make_unit_energy_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a) {
-  const Orbit one = scaled_orbit(md, t1, t2, a, 1.0);
-  if (!(one.energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
-  const double sign = md.z().dot(one.c) >= 0.0 ? 1.0 : -1.0;  // force at mid-contact z^T c / beta
-  return scaled_orbit(md, t1, t2, a, sign / std::sqrt(one.energy));
+Orbit make_unit_energy_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a, Symmetry sym) {
+  if (sym == Symmetry::Axial) {
+    const Orbit one = scaled_orbit(md, t1, t2, a, 1.0);
+    if (!(one.energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
+    const double sign = md.z().dot(one.c) >= 0.0 ? 1.0 : -1.0;  // force at mid-contact z^T c / beta
+    return scaled_orbit(md, t1, t2, a, sign / std::sqrt(one.energy));
+  }
+  const Eigen::ArrayXd& w = md.omega().array();
+  Orbit o;
+  o.t1 = t1;
+  o.t2 = t2;
+  o.symmetry = Symmetry::Point;
+  o.p0 = md.onset_position(t1, a, sym);
+  o.p0dot = md.onset_velocity(t1, a, sym);
+  const double energy = 0.5 * (o.p0dot.array() / w).matrix().squaredNorm() + 0.5 * o.p0.squaredNorm();
+  if (!(energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
+  Eigen::VectorXd p, pd;
+  contact_flow(md, 0.5 * t2, o.p0, o.p0dot, p, pd);
+  const double scale = (md.z().dot(p) >= 0.0 ? 1.0 : -1.0) / std::sqrt(energy);
+  o.a = scale * a;
+  o.p0 *= scale;
+  o.p0dot *= scale;
+  Eigen::VectorXd cd;
+  contact_flow(md, t2, o.p0, o.p0dot, o.c, cd);
+  o.x0 = md.Phi() * (o.p0.array() / w).matrix();
+  o.v0 = md.Phi() * (o.p0dot.array() / w).matrix();
+  o.energy = 1.0;
+  o.obstacle_velocity = md.beta() * md.u().dot((o.p0dot.array() / w).matrix());
+  return o;
 }
 
 OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {

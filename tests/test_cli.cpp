@@ -326,6 +326,9 @@ TEST(Cli, ZeroGapSolveAndContinueOnAGeneratedParametricSystem) {
   const CliRun bad = run("generate two-dof --parameter k3 --range 1,10 --out " + (dir() / "bad.json").string());
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.out.find("m<i> or k<i>"), std::string::npos) << bad.out;
+  const CliRun pt = run("solve " + sys.string() + " --t1-max 5 --t2-max 1.5 --symmetry point");
+  ASSERT_EQ(pt.code, 0) << pt.out;
+  EXPECT_NE(pt.out.find("3 point-symmetric potential SPPs with k2"), std::string::npos) << pt.out;
   const CliRun rod = run("continue " + kChain + " --t1-max 3 --t2-max 1");
   EXPECT_EQ(rod.code, 1);
   EXPECT_NE(rod.out.find("no field \"parameter\""), std::string::npos) << rod.out;

@@ -133,3 +133,30 @@ TEST(Continuation, AdmissibilityBoundariesAreLocated) {
     }
   EXPECT_GE(located, 2) << r.brief_report();
 }
+
+TEST(Continuation, FixedObstaclePointSymmetricPotentialSppsOfSection62) {
+  // Point symmetry (det T2 = 0) on the §6.1 system with g0 = 0: a fixed obstacle needs zero normal velocity at
+  // onset, one more equation, so isolated parameter values. For this system x(0) = 0 and the flight takes
+  // (0, v) back to (0, v): omega_k t1 multiples of pi, so omega2 / omega1 is an integer here (one slow
+  // half-period of flight), and the contact phase a whole half-oscillation of mass 1 (d1 t2 = pi).
+  const ParametricSystem ps = paper_61(0.0, 1.0, 10.0);
+  ContinueOptions o;
+  o.t1_max = 5.0;
+  o.t2_max = 1.5;
+  o.symmetry = Symmetry::Point;
+  const ContinuationResult r = continue_branches(ps, o);
+  EXPECT_TRUE(r.warnings.empty()) << r.brief_report();
+  const std::vector<BranchPoint> spps = gap_closures(r);
+  ASSERT_EQ(spps.size(), 3u) << r.brief_report();
+  const double ratios[] = {4.0, 5.0, 6.0};
+  for (int k = 0; k < 3; ++k) {
+    const BranchPoint& p = spps[k];
+    EXPECT_NEAR(p.mu, k2_for_ratio(ratios[k]), 1e-9);
+    const ModalForm md(ps.at(p.mu));
+    EXPECT_NEAR(md.omega()(1) / md.omega()(0), ratios[k], 1e-9);
+    EXPECT_NEAR(p.t1, std::numbers::pi / md.omega()(0), 1e-9);
+    EXPECT_NEAR(p.t2, std::numbers::pi / std::sqrt(1 + p.mu), 1e-9);
+    EXPECT_LT(p.x0.norm(), 1e-8);
+    EXPECT_FALSE(p.admissible);
+  }
+}

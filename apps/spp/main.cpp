@@ -84,6 +84,9 @@ int main(int argc, char** argv) {
   cont->add_option("--max-step", copt.max_step, "largest step in scaled arclength (default 0.02)");
   cont->add_option("--json", cont_json, "write branches, points and events as JSON");
   cont->add_flag("--quiet", cont_quiet, "print only the one-line summary");
+  std::string cont_symmetry = "axial";
+  cont->add_option("--symmetry", cont_symmetry, "axial (SPPs, default) or point (det T2 = 0, paper §6.2)")
+      ->check(CLI::IsMember({"axial", "point"}));
 
   // trajectory
   auto* traj = app.add_subcommand("trajectory", "sample one period of an SPP: t, x, v, gap, force");
@@ -202,13 +205,15 @@ int main(int argc, char** argv) {
         co.t1_min = opt.t1_min;
         co.t2_min = opt.t2_min;
         co.threads = opt.threads;
+        co.symmetry = opt.symmetry;
         const spp::ContinuationResult cr = spp::continue_branches(ps, co);
         const std::string json_text = json_out.empty() ? "" : spp::zero_gap_to_json(ps, cr).dump(2) + "\n";
         if (!csv_out.empty()) throw std::invalid_argument("--csv: not available for the g0 = 0 solve (use --json)");
         if (!quiet) std::cout << spp::zero_gap_table(cr);
         std::cout << "spp: g0 = 0, solved for (t1, t2, " << ps.parameter().name << "): " << spp::gap_closures(cr).size()
-                  << " SPPs with " << ps.parameter().name << " in [" << ps.parameter().min << ", " << ps.parameter().max
-                  << "] (" << cr.brief_report() << ")\n";
+                  << (opt.symmetry == spp::Symmetry::Point ? " point-symmetric potential SPPs with " : " SPPs with ")
+                  << "" << ps.parameter().name << " in [" << ps.parameter().min << ", " << ps.parameter().max << "] ("
+                  << cr.brief_report() << ")\n";
         for (const auto& w : cr.warnings) std::cerr << "warning: " << w << "\n";
         if (!json_out.empty()) spp::write_file_atomic(json_out, json_text);
         return 0;
@@ -305,6 +310,7 @@ int main(int argc, char** argv) {
     }
     if (*cont) {
       const spp::ParametricSystem ps = spp::load_parametric_system(cont_sys);
+      copt.symmetry = cont_symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
       const spp::ContinuationResult cr = spp::continue_branches(ps, copt);
       const std::string json_text = cont_json.empty() ? "" : spp::continuation_to_json(ps, cr).dump(1) + "\n";
       if (!cont_quiet) std::cout << spp::continuation_table(cr);

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "spp/modal.hpp"
 #include "spp/parametric.hpp"
 
 namespace spp {
@@ -34,6 +35,9 @@ struct ContinueOptions {
   int max_points = 5000;              ///< per branch and direction
   double locate_tol = 1e-13;          ///< events located to this, in the same scaled arclength
   int threads = 0;                    ///< for the seeding solves
+  /// Point: branches of the point-symmetric potential SPPs (det T2 = 0, paper §6.2); their gap_closure
+  /// events are where the normal velocity at onset vanishes (with g0 = 0: a fixed obstacle).
+  Symmetry symmetry = Symmetry::Axial;
 
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
@@ -45,7 +49,8 @@ enum class BranchEventKind {
   Fold,                 ///< dmu/ds changes sign: two SPPs meet and disappear
   AdmissibilityLost,    ///< admissibility_margin goes from >= 0 to < 0 (in the direction of the branch)
   AdmissibilityGained,  ///< and back
-  GapClosure,           ///< u^T W^-1 p0 = 0: with g0 = 0, an SPP (paper §6.1); with g0 != 0, amplitude diverges
+  GapClosure,           ///< u^T W^-1 p0 = 0: with g0 = 0, an SPP (paper §6.1); with g0 != 0, amplitude diverges.
+                        ///< Symmetry::Point: u^T W^-1 p0' = 0, zero normal velocity at onset (§6.2, fixed obstacle)
   ClosedLoop,           ///< the branch came back to its first point: an isola, traced once
   Stalled,              ///< the step fell below min_step or max_points was reached
 };
@@ -73,6 +78,7 @@ struct Branch {
 
 struct ContinuationResult {
   Parameter parameter;
+  Symmetry symmetry = Symmetry::Axial;
   double t1_min = 0.0, t1_max = 0.0, t2_min = 0.0, t2_max = 0.0;
   std::vector<Branch> branches;
   std::vector<std::string> warnings;

@@ -34,7 +34,9 @@ Orbit make_point_orbit(const ModalForm& modal, double t1, double t2, const Eigen
 
 /// The orbit when its scale is free (g0 = 0, paper §6.1: eq. 5.2 does not fix it): scaled to unit energy,
 /// its sign chosen so that the contact force at mid-contact is >= 0 (the only sign that can be admissible).
-Orbit make_unit_energy_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a);
+/// Symmetry::Point likewise, its sign chosen so that the force is >= 0 at t2 / 2.
+Orbit make_unit_energy_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a,
+                             Symmetry sym = Symmetry::Axial);
 
 struct OrbitState {
   Eigen::VectorXd x, v;

@@ -110,3 +110,22 @@ def test_continuation_finds_the_zero_gap_spp_of_section_6_1():
         assert "k2 = 0" in str(e)
     else:
         raise AssertionError("expected ValueError")
+
+
+def test_point_symmetric_potential_spps_need_a_moving_obstacle_and_are_never_admissible():
+    s = spp.chain(5)
+    r = spp.solve(s, t1_max=6, t2_max=6, symmetry="point")
+    assert r.status == "success" and len(r.solutions) == 18
+    for x in r.solutions:
+        assert not x.admissible and "point_symmetric" in x.flags and x.min_force < 0
+        assert abs(x.obstacle_velocity - s.g0 / x.t2) < 1e-9 * s.g0 / x.t2
+        # with the real, fixed obstacle the motion does not come back after one period
+        sim = spp.simulate(s, x.x0, x.v0, x.period)
+        back = np.hypot(np.linalg.norm(sim.x[-1] - x.x0), np.linalg.norm(sim.v[-1] - x.v0))
+        assert back > 1e-3 * np.hypot(np.linalg.norm(x.x0), np.linalg.norm(x.v0))
+    try:
+        spp.solve(s, t1_max=6, t2_max=6, symmetry="central")
+    except ValueError as e:
+        assert "symmetry" in str(e)
+    else:
+        raise AssertionError("expected ValueError")
