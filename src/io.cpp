@@ -65,6 +65,29 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
   }
   return A;
 }
+
+Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where) {
+  if (!j.contains(key)) fail(where + ": missing field \"" + key + "\"");
+  const json& jw = j.at(key);
+  if (!jw.is_array() || jw.empty()) fail(where + ": field \"" + key + "\" must be a non-empty list of numbers");
+  Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
+  for (size_t i = 0; i < jw.size(); ++i) {
+    if (!jw[i].is_number())
+      fail(where + ": field \"" + key + "\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
+    w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
+  }
+  return w;
+}
+
+double g0_field(const json& j, const std::string& where) {
+  if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
+  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + j.at("g0").dump());
+  return j.at("g0").get<double>();
+}
+
+std::string name_field(const json& j) {
+  return j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+}
 }  // namespace
 
 std::string read_file(const std::string& path) {
@@ -79,33 +102,17 @@ System system_from_json(const json& j, const std::string& where, const std::stri
   if (!j.is_object()) fail(where + ": expected a JSON object with fields M, K, w, g0");
   Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
   Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
-  if (!j.contains("w")) fail(where + ": missing field \"w\"");
-  const json& jw = j.at("w");
-  if (!jw.is_array() || jw.empty()) fail(where + ": field \"w\" must be a non-empty list of numbers");
-  Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
-  for (size_t i = 0; i < jw.size(); ++i) {
-    if (!jw[i].is_number())
-      fail(where + ": field \"w\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
-    w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
-  }
-  if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
-  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + j.at("g0").dump());
-  std::string name = j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+  Eigen::VectorXd w = vector_field(j, "w", where);
+  const double g0 = g0_field(j, where);
   try {
-    return System(std::move(M), std::move(K), std::move(w), j.at("g0").get<double>(), name);
+    return System(std::move(M), std::move(K), std::move(w), g0, name_field(j));
   } catch (const std::invalid_argument& e) {
     fail(where + ": " + e.what());
   }
 }
 
 System load_system(const std::string& path) {
-  const std::string text = read_file(path);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // parse errors, and numbers out of double range (e.g. 1e999)
-    fail(path + ": malformed JSON: " + e.what());
-  }
+  const json j = read_json_file(path);
   if (declares_parameter(j))
     fail(path + ": declares the parameter \"" + j.at("parameter").value("name", std::string("?")) +
          "\" (a parametric system): use spp continue, or spp solve --at VALUE (or with g0 = 0 spp solve alone)");
@@ -118,14 +125,6 @@ bool declares_parameter(const json& j) {
 }
 
 namespace {
-json parse_file(const std::string& path) {
-  const std::string text = read_file(path);
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    fail(path + ": malformed JSON: " + e.what());
-  }
-}
 
 // {"constant": A, "<name>": B} -> (A, B); a plain value -> (value, empty).
 template <typename Read>
@@ -145,18 +144,6 @@ auto affine_field(const json& j, const char* key, const std::string& name, const
   return std::make_pair(read(j, key), T());
 }
 
-Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where) {
-  if (!j.contains(key)) fail(where + ": missing field \"" + key + "\"");
-  const json& jw = j.at(key);
-  if (!jw.is_array() || jw.empty()) fail(where + ": field \"" + key + "\" must be a non-empty list of numbers");
-  Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
-  for (size_t i = 0; i < jw.size(); ++i) {
-    if (!jw[i].is_number())
-      fail(where + ": field \"" + key + "\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
-    w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
-  }
-  return w;
-}
 }  // namespace
 
 ParametricSystem parametric_system_from_json(const json& j, const std::string& where, const std::string& dir) {
@@ -179,19 +166,17 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   auto [M0, M1] = affine_field(j, "M", par.name, where, mat);
   auto [K0, K1] = affine_field(j, "K", par.name, where, mat);
   auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
-  if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
-  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + j.at("g0").dump());
-  const std::string name = j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+  const double g0 = g0_field(j, where);
   try {
     return ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0), std::move(w1),
-                            j.at("g0").get<double>(), par, name);
+                            g0, par, name_field(j));
   } catch (const std::invalid_argument& e) {
     fail(where + ": " + e.what());
   }
 }
 
 ParametricSystem load_parametric_system(const std::string& path) {
-  const json j = parse_file(path);
+  const json j = read_json_file(path);
   const std::string dir = fs::path(path).parent_path().string();
   return parametric_system_from_json(j, path, dir.empty() ? "." : dir);
 }
