@@ -211,9 +211,8 @@ class Tracer {
     const Symmetry sym = o_.symmetry;
     try {
       const bool free_scale = md.g0() == 0.0;
-      const Orbit o = free_scale               ? make_unit_energy_orbit(md, p.t1, p.t2, e.a, sym)
-                      : sym == Symmetry::Point ? make_point_orbit(md, p.t1, p.t2, e.a)
-                                               : make_orbit(md, p.t1, p.t2, e.a);
+      const Orbit o =
+          free_scale ? make_unit_energy_orbit(md, p.t1, p.t2, e.a, sym) : make_orbit(md, p.t1, p.t2, e.a, sym);
       p.energy = o.energy;
       p.x0 = o.x0;
       p.v0 = o.v0;

@@ -487,12 +487,11 @@ Solution build_solution(const System& system, const ModalForm& md, const Polishe
   s.t2 = p.t2;
   s.period = 2.0 * (p.t1 + p.t2);
   s.residual = p.residual;
+  s.orbit = make_orbit(md, p.t1, p.t2, p.a, opt.symmetry);
   if (opt.symmetry == Symmetry::Point) {
-    s.orbit = make_point_orbit(md, p.t1, p.t2, p.a);
     s.admissibility = check_point_admissibility(md, s.orbit);
     s.flags.push_back("point_symmetric");
   } else {
-    s.orbit = make_orbit(md, p.t1, p.t2, p.a);
     s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
   }
   if (s.orbit.closure_ratio < 1e-10) s.flags.push_back("gap_closure_degenerate");
