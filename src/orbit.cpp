@@ -112,17 +112,28 @@ OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {
   return s;
 }
 
-Admissibility check_admissibility(const ModalForm& md, const Orbit& o, double rel_tol) {
-  Admissibility adm;
-  // Gap in flight about its axis t = -t1:  g(-t1 + tau) = g0 + sum beta u_k a_k / omega_k cos(omega_k tau).
+namespace {
+// Gap in flight about its axis t = -t1:  g(-t1 + tau) = g0 + sum beta u_k a_k / omega_k cos(omega_k tau).
+detail::CosineSum flight_gap(const ModalForm& md, const Orbit& o) {
   detail::CosineSum gap;
   gap.c0 = md.g0();
   gap.freq = md.omega();
   gap.amp = (md.beta() * md.u().array() * o.a.array() / md.omega().array()).matrix();
-  // Force in contact about its axis t = t2:  lambda(t2 + tau) = sum (G^T z)_j (G^T c)_j / beta cos(d_j tau).
+  return gap;
+}
+
+// Force in contact about its axis t = t2:  lambda(t2 + tau) = sum (G^T z)_j (G^T c)_j / beta cos(d_j tau).
+detail::CosineSum contact_force(const ModalForm& md, const Orbit& o) {
   detail::CosineSum force;
   force.freq = md.d();
   force.amp = ((md.G().transpose() * md.z()).array() * (md.G().transpose() * o.c).array() / md.beta()).matrix();
+  return force;
+}
+}  // namespace
+
+Admissibility check_admissibility(const ModalForm& md, const Orbit& o, double rel_tol) {
+  Admissibility adm;
+  const detail::CosineSum gap = flight_gap(md, o), force = contact_force(md, o);
 
   const double gscale = std::abs(gap.c0) + gap.amp.cwiseAbs().sum();
   const double fscale = force.amp.cwiseAbs().sum();
@@ -201,12 +212,12 @@ double sampled_minimum(const F& f, double len, double fastest) {
 }  // namespace
 
 double admissibility_margin(const ModalForm& md, const Orbit& o) {
-  const Eigen::ArrayXd& w = md.omega().array();
   // Gap about the flight's end: g(t1 - s) over the axis form sum A_k cos(w_k tau), tau = t1 - s; the parts that
   // make g, g', g'' at the end (zero by construction, rounding otherwise) are dropped, then divided by (s/t1)^3.
-  const Eigen::ArrayXd A = md.beta() * md.u().array() * o.a.array() / w;
+  const detail::CosineSum g = flight_gap(md, o), f = contact_force(md, o);
+  const Eigen::ArrayXd &w = g.freq.array(), &A = g.amp.array();
   const Eigen::ArrayXd C = (w * o.t1).cos(), S = (w * o.t1).sin();
-  const double gscale = std::abs(md.g0()) + A.abs().sum();
+  const double gscale = std::abs(g.c0) + A.abs().sum();
   const double t13 = o.t1 * o.t1 * o.t1;
   auto gap = [&](double s) {
     double v = 0.0;
@@ -215,8 +226,7 @@ double admissibility_margin(const ModalForm& md, const Orbit& o) {
     return t13 * v / gscale;
   };
   // Force about the release: lambda(t2 - s) = sum B_j cos(d_j (t2 - s)) minus lambda(t2), divided by s/t2.
-  const Eigen::ArrayXd& d = md.d().array();
-  const Eigen::ArrayXd B = (md.G().transpose() * md.z()).array() * (md.G().transpose() * o.c).array() / md.beta();
+  const Eigen::ArrayXd &d = f.freq.array(), &B = f.amp.array();
   const Eigen::ArrayXd Cd = (d * o.t2).cos(), Sd = (d * o.t2).sin();
   const double fscale = B.abs().sum();
   auto force = [&](double s) {
