@@ -95,22 +95,24 @@ struct Candidate {
 class Search {
  public:
   Search(const ModalForm& md, const SolveOptions& opt, SolveStats& st)
-      : md_(md), opt_(opt), st_(st), hmin_(opt.min_step * (opt.t1_max + opt.t2_max)), sym_(opt.symmetry) {}
+      : md_(md),
+        opt_(opt),
+        st_(st),
+        hmin_(opt.min_step * (opt.t1_max + opt.t2_max)),
+        sym_(opt.symmetry),
+        zhat_(md.z().normalized()) {}
 
   // g = c^T b / |c| with c the onset direction (z for axial symmetry: z^T p0 = 0 with p0 along b), and dg/ds
-  // given db/ds and dt2/ds.
+  // given db/ds and dt2/ds. Axial: c is constant, its unit vector computed once (this runs at every trace point).
   std::pair<double, double> onset_g(const Vec& b, double t2, const Vec* db = nullptr, double dt2_ds = 0.0) const {
+    if (sym_ == Symmetry::Axial) return {zhat_.dot(b), db ? zhat_.dot(*db) : 0.0};
     const Vec c = md_.onset_direction(t2, sym_);
     const double cn = c.norm();
     const Vec ch = c / cn;
     const double g = ch.dot(b);
     if (!db) return {g, 0.0};
-    double dg = ch.dot(*db);
-    if (sym_ == Symmetry::Point) {
-      const Vec dc = md_.onset_direction_dt2(t2, sym_) * dt2_ds;
-      dg += (dc - ch * ch.dot(dc)).dot(b) / cn;
-    }
-    return {g, dg};
+    const Vec dc = md_.onset_direction_dt2(t2, sym_) * dt2_ds;
+    return {g, ch.dot(*db) + (dc - ch * ch.dot(dc)).dot(b) / cn};
   }
 
   // ---- evaluations ----
@@ -399,6 +401,7 @@ class Search {
   static constexpr int kPieceBudget = 20000;  // trace steps and subdivisions per curve piece
   int budget_ = kPieceBudget;
   Symmetry sym_;
+  Vec zhat_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
   Mat C_, Hbuf_;
 };
