@@ -477,16 +477,14 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   // One window for every seed: the lower ends as solve() picks them, over both ends of the range.
   double t1_min = options.t1_min, t2_min = options.t2_min;
   if (t1_min == 0.0 || t2_min == 0.0) {
-    double w_max = 0.0, d_max = 0.0;
+    double lo1 = options.t1_max, lo2 = options.t2_max;
     for (double mu : {par.min, par.max}) {
-      const ModalForm md(ps.at(mu));
-      w_max = std::max(w_max, md.omega().maxCoeff());
-      d_max = std::max(d_max, md.d().maxCoeff());
+      const auto [a, b] = default_lower_ends(ModalForm(ps.at(mu)), options.t1_max, options.t2_max);
+      lo1 = std::min(lo1, a);
+      lo2 = std::min(lo2, b);
     }
-    const double pi = std::numbers::pi;
-    if (t1_min == 0.0) t1_min = std::min(1e-4 * pi / (2.0 * w_max), 1e-3 * options.t1_max);
-    if (t2_min == 0.0)
-      t2_min = std::min(d_max > 0 ? 1e-4 * pi / (2.0 * d_max) : 1e-4 * options.t2_max, 1e-3 * options.t2_max);
+    if (t1_min == 0.0) t1_min = lo1;
+    if (t2_min == 0.0) t2_min = lo2;
   }
   res.t1_min = t1_min;
   res.t2_min = t2_min;

@@ -512,6 +512,12 @@ Solution build_solution(const System& system, const ModalForm& md, const Polishe
 
 }  // namespace
 
+std::pair<double, double> default_lower_ends(const ModalForm& md, double t1_max, double t2_max) {
+  const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
+  return {std::min(1e-4 * pi / (2.0 * md.omega().maxCoeff()), 1e-3 * t1_max),
+          std::min(dmax > 0 ? 1e-4 * pi / (2.0 * dmax) : 1e-4 * t2_max, 1e-3 * t2_max)};
+}
+
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
   if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
     std::ostringstream os;
@@ -540,12 +546,9 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   res.symmetry = options.symmetry;
   res.repeated_groups = md.repeated_groups();
   SolveOptions opt = options;
-  const double pi = std::numbers::pi;
-  if (opt.t1_min == 0.0) opt.t1_min = std::min(1e-4 * pi / (2.0 * md.omega().maxCoeff()), 1e-3 * opt.t1_max);
-  if (opt.t2_min == 0.0) {
-    const double dmax = md.d().maxCoeff();
-    opt.t2_min = std::min(dmax > 0 ? 1e-4 * pi / (2.0 * dmax) : 1e-4 * opt.t2_max, 1e-3 * opt.t2_max);
-  }
+  const auto [t1_min, t2_min] = default_lower_ends(md, opt.t1_max, opt.t2_max);
+  if (opt.t1_min == 0.0) opt.t1_min = t1_min;
+  if (opt.t2_min == 0.0) opt.t2_min = t2_min;
 
   // Breakpoints: window edges and pole lines. A window edge within 1e-6 (relative) of a pole line is moved
   // onto that line, so that no sliver rectangle next to a pole (where H is huge) is left.

@@ -167,10 +167,8 @@ int main(int argc, char** argv) {
   gchain->add_option("--g0", cg0, "gap at rest");
   gchain->add_option("--out", gen_out, "output JSON")->required();
   std::string gen_param, gen_range;
-  for (auto* g : {gchain}) {
-    g->add_option("--parameter", gen_param, "leave one value free: m<i> or k<i> (1-based); needs --range");
-    g->add_option("--range", gen_range, "MIN,MAX of the --parameter");
-  }
+  gchain->add_option("--parameter", gen_param, "leave one value free: m<i> or k<i> (1-based); needs --range");
+  gchain->add_option("--range", gen_range, "MIN,MAX of the --parameter");
   auto* grod = gen->add_subcommand("rod", "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b");
   double ra = -0.25, rb = 0.25;
   grod->add_option("--a", ra, "slope of the obstacle line");

@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "spp/orbit.hpp"
@@ -86,6 +87,10 @@ struct SolveResult {
   /// One line: status, counts, time.
   std::string brief_report() const;
 };
+
+/// The lower window ends solve() takes when t1_min / t2_min are 0: 1e-4 of the fastest quarter period of each
+/// phase (flight: pi / (2 omega_max), contact: pi / (2 d_max)), at most 1e-3 of t1_max / t2_max.
+std::pair<double, double> default_lower_ends(const ModalForm& modal, double t1_max, double t2_max);
 
 /// Finds every potential SPP in the window, builds its initial conditions and checks admissibility.
 /// Throws std::invalid_argument for invalid options or g0 = 0 (the zero-gap case needs a parameter).
