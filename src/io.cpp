@@ -284,12 +284,20 @@ json result_to_json(const System& s, const SolveResult& r) {
                 {"roots", r.stats.roots},
                 {"evaluations", r.stats.evaluations},
                 {"strip_pairs", r.stats.strip_pairs},
+                {"certified_steps", r.stats.certified_steps},
+                {"heuristic_steps", r.stats.heuristic_steps},
+                {"uncertified_steps", r.stats.uncertified_steps},
+                {"uncertified_corners", r.stats.uncertified_corners},
                 {"unpaired_crossings", r.stats.unpaired_crossings},
-                {"near_double_roots", r.stats.near_double_roots},
                 {"unresolved_pieces", r.stats.unresolved_pieces},
+                {"unpolished_roots", r.stats.unpolished_roots},
                 {"decoupled_modes", r.decoupled_modes},
                 {"repeated_frequency_groups", r.repeated_groups},
                 {"seconds", r.stats.seconds}};
+  json unc = json::array();
+  for (const UncertifiedRegion& u : r.uncertified)
+    unc.push_back({{"t1_lo", u.t1_lo}, {"t1_hi", u.t1_hi}, {"t2_lo", u.t2_lo}, {"t2_hi", u.t2_hi}, {"cause", u.cause}});
+  j["uncertified"] = unc;
   json sols = json::array();
   for (const Solution& x : r.solutions) {
     json o = {{"t1", x.t1},

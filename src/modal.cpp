@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <stdexcept>
 
 namespace spp {
 
@@ -187,16 +189,52 @@ Eigen::VectorXd ModalForm::onset_direction_dt2(double t2, Symmetry sym) const {
   return -(dcontact_dt2(t2, Symmetry::Point) * z_);
 }
 
-std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi) {
+namespace {
+// Index range j in [first, last] of the poles (j + 1/2) pi / f inside (lo, hi), as doubles (they may be huge).
+std::pair<double, double> pole_index_range(double f, double lo, double hi) {
+  double first = std::max(0.0, std::ceil(lo * f / std::numbers::pi - 0.5));
+  double last = std::ceil(hi * f / std::numbers::pi - 0.5) - 1.0;  // (last + 1/2) pi / f < hi
+  return {first, last};
+}
+// Beyond 2^52 consecutive indices j, j + 1 are no longer distinct pole positions in double precision.
+constexpr double kLargestPoleIndex = 4503599627370496.0;
+}  // namespace
+
+double count_tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi) {
+  double count = 0.0;
+  for (Eigen::Index k = 0; k < freqs.size(); ++k) {
+    if (!(freqs(k) > 0)) continue;
+    const auto [first, last] = pole_index_range(freqs(k), lo, hi);
+    count += std::max(0.0, last - first + 1.0);
+  }
+  return count;
+}
+
+std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi, double max_count) {
+  const double count = count_tangent_poles(freqs, lo, hi);
+  if (count > max_count) {
+    std::ostringstream os;
+    os << "window (" << lo << ", " << hi << ") holds " << count << " pole lines (more than " << max_count
+       << "): narrow the window";
+    throw std::invalid_argument(os.str());
+  }
   std::vector<double> poles;
+  poles.reserve(static_cast<size_t>(count));
   for (Eigen::Index k = 0; k < freqs.size(); ++k) {
     const double f = freqs(k);
     if (!(f > 0)) continue;
-    const double kmin = std::max(0.0, std::ceil(lo * f / std::numbers::pi - 0.5));
-    for (double j = kmin;; j += 1.0) {
-      const double t = (j + 0.5) * std::numbers::pi / f;
-      if (t >= hi) break;
-      if (t > lo) poles.push_back(t);
+    const auto [first, last] = pole_index_range(f, lo, hi);
+    if (last < first) continue;
+    if (last >= kLargestPoleIndex) {
+      std::ostringstream os;
+      os << "window end " << hi << " is beyond double resolution of the pole lines of frequency " << f
+         << " (pole index " << last << " >= 2^52): move the window closer to 0";
+      throw std::invalid_argument(os.str());
+    }
+    // integer loop counter: a double counter stops advancing past 2^53
+    for (auto j = static_cast<long long>(first); j <= static_cast<long long>(last); ++j) {
+      const double t = (static_cast<double>(j) + 0.5) * std::numbers::pi / f;
+      if (t > lo && t < hi) poles.push_back(t);
     }
   }
   std::sort(poles.begin(), poles.end());

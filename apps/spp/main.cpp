@@ -59,6 +59,11 @@ int main(int argc, char** argv) {
   solve->add_flag("--admissible-only", opt.admissible_only, "keep only admissible SPPs");
   solve->add_flag("--quiet", quiet, "print only the one-line summary");
   solve->add_option("--threads", opt.threads, "worker threads (default 0: all hardware threads)");
+  solve->add_option("--max-cells", opt.max_cells,
+                    "refuse windows holding more cells between pole lines than this (default 1e7)")
+      ->check(CLI::PositiveNumber);
+  solve->add_flag("--certify-steps", opt.certify_steps,
+                  "experimental: prove each trace step with the curvature bound where it can; Incomplete unless all are");
   std::string solve_symmetry = "axial";
   solve
       ->add_option("--symmetry", solve_symmetry,

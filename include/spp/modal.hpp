@@ -88,7 +88,11 @@ class ModalForm {
   int repeated_groups_ = 0;
 };
 
-/// Poles (k + 1/2) pi / f for every positive frequency f in freqs, within (lo, hi), ascending and merged.
-std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi);
+/// Poles (k + 1/2) pi / f for every positive frequency f in freqs, within (lo, hi), ascending and merged (closer
+/// than 1e-12 relative). Throws std::invalid_argument naming the count when there are more than max_count, or when
+/// hi is so far out that consecutive poles are not distinct doubles. Cost O(count); no allocation before the check.
+std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi, double max_count = 1e8);
+/// Number of poles tangent_poles would list (before merging), without listing them: O(freqs).
+double count_tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi);
 
 }  // namespace spp

@@ -21,14 +21,24 @@
 
 namespace spp {
 
+/// The window is half-open, (t1_min, t1_max] x (t2_min, t2_max]: a root on a shared edge of two tiles belongs to one
+/// tile only, so the union of the results of a tiling equals the result of the whole window.
 struct SolveOptions {
   double t1_max = 0.0;  ///< upper end of the flight half-duration window (required, > 0)
   double t2_max = 0.0;  ///< upper end of the contact half-duration window (required, > 0)
-  /// Lower ends: t1 -> 0 and t2 -> 0 are limits (pure contact or pure flight oscillations), not SPPs.
-  /// 0 selects 1e-4 * pi / (2 * largest frequency of the phase). Roots that polish to t1 < 2 t1_min (or
-  /// t2 < 2 t2_min) are the limits at the axes and are dropped.
+  /// Lower ends. t1 -> 0 and t2 -> 0 are limits (pure contact or pure flight oscillations), not SPPs: 0 means
+  /// "from the axis" and selects 1e-4 * pi / (2 * largest frequency of the phase), and then roots at
+  /// t1 <= 2 t1_min (or t2 <= 2 t2_min) are the axis limits and are dropped. A positive value is taken as written.
   double t1_min = 0.0;
   double t2_min = 0.0;
+  /// Largest number of cells (rectangles between pole lines) a window may hold; larger windows are refused before
+  /// any evaluation, with their count.
+  long max_cells = 10'000'000;
+  /// Experimental: accept trace steps by the rigorous bound of search/step_certificate.hpp where it proves the step
+  /// (falling back to the midpoint check where it cannot), and report the window Incomplete unless every step was
+  /// proved. Today the bound is too weak next to pole lines: ~40x the evaluations on the paper's chain and rarely a
+  /// fully certified window. Off: every step by the midpoint check (heuristic_steps), as in earlier versions.
+  bool certify_steps = false;
   double pole_margin = 1e-6;         ///< distance kept from pole lines, relative to the neighbouring cell width
   double max_turn = 0.2;             ///< largest angle (rad) of the null vector b between two trace points
   double min_step = 1e-13;           ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
@@ -47,7 +57,7 @@ struct SolveOptions {
 enum class SolveStatus {
   NotRun,      ///< default: solve() has not filled this result
   Success,     ///< every check of completeness passed
-  Incomplete,  ///< a check could not be certified: see warnings (near-double roots, unpaired strip crossings)
+  Incomplete,  ///< a part of the window could not be certified: SolveResult::uncertified and the counted causes
 };
 const char* to_string(SolveStatus s);
 
@@ -60,7 +70,7 @@ struct Solution {
   Orbit orbit;
   Admissibility admissibility;
   /// "point_symmetric" (Symmetry::Point), "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)),
-  /// "near_double_root", "near_pole_line" (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees
+  /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees
   /// the contact has the same period: any amount of it can be added), "gap_closure_degenerate".
   std::vector<std::string> flags;
 };
@@ -69,11 +79,24 @@ struct SolveStats {
   int flight_pole_lines = 0, contact_pole_lines = 0;
   long rectangles = 0, curve_pieces = 0, roots = 0;
   long evaluations = 0;  ///< symmetric eigen-decompositions of H
-  long strip_pairs = 0;  ///< curves paired across pole lines
-  long unpaired_crossings = 0;
-  long near_double_roots = 0;
-  long unresolved_pieces = 0;  ///< curve pieces whose null vector turned too fast for the step budget
+  long strip_pairs = 0;      ///< curves paired across pole lines (diagonal passes through a pole-line crossing too)
+  long certified_steps = 0;  ///< trace steps with a proof that g keeps its sign, or changes it once (step_certificate)
+  /// Steps accepted by the midpoint turn check (all of them unless certify_steps; with it, where the certificate's
+  /// bounds are too weak, mostly next to pole lines): not a proof.
+  long heuristic_steps = 0;
+  // Causes of an Incomplete status, counted:
+  long uncertified_steps = 0;    ///< steps at the minimum length whose bound still fails (near-double roots)
+  long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
+  long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
+  long unresolved_pieces = 0;    ///< curve pieces that ran out of their step budget (nearly equal eigenvalues)
+  long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root
   double seconds = 0.0;
+};
+
+/// A part of the window that could not be certified, and why.
+struct UncertifiedRegion {
+  double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;
+  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish"
 };
 
 struct SolveResult {
@@ -84,6 +107,7 @@ struct SolveResult {
   int decoupled_modes = 0, repeated_groups = 0;
   Symmetry symmetry = Symmetry::Axial;
   std::vector<std::string> warnings;
+  std::vector<UncertifiedRegion> uncertified;  ///< empty exactly when status is Success
   /// One line: status, counts, time.
   std::string brief_report() const;
 };
