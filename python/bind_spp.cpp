@@ -123,6 +123,26 @@ PYBIND11_MODULE(_spp, m) {
       "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max] (symmetry=\"point\": the point-symmetric "
       "potential SPPs of paper §6.2). Raises ValueError.");
 
+  py::class_<spp::NearestSpp>(m, "NearestSpp", "Result of nearest_spp: the SPP nearest to a guess")
+      .def_readonly("found", &spp::NearestSpp::found)
+      .def_readonly("solution", &spp::NearestSpp::solution)
+      .def_property_readonly("search_status",
+                             [](const spp::NearestSpp& r) { return std::string(spp::to_string(r.search_status)); })
+      .def_readonly("candidates", &spp::NearestSpp::candidates, "SPPs in the window searched")
+      .def_property_readonly("window", [](const spp::NearestSpp& r) {
+        return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi);
+      });
+  m.def(
+      "nearest_spp",
+      [](const spp::System& s, double t1, double t2, double radius) {
+        py::gil_scoped_release release;
+        return spp::nearest_spp(s, t1, t2, radius);
+      },
+      "system"_a, "t1"_a, "t2"_a, "radius"_a = 0.05,
+      "The SPP nearest to a guess (t1, t2), e.g. read off the root map: the complete solver on the window "
+      "(t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the nearest root. "
+      "found is False when that window holds none. Raises ValueError.");
+
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)
       .def_property_readonly("kind", [](const spp::Event& e) { return spp::to_string(e.kind); })

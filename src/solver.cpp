@@ -932,4 +932,41 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   return res;
 }
 
+NearestSpp nearest_spp(const System& system, double t1, double t2, double radius, const SolveOptions& options) {
+  if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
+    std::ostringstream os;
+    os << "nearest_spp: t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
+    throw std::invalid_argument(os.str());
+  }
+  if (!(radius > 0 && radius < 1)) {
+    std::ostringstream os;
+    os << "nearest_spp: radius must be in (0, 1), got " << radius;
+    throw std::invalid_argument(os.str());
+  }
+  SolveOptions o = options;
+  o.t1_min = t1 * (1 - radius);
+  o.t1_max = t1 * (1 + radius);
+  o.t2_min = t2 * (1 - radius);
+  o.t2_max = t2 * (1 + radius);
+  o.admissible_only = false;
+  const SolveResult r = solve(system, o);
+  NearestSpp out;
+  out.search_status = r.status;
+  out.t1_lo = o.t1_min;
+  out.t1_hi = o.t1_max;
+  out.t2_lo = o.t2_min;
+  out.t2_hi = o.t2_max;
+  out.candidates = static_cast<long>(r.solutions.size());
+  double best = std::numeric_limits<double>::infinity();
+  for (const Solution& s : r.solutions) {
+    const double d = std::hypot((s.t1 - t1) / t1, (s.t2 - t2) / t2);
+    if (d < best) {
+      best = d;
+      out.solution = s;
+      out.found = true;
+    }
+  }
+  return out;
+}
+
 }  // namespace spp

@@ -169,6 +169,31 @@ TEST(Cli, TrajectoryWritesOnePeriod) {
   EXPECT_FALSE(fs::exists(dir() / "x.csv"));
 }
 
+TEST(Cli, TrajectoryRefinesAGuessWithTheCompleteSolver) {
+  // A guess a few percent off the paper's SPP (3.2160302, 0.52773599), as read off the root map.
+  const fs::path cs = dir() / "guess.csv", none = dir() / "none.csv";
+  CliRun r = run("trajectory " + kChain + " --t1 3.25 --t2 0.54 --csv " + cs.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("t1 = 3.21603, t2 = 0.527736"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(cs));
+  r = run("trajectory " + kChain + " --t1 3.25 --t2 0.54 --radius 1e-4 --csv " + none.string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("no SPP near"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(none));
+}
+
+TEST(Cli, FarAndHugeWindowsAreRefusedWithTheirSize) {
+  CliRun r = run("solve " + kChain + " --t1-min 3e16 --t1-max 3.00000000000001e16 --t2-max 1");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("2^52"), std::string::npos) << r.out;
+  r = run("solve " + kChain + " --t1-max 1e300 --t2-max 1");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--max-cells"), std::string::npos) << r.out;
+  r = run("solve " + kChain + " --t1-max 12 --t2-max 12 --max-cells 100 --quiet");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("460"), std::string::npos) << r.out;
+}
+
 TEST(Cli, GenerateThenSolve) {
   const fs::path g = dir() / "gen.json";
   ASSERT_EQ(run("generate chain --n 4 --masses 1,2,1,2 --stiffnesses 1 --g0 0.5 --out " + g.string()).code, 0);

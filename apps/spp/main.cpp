@@ -101,6 +101,10 @@ int main(int argc, char** argv) {
   traj->add_option("system", traj_sys, "system JSON file")->required();
   auto* o_t1 = traj->add_option("--t1", t1, "flight half-duration (refined to the nearest SPP)");
   auto* o_t2 = traj->add_option("--t2", t2, "contact half-duration (refined to the nearest SPP)");
+  double near_radius = 0.05;
+  traj->add_option("--radius", near_radius,
+                   "with --t1/--t2: relative half-width of the window searched around the guess (default 0.05)")
+      ->check(CLI::Range(1e-12, 0.999));
   auto* o_res = traj->add_option("--result", traj_result, "result JSON of spp solve");
   traj->add_option("--solution", solution_index, "index of the solution in --result");
   traj->add_option("--csv", traj_csv, "output CSV")->required();
@@ -253,7 +257,22 @@ int main(int argc, char** argv) {
       }
       spp::SolveOptions o;
       o.compute_return_error = false;
-      const spp::Solution s = spp::solution_at(sys, t1, t2, o);
+      spp::Solution s;
+      if (!traj_result.empty()) {
+        s = spp::solution_at(sys, t1, t2, o);  // an SPP of a result file: polish it where it is
+      } else {  // a guess (e.g. read off the root map): the complete solver around it, then the nearest SPP
+        const spp::NearestSpp near = spp::nearest_spp(sys, t1, t2, near_radius, o);
+        if (!near.found) {
+          std::ostringstream os;
+          os << "trajectory: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): the window (" << near.t1_lo << ", "
+             << near.t1_hi << "] x (" << near.t2_lo << ", " << near.t2_hi << "] holds none (search "
+             << spp::to_string(near.search_status) << "); widen it with --radius";
+          throw std::invalid_argument(os.str());
+        }
+        s = near.solution;
+        if (near.search_status != spp::SolveStatus::Success)
+          std::cerr << "warning: the search around the guess ended " << spp::to_string(near.search_status) << "\n";
+      }
       const spp::ModalForm md(sys);
       spp::write_file_atomic(traj_csv, spp::trajectory_csv(md, s.orbit, samples));
       std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period << ", "

@@ -126,4 +126,20 @@ SolveResult solve(const System& system, const SolveOptions& options);
 /// 1e-3 (t1 + t2) of the given point.
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options = {});
 
+/// Result of nearest_spp.
+struct NearestSpp {
+  bool found = false;
+  Solution solution;                 ///< the nearest SPP of the searched window (when found)
+  SolveStatus search_status = SolveStatus::NotRun;  ///< status of the complete search around the guess
+  double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;  ///< the window searched
+  long candidates = 0;                ///< SPPs in that window
+};
+
+/// Refines a guess read off the root map (within a few percent): the complete solver on the window
+/// (t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the SPP nearest to the guess
+/// (relative distance). found = false when the window holds none: a status, not an exception. Throws
+/// std::invalid_argument for a non-positive guess or radius outside (0, 1), and as solve() does.
+NearestSpp nearest_spp(const System& system, double t1, double t2, double radius = 0.05,
+                       const SolveOptions& options = {});
+
 }  // namespace spp

@@ -129,3 +129,15 @@ def test_point_symmetric_potential_spps_need_a_moving_obstacle_and_are_never_adm
         assert "symmetry" in str(e)
     else:
         raise AssertionError("expected ValueError")
+
+
+def test_nearest_spp_refines_a_guess_read_off_the_root_map():
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    near = spp.nearest_spp(s, 3.25, 0.54)  # the paper's SPP (3.2160302, 0.52773599), guessed within a few percent
+    assert near.found and near.search_status == "success"
+    assert abs(near.solution.t1 - 3.2160302) < 1e-7 and abs(near.solution.t2 - 0.52773599) < 1e-8
+    assert near.solution.admissible
+    none = spp.nearest_spp(s, 3.25, 0.54, radius=1e-4)
+    assert not none.found
+    with pytest.raises(ValueError):
+        spp.nearest_spp(s, -1.0, 0.5)
