@@ -1,0 +1,381 @@
+#include "search/cell_trace.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "search/step_certificate.hpp"
+#include "spp/detail/brent.hpp"
+
+namespace spp::search {
+
+namespace {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+
+// A point on curve k: position, oriented null vector, signed g and dg/ds along s = t2 - t1.
+struct TracePoint {
+  double s = 0, t1 = 0, t2 = 0, g = 0, dg = 0;
+  double lam_below = 0, lam_above = 0, residual = 0, eig_error = 0, slope_sum = 0;  // for the step certificate
+  Vec b;
+};
+
+StepEnd step_end(const TracePoint& p) {
+  return {p.s, p.t1, p.t2, p.g, p.dg, p.lam_below, p.lam_above, p.residual, p.eig_error, p.slope_sum, &p.b};
+}
+
+}  // namespace
+
+class CellTracer::Impl {
+ public:
+  Impl(const ModalForm& md, const SolveOptions& opt, SolveStats& st, Evaluator& ev)
+      : md_(md),
+        ev_(ev),
+        opt_(opt),
+        st_(st),
+        hmin_(opt.min_step * (opt.t1_max + opt.t2_max)),
+        sym_(opt.symmetry),
+        zhat_(md.z().normalized()) {}
+
+  // g = c^T b / |c| with c the onset direction (z for axial symmetry: z^T p0 = 0 with p0 along b), and dg/ds
+  // given db/ds and dt2/ds. Axial: c is constant, its unit vector computed once (this runs at every trace point).
+  std::pair<double, double> onset_g(const Vec& b, double t2, const Vec* db = nullptr, double dt2_ds = 0.0) const {
+    if (sym_ == Symmetry::Axial) return {zhat_.dot(b), db ? zhat_.dot(*db) : 0.0};
+    // Point symmetry: c(t2) is not normalised (its sign is all that matters, and the certificate bounds c^T b).
+    const Vec c = md_.onset_direction(t2, sym_);
+    const double g = c.dot(b);
+    if (!db) return {g, 0.0};
+    const Vec dc = md_.onset_direction_dt2(t2, sym_) * dt2_ds;
+    return {g, c.dot(*db) + dc.dot(b)};
+  }
+
+  // ---- evaluations (search::Evaluator) ----
+  std::shared_ptr<const HPoint> corner(double t1, double t2) { return ev_.at(t1, t2); }
+
+  // The k-th eigenpair of H (tridiagonal form, bisection, inverse iteration).
+  struct Pair {
+    double t1 = 0, t2 = 0, lam = 0, scale = 0;
+    Vec b;
+    std::shared_ptr<const HPoint> at;  // H at (t1, t2), for the bordered solve of point()
+    double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
+    double eig_error = 0;
+  };
+  Pair eigenpair(double t1, double t2, int k) {
+    const std::shared_ptr<const HPoint> T = ev_.at(t1, t2);
+    Pair p{t1, t2, T->eigenvalue(k), T->norm_bound(), Vec(), T};
+    p.b = T->eigenvector(p.lam);
+    p.eig_error = T->eigen_error();
+    if (k > 0) p.lam_below = T->eigenvalue(k - 1);
+    if (k + 1 < T->size()) p.lam_above = T->eigenvalue(k + 1);
+    return p;
+  }
+
+  // b^T dH/dt1 b and b^T dH/dt2 b (both >= 0).
+  std::pair<double, double> grads(const Vec& b, double t1, double t2) const {
+    const double l1 = (md_.dflight_dt1(t1, sym_).array() * b.array().square()).sum();
+    const Vec y = md_.G().transpose() * b;
+    const double l2 = (md_.dcontact_eigs(t2, sym_).array() * y.array().square()).sum();
+    return {l1, l2};
+  }
+
+  // Trace point from the eigenpair: g = zhat^T b and dg/ds, with db/ds from the bordered system
+  // [[H - lam I, b], [b^T, 0]] [db; mu] = [-(I - b b^T) dH/ds b; 0] (first-order eigenvector perturbation).
+  TracePoint point(const Pair& q, const Vec* ref) {
+    TracePoint p;
+    p.t1 = q.t1;
+    p.t2 = q.t2;
+    p.s = q.t2 - q.t1;
+    const Vec& b0 = q.b;
+    const double sign = (ref && b0.dot(*ref) < 0) ? -1.0 : 1.0;
+    const auto [l1, l2] = grads(b0, q.t1, q.t2);
+    const double tp = -l2 / (l1 + l2);  // dtau/ds on the curve
+    const Vec y = md_.G().transpose() * b0;
+    const Vec e2 = md_.dcontact_eigs(q.t2, sym_);
+    const Vec dHb = tp * md_.dflight_dt1(q.t1, sym_).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
+    const Vec dbh = q.at->solve_bordered(q.lam, b0, -(dHb - b0.dot(dHb) * b0));
+    p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam);
+    p.lam_below = q.lam_below;
+    p.lam_above = q.lam_above;
+    p.eig_error = q.eig_error;
+    p.slope_sum = l1 + l2;
+    p.b = sign * b0;
+    const auto [g, dg] = onset_g(b0, q.t2, &dbh, tp + 1.0);
+    p.g = sign * g;
+    p.dg = sign * dg;
+    return p;
+  }
+
+  // Root of lambda_k on the segment (t1a, t2a) + sigma (dt1, dt2), sigma in [lo, hi], lambda_k(lo) <= 0 <
+  // lambda_k(hi). lambda_k is non-decreasing along the segment (dt1, dt2 >= 0 in one of the two senses), so a
+  // Newton step safeguarded by bisection on the bracket converges; it stops at the rounding level of
+  // lambda_k (rel_ftol times the largest |eigenvalue|).
+  Pair segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
+                    double rel_ftol) {
+    double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
+    Pair e;
+    const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
+    for (int it = 0; it < 200; ++it) {
+      e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
+      const double f = e.lam;
+      if (std::abs(f) <= rel_ftol * e.scale) break;
+      if (f < 0)
+        lo = x;
+      else
+        hi = x;
+      const auto [l1, l2] = grads(e.b, e.t1, e.t2);
+      const double df = dt1 * l1 + dt2 * l2;
+      double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (hi - lo <= xtol || next == x) break;
+      x = next;
+    }
+    return e;
+  }
+
+  // Root of lambda_k on the edge from (t1a, t2a) to (t1b, t2b), with lambda_k = fa <= 0 and fb > 0 there.
+  Pair edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
+    const double guess = fa / (fa - fb);  // secant on the end values
+    return segment_root(t1a, t2a, t1b - t1a, t2b - t2a, 0.0, 1.0, guess, k, 1e-14);
+  }
+
+  // ---- one rectangle ----
+  using Rect = Cell;
+
+  // Root of lambda_k on the anti-diagonal t2 - t1 = s inside rectangle r (tau = t1 on the segment).
+  Pair diagonal_root(const Rect& r, double s, double guess, int k) {
+    const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
+    return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, 1e-13);
+  }
+
+  // One cell: count the curves at its corners, find each curve's entry and exit, trace it. Returns false when a
+  // part of the cell could not be certified (the caller records the cell).
+  bool trace_cell(Rect r, size_t column, std::vector<EdgeHit>& left_exits, std::vector<EdgeHit>& top_exits,
+                 std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
+    ++st_.rectangles;
+    bool certified = true;
+    // Corner counts are exact only when no eigenvalue lies within its error bound of 0: otherwise the corner is
+    // moved outwards (into the pole margin or past the window edge, never leaving a gap) and counted again. Checked
+    // with certify_steps only: next to clustered pole lines |H| ~ 1 / margin makes the bound ~1e-3 and the check
+    // fails on windows the midpoint trace handles (Solver.TraceTerminatesOnClusteredPoleLines).
+    auto certain = [this](const std::shared_ptr<const HPoint>& T) {
+      if (!opt_.certify_steps) return true;
+      const double e = T->eigen_error();
+      return T->count_below(-e) == T->count_below(e);
+    };
+    std::shared_ptr<const HPoint> BLt = corner(r.a1, r.A), TRt = corner(r.b1, r.B);
+    for (int tries = 0; tries < 4 && !(certain(BLt) && certain(TRt)); ++tries) {
+      const double d1 = 1e-9 * (r.b1 - r.a1), d2 = 1e-9 * (r.B - r.A);
+      if (!certain(BLt)) {
+        r.a1 -= d1;
+        r.A -= d2;
+        BLt = corner(r.a1, r.A);
+      }
+      if (!certain(TRt)) {
+        r.b1 += d1;
+        r.B += d2;
+        TRt = corner(r.b1, r.B);
+      }
+    }
+    if (!(certain(BLt) && certain(TRt))) {
+      ++st_.uncertified_corners;
+      certified = false;
+    }
+    const int kmin = TRt->count_below(0.0), kmax = BLt->count_below(0.0);  // curves k in [kmin, kmax)
+    if (kmin >= kmax) return certified;
+    const std::shared_ptr<const HPoint> BRt = corner(r.b1, r.A), TLt = corner(r.a1, r.B);
+    const int nBR = BRt->count_below(0.0), nTL = TLt->count_below(0.0);
+    for (int k = kmin; k < kmax; ++k) {
+      ++st_.curve_pieces;
+      // entry on the lower-right path, exit on the upper-left path (design note §3b)
+      Pair in, out;
+      // lambda_k > 0 at a corner iff fewer than k + 1 eigenvalues lie below 0 there
+      const bool in_bottom = nBR <= k, out_left = nTL <= k;
+      const double bl = BLt->eigenvalue(k), tr = TRt->eigenvalue(k), br = BRt->eigenvalue(k), tl = TLt->eigenvalue(k);
+      if (in_bottom)
+        in = edge_root(r.a1, r.A, r.b1, r.A, k, bl, br);
+      else
+        in = edge_root(r.b1, r.A, r.b1, r.B, k, br, tr);
+      if (out_left)
+        out = edge_root(r.a1, r.A, r.a1, r.B, k, bl, tl);
+      else
+        out = edge_root(r.a1, r.B, r.b1, r.B, k, tl, tr);
+      TracePoint pin = point(in, nullptr);
+      TracePoint pout = trace(r, k, pin, out, certified);
+      auto hit = [column](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b, column}; };
+      if (in_bottom ? r.bottom_pole : r.right_pole)
+        (in_bottom ? bottom_entries : right_entries).push_back(hit(pin, in_bottom ? pin.t1 : pin.t2));
+      if (out_left ? r.left_pole : r.top_pole)
+        (out_left ? left_exits : top_exits).push_back(hit(pout, out_left ? pout.t2 : pout.t1));
+    }
+    return certified;
+  }
+
+  // Traces curve k from its entry to its exit in steps of s = t2 - t1, each step certified by
+  // certify_step (no sign change of g, or exactly one, proved from bounds over the step's box); a step the
+  // bound cannot certify is halved. Sign changes are located by Brent and become candidates. Returns the oriented
+  // exit point; clears `certified` if a step at the minimum length, or the piece's step budget, was not enough.
+  TracePoint trace(const Rect& r, int k, const TracePoint& pin, const Pair& out, bool& certified) {
+    const double s_out = out.t2 - out.t1, span = s_out - pin.s;
+    TracePoint cur = pin;
+    if (!(span > 0)) return point(out, &cur.b);  // the curve only touches the cell at a corner
+    double h = span, slope = 0.0;  // slope: dtau/ds estimate for the predictor
+    int halvings = 0;
+    examine_budget_ = kPieceBudget;
+    auto turn_of = [](const Vec& x, const Vec& y) { return std::acos(std::min(1.0, std::abs(x.dot(y)))); };
+    for (int budget = kPieceBudget;; --budget) {
+      const double remaining = s_out - cur.s;
+      const bool last = h >= remaining;
+      const double step = last ? remaining : h;
+      if (budget <= 0 || examine_budget_ <= 0) {  // b turns faster than the step control can follow
+        ++st_.unresolved_pieces;
+        certified = false;
+        const TracePoint p = point(out, &cur.b);
+        examine(r, k, cur, p, 0);
+        return p;
+      }
+      if (opt_.certify_steps) {
+        const TracePoint p =
+            last ? point(out, &cur.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &cur.b);
+        const StepCertificate cert = certify_step(md_, sym_, step_end(cur), step_end(p));
+        if (cert.verdict != StepVerdict::Uncertified) {
+          ++st_.certified_steps;
+          halvings = 0;
+          if ((cur.g > 0) != (p.g > 0)) locate_root(r, k, cur, p, false);
+          if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
+          if (last) return p;
+          cur = p;
+          h = std::min(span, std::clamp(cert.safe_length, 0.25 * step, 4.0 * step));
+          continue;
+        }
+        // Shorten to the length the bound says it could prove; where that is below kCertifiedFloor of the piece (the
+        // bound is too weak there, mostly next to pole lines), or after 10 tries, the step goes to the midpoint
+        // check below.
+        const double floor = kCertifiedFloor * span;
+        const bool bounded = cert.gap > 0 && cert.curvature > 0;  // the bound was computed (not cut short)
+        const bool hopeless = (bounded && cert.safe_length < floor) || ++halvings > 10 || 0.5 * step < floor ||
+                              step <= hmin_;
+        if (!hopeless) {
+          h = std::max(hmin_, bounded ? std::min(0.5 * step, std::max(cert.safe_length, floor)) : 0.5 * step);
+          continue;
+        }
+      }
+      // Midpoint check: the turn of b is measured over both halves of the step (comparing only the ends would accept
+      // a b that swings away and comes back near an avoided crossing), g examined on both halves. Not a proof.
+      const TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
+      const TracePoint q =
+          last ? point(out, &mid.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &mid.b);
+      const double turn = turn_of(cur.b, mid.b) + turn_of(mid.b, q.b);
+      // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
+      const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
+      if (turn > opt_.max_turn && step > hmin_) {
+        h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
+        continue;
+      }
+      ++st_.heuristic_steps;
+      if (opt_.certify_steps) certified = false;
+      halvings = 0;
+      examine(r, k, cur, mid, 0);
+      examine(r, k, mid, q, 0);
+      if (q.s > cur.s) slope = (q.t1 - cur.t1) / (q.s - cur.s);
+      if (last) return q;
+      cur = q;
+      h = std::min(span, step * std::clamp(factor, 0.3, 4.0));
+    }
+  }
+
+  // Heuristic acceptance (the midpoint check of earlier versions), used only where the certificate's bounds are too
+  // weak (next to pole lines, where the pole mode's eigenvalue is huge and the single-gap resolvent bound fails):
+  // g on [A, B] of curve k: locate sign changes, refine where a Hermite model of g dips towards zero.
+  void examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
+    const double h = B.s - A.s;
+    auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
+    // Hermite cubic in sigma in [0,1]
+    auto herm = [&](double x) {
+      const double h00 = (1 + 2 * x) * (1 - x) * (1 - x), h10 = x * (1 - x) * (1 - x);
+      const double h01 = x * x * (3 - 2 * x), h11 = x * x * (x - 1);
+      return h00 * A.g + h10 * h * A.dg + h01 * B.g + h11 * h * B.dg;
+    };
+    int changes = 0;
+    double prev = A.g, xmin = 0.5, vmin = std::numeric_limits<double>::infinity();
+    const int ns = 32;
+    for (int i = 1; i <= ns; ++i) {
+      const double x = static_cast<double>(i) / ns;
+      const double v = i == ns ? B.g : herm(x);
+      if ((v > 0) != (prev > 0)) ++changes;
+      const double sv = (A.g > 0 ? v : -v);
+      if (i < ns && sv < vmin) {
+        vmin = sv;
+        xmin = x;
+      }
+      prev = v;
+    }
+    const bool endpoints_differ = (A.g > 0) != (B.g > 0);
+    const double gscale = std::max(std::abs(A.g), std::abs(B.g));
+    // Interior dip of the model towards (or through) zero, away from the end values.
+    const bool dip =
+        vmin < 0.25 * std::min(std::abs(A.g), std::abs(B.g)) && vmin < 0.25 * gscale && xmin > 0.02 && xmin < 0.98;
+    const bool suspicious = (endpoints_differ && changes > 1) || (!endpoints_differ && (changes > 0 || dip));
+    if (suspicious) {
+      if (h <= hmin_ || depth > 60 || examine_budget_ <= 0) {
+        if (examine_budget_ <= 0 && !endpoints_differ) ++st_.unresolved_pieces;
+        if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < 1e-8) {
+          ++st_.uncertified_steps;
+          candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}});
+        }
+        if (!endpoints_differ) return;
+      } else {
+        --examine_budget_;
+        const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
+        const TracePoint M = point(diagonal_root(r, s, guess(s), k), &A.b);
+        examine(r, k, A, M, depth + 1);
+        examine(r, k, M, B, depth + 1);
+        return;
+      }
+    }
+    if (endpoints_differ) locate_root(r, k, A, B, false);
+  }
+
+  // The one sign change of g between A and B: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
+  void locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B, bool uncertified) {
+    const double h = B.s - A.s;
+    auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
+    auto g_at = [&](double s) {
+      const Pair e = diagonal_root(r, s, guess(s), k);
+      Vec b = e.b;
+      if (b.dot(A.b) < 0) b = -b;
+      return onset_g(b, e.t2).first;
+    };
+    const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
+    const Pair e = diagonal_root(r, s, guess(s), k);
+    candidates_.push_back({e.t1, e.t2, uncertified, false, e.b});
+  }
+
+  std::vector<Candidate> candidates_;
+
+ private:
+  const ModalForm& md_;
+  Evaluator& ev_;
+  const SolveOptions& opt_;
+  SolveStats& st_;
+  const double hmin_;                         // smallest trace step in s
+  static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
+  int examine_budget_ = kPieceBudget;
+  static constexpr double kCertifiedFloor = 1e-4;  // shortest certified step, relative to the piece
+  Symmetry sym_;
+  Vec zhat_;
+};
+
+CellTracer::CellTracer(const ModalForm& modal, const SolveOptions& options, SolveStats& stats, Evaluator& evaluator)
+    : impl_(std::make_unique<Impl>(modal, options, stats, evaluator)) {}
+CellTracer::~CellTracer() = default;
+
+bool CellTracer::trace_cell(const Cell& cell, size_t column, std::vector<EdgeHit>& left_exits,
+                            std::vector<EdgeHit>& top_exits, std::vector<EdgeHit>& right_entries,
+                            std::vector<EdgeHit>& bottom_entries) {
+  return impl_->trace_cell(cell, column, left_exits, top_exits, right_entries, bottom_entries);
+}
+
+std::vector<Candidate>& CellTracer::candidates() { return impl_->candidates_; }
+
+}  // namespace spp::search

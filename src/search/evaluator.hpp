@@ -1,0 +1,56 @@
+#pragma once
+// Step "evaluate H": the one interface between the search and the linear algebra of H(t1, t2) (modal form §2:
+// H = W tan(W t1) + G D tan(D t2) G^T, or H_T for point symmetry). The search asks for inertia, the k-th eigenpair and
+// two products; a faster evaluator (e.g. a structured O(m^2) one for large m) plugs in here without touching it.
+
+#include <Eigen/Dense>
+#include <memory>
+
+#include "spp/detail/tridiagonal.hpp"
+#include "spp/modal.hpp"
+
+namespace spp::search {
+
+/// H at one point (t1, t2): everything the search reads of it.
+class HPoint {
+ public:
+  virtual ~HPoint() = default;
+  virtual int size() const = 0;
+  virtual int count_below(double x) const = 0;   ///< number of eigenvalues < x (Sylvester inertia)
+  virtual double eigenvalue(int k) const = 0;    ///< k-th smallest, 0-based, to ~ eps |H|
+  virtual Eigen::VectorXd eigenvector(double lambda) const = 0;  ///< unit vector for eigenvalue(k)
+  virtual double norm_bound() const = 0;         ///< a bound of |H|_2
+  virtual Eigen::VectorXd apply(const Eigen::VectorXd& v) const = 0;  ///< H v
+  /// x with [[H - lambda I, b], [b^T, 0]] [x; mu] = [rhs; 0] (first-order eigenvector perturbation).
+  virtual Eigen::VectorXd solve_bordered(double lambda, const Eigen::VectorXd& b, const Eigen::VectorXd& rhs) const = 0;
+  /// Absolute error bound of the computed eigenvalues (backward stable reduction: 8 m eps |H|).
+  double eigen_error() const { return 8.0 * size() * std::numeric_limits<double>::epsilon() * norm_bound(); }
+};
+
+/// Makes HPoints; counts them (SolveStats::evaluations). One per thread: implementations may cache.
+class Evaluator {
+ public:
+  virtual ~Evaluator() = default;
+  virtual std::shared_ptr<const HPoint> at(double t1, double t2) = 0;
+  long evaluations() const { return evaluations_; }
+
+ protected:
+  long evaluations_ = 0;
+};
+
+/// Dense: H formed explicitly (O(m^2) with the contact part G e(t2) G^T cached per t2, O(m^3) otherwise), Householder
+/// tridiagonal form, Sturm counts, bisection and inverse iteration (detail::SymmetricTridiagonal); bordered solves
+/// by LU of the (m + 1)-square bordered matrix.
+class DenseEvaluator final : public Evaluator {
+ public:
+  DenseEvaluator(const ModalForm& modal, Symmetry symmetry) : md_(modal), sym_(symmetry) {}
+  std::shared_ptr<const HPoint> at(double t1, double t2) override;
+
+ private:
+  const ModalForm& md_;
+  Symmetry sym_;
+  double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
+  Eigen::MatrixXd C_;
+};
+
+}  // namespace spp::search

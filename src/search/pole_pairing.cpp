@@ -1,0 +1,95 @@
+#include "search/pole_pairing.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace spp::search {
+
+// Each segment of a pole line between two crossings with lines of the other phase is paired in order. A curve may
+// also pass diagonally through the tiny square where a vertical and a horizontal line cross: from the cell below
+// right, leaving through its left edge, into the cell above left through its bottom edge (or through the top edge
+// into the right edge). It shows as one extra exit at the top end of a vertical segment and one extra entry at the
+// right end of a horizontal segment (or the mirror): those are paired with each other, per crossing. Anything else
+// that does not pair is counted as unpaired.
+void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& a2,
+                            SolveStats& stats, std::vector<UncertifiedRegion>& uncertified,
+                            std::vector<Candidate>& candidates) {
+  auto pair = [&](const EdgeHit& from, const EdgeHit& to) {
+    ++stats.strip_pairs;
+    double g2 = to.g;
+    if (from.b.dot(to.b) < 0) g2 = -g2;
+    if ((from.g > 0) != (g2 > 0))
+      candidates.push_back({0.5 * (from.t1 + to.t1), 0.5 * (from.t2 + to.t2), false, true, {}});
+  };
+  auto pair_in_order = [&](const std::vector<EdgeHit>& from, const std::vector<EdgeHit>& to) {
+    for (size_t i = 0; i < std::min(from.size(), to.size()); ++i) pair(from[i], to[i]);
+  };
+  const size_t I = a1.cells(), J = a2.cells();
+  std::map<std::pair<size_t, size_t>, std::vector<EdgeHit>> diag_out_v, diag_in_h, diag_out_h, diag_in_v;
+  auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
+  auto unpaired = [&](long count, double t1, double t2) {
+    stats.unpaired_crossings += count;
+    uncertified.push_back({t1, t1, t2, t2, "pairing"});
+  };
+  for (size_t i = 1; i < I; ++i) {  // vertical lines, segment j between horizontal lines j and j + 1
+    if (!a1.pole[i]) continue;
+    for (size_t j = 0; j < J; ++j) {
+      auto& from = hits.v_from[i][j];
+      auto& to = hits.v_to[i][j];
+      std::sort(from.begin(), from.end(), by_pos);
+      std::sort(to.begin(), to.end(), by_pos);
+      if (from.size() == to.size() + 1 && j + 1 < J && a2.pole[j + 1]) {
+        diag_out_v[{i, j + 1}].push_back(from.back());
+        from.pop_back();
+      } else if (to.size() == from.size() + 1 && j > 0 && a2.pole[j]) {
+        diag_in_v[{i, j}].push_back(to.front());
+        to.erase(to.begin());
+      }
+      if (from.size() != to.size())
+        unpaired(static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size())), a1.bp[i],
+                 a2.bp[j]);
+      else
+        pair_in_order(from, to);
+    }
+  }
+  for (size_t j = 1; j < J; ++j) {  // horizontal lines, segment i between vertical lines i and i + 1
+    if (!a2.pole[j]) continue;
+    for (size_t i = 0; i < I; ++i) {
+      auto& from = hits.h_from[j][i];
+      auto& to = hits.h_to[j][i];
+      std::sort(from.begin(), from.end(), by_pos);
+      std::sort(to.begin(), to.end(), by_pos);
+      if (from.size() == to.size() + 1 && i > 0 && a1.pole[i]) {
+        diag_out_h[{i, j}].push_back(from.front());
+        from.erase(from.begin());
+      } else if (to.size() == from.size() + 1 && i + 1 < I && a1.pole[i + 1]) {
+        diag_in_h[{i + 1, j}].push_back(to.back());
+        to.pop_back();
+      }
+      if (from.size() != to.size())
+        unpaired(static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size())), a1.bp[i],
+                 a2.bp[j]);
+      else
+        pair_in_order(from, to);
+    }
+  }
+  // diagonal passes: left edge of the lower-right cell -> bottom edge of the upper-left cell, and top edge of the
+  // lower-right cell -> right edge of the upper-left cell
+  auto match = [&](auto& outs, auto& ins) {
+    for (auto& [key, o] : outs) {
+      auto it = ins.find(key);
+      if (it != ins.end() && it->second.size() == o.size()) {
+        for (size_t q = 0; q < o.size(); ++q) pair(o[q], it->second[q]);
+        ins.erase(it);
+      } else {
+        unpaired(static_cast<long>(o.size()), a1.bp[key.first], a2.bp[key.second]);
+      }
+    }
+    for (auto& [key, in] : ins) unpaired(static_cast<long>(in.size()), a1.bp[key.first], a2.bp[key.second]);
+  };
+  match(diag_out_v, diag_in_h);
+  match(diag_out_h, diag_in_v);
+}
+
+
+}  // namespace spp::search

@@ -1,0 +1,42 @@
+#pragma once
+// Step "plan the window": the search region of a window (t1_min, t1_max] x (t2_min, t2_max], its pole lines and cells,
+// counted (and refused beyond SolveOptions::max_cells) before any evaluation.
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "spp/modal.hpp"
+#include "spp/solver.hpp"
+
+namespace spp::search {
+
+// One axis of the search region: breakpoints (region edges and pole lines), which are poles, and the margin kept on
+// each side of a pole line (0 at region edges).
+struct AxisPlan {
+  std::vector<double> bp;
+  std::vector<bool> pole;
+  std::vector<double> margin;
+  size_t cells() const { return bp.size() - 1; }
+};
+
+// The region searched for the window (lo, hi] of one phase: the window widened by a hair (roots found outside the
+// window are dropped by the half-open membership rule, so a root on a tile edge is found by both tiles and kept by
+// one), and, where an edge falls within kEdgePole of a pole line, widened past that line so that the line is
+// interior and its thin strip is covered by pairing (a window edge is never snapped onto a pole line).
+/// The region searched for the window (lo, hi] of one phase (see plan_window).
+AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool widen_lo, double pole_margin,
+                   double max_count);
+
+/// Throws std::invalid_argument with the count when the window holds more than max_cells cells. O(m).
+void check_window_size(const ModalForm& md, const SolveOptions& opt);
+
+struct WindowPlan {
+  SolveOptions options;     ///< the caller's, with the automatic lower ends filled in
+  bool axis1 = false, axis2 = false;  ///< lower ends automatic ("from the axis")
+  AxisPlan t1, t2;
+};
+
+/// The whole plan: lower ends (0 = from the axis: default_lower_ends), size check, both axes.
+WindowPlan plan_window(const ModalForm& md, const SolveOptions& options);
+
+}  // namespace spp::search
