@@ -141,3 +141,20 @@ TEST(Window, StepCertificateProvesEveryStepOfAWindowAwayFromPoleLines) {
   ASSERT_EQ(r.solutions.size(), 1u);
   EXPECT_NEAR(r.solutions[0].t1, 3.2160302, 1e-7);
 }
+
+TEST(Window, LowerEndsInsideTheAxisBandGiveTheAxisWindowsRoots) {
+  // Regression (independent brute force: 11 roots in (0, 5]^2): with t1_min = t2_min = 1e-7 the search reported 18,
+  // 7 of them rounding noise next to the axis t1 = 0 (g = O(t1^2) there, its error O(1/t1)); 1e-9 gave 13, 1e-12 12.
+  const System s = chain5();
+  const SolveResult ref = solve_window(s, 0.0, 5.0, 0.0, 5.0);
+  ASSERT_EQ(ref.solutions.size(), 11u);
+  for (double lo : {1e-7, 1e-9, 1e-12}) {
+    const SolveResult r = solve_window(s, lo, 5.0, lo, 5.0);
+    EXPECT_EQ(r.status, SolveStatus::Success) << lo << ": " << r.brief_report();
+    ASSERT_EQ(r.solutions.size(), ref.solutions.size()) << lo;
+    for (size_t i = 0; i < r.solutions.size(); ++i) {
+      EXPECT_NEAR(r.solutions[i].t1, ref.solutions[i].t1, 1e-9);
+      EXPECT_NEAR(r.solutions[i].t2, ref.solutions[i].t2, 1e-9);
+    }
+  }
+}

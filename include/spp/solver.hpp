@@ -27,8 +27,8 @@ struct SolveOptions {
   double t1_max = 0.0;  ///< upper end of the flight half-duration window (required, > 0)
   double t2_max = 0.0;  ///< upper end of the contact half-duration window (required, > 0)
   /// Lower ends. t1 -> 0 and t2 -> 0 are limits (pure contact or pure flight oscillations), not SPPs: 0 means
-  /// "from the axis" and selects 1e-4 * pi / (2 * largest frequency of the phase), and then roots at
-  /// t1 <= 2 t1_min (or t2 <= 2 t2_min) are the axis limits and are dropped. A positive value is taken as written.
+  /// "from the axis" and selects default_lower_ends(); a positive value is taken as written. Whatever the window,
+  /// roots within axis_band() of an axis are not reported (not resolvable in double precision).
   double t1_min = 0.0;
   double t2_min = 0.0;
   /// Largest number of cells (rectangles between pole lines) a window may hold; larger windows are refused before
@@ -90,13 +90,14 @@ struct SolveStats {
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces that ran out of their step budget (nearly equal eigenvalues)
   long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root
+  long unresolved_sign_changes = 0;  ///< sign changes of g below its rounding error, outside the axis bands
   double seconds = 0.0;
 };
 
 /// A part of the window that could not be certified, and why.
 struct UncertifiedRegion {
   double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;
-  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish"
+  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish", "noise"
 };
 
 struct SolveResult {
@@ -115,6 +116,11 @@ struct SolveResult {
 /// The lower window ends solve() takes when t1_min / t2_min are 0: 1e-4 of the fastest quarter period of each
 /// phase (flight: pi / (2 omega_max), contact: pi / (2 d_max)), at most 1e-3 of t1_max / t2_max.
 std::pair<double, double> default_lower_ends(const ModalForm& modal, double t1_max, double t2_max);
+
+/// The bands next to the axes where roots are not reported: t1 <= 2e-4 * pi / (2 omega_max) and
+/// t2 <= 2e-4 * pi / (2 d_max). There g vanishes with the distance to the axis while its rounding error grows like
+/// its inverse; the band depends on the system only, so that a tiling gives the whole window's roots.
+std::pair<double, double> axis_band(const ModalForm& modal);
 
 /// Finds every potential SPP in the window, builds its initial conditions and checks admissibility.
 /// Throws std::invalid_argument for invalid options or g0 = 0 (the zero-gap case needs a parameter).

@@ -339,6 +339,21 @@ class CellTracer::Impl {
   // The one sign change of g between A and B: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
   void locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B, bool uncertified) {
     const double h = B.s - A.s;
+    // A sign change is resolvable only where g exceeds its rounding error at an end of the step: the computed null
+    // vector is within (|H b| + eigenvalue error) / gap of the true one, gap = distance to the other eigenvalues.
+    // Next to the axis t1 = 0 the gap is O(t1) and g = O(t1^2): sign changes there are rounding noise.
+    auto noise = [&](const TracePoint& p) {
+      const double gap = std::min(p.lam_above, -p.lam_below);
+      const double cn = sym_ == Symmetry::Axial ? 1.0 : md_.onset_direction(p.t2, sym_).norm();
+      return gap > 0 ? 10.0 * cn * (p.residual + p.eig_error) / gap : std::numeric_limits<double>::infinity();
+    };
+    // (The floor kNoiseFloor covers what the residual does not see: the rounding of the modal form itself, G and d.)
+    if (std::max(std::abs(A.g), std::abs(B.g)) <= std::max({noise(A), noise(B), kNoiseFloor})) {
+      Candidate c{0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}};
+      c.unresolvable = true;
+      candidates_.push_back(std::move(c));
+      return;
+    }
     auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     auto g_at = [&](double s) {
       const Pair e = diagonal_root(r, s, guess(s), k);
@@ -362,6 +377,7 @@ class CellTracer::Impl {
   static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
   int examine_budget_ = kPieceBudget;
   static constexpr double kCertifiedFloor = 1e-4;  // shortest certified step, relative to the piece
+  static constexpr double kNoiseFloor = 1e-9;  // |g| (unit vectors) below which a sign change is not told from noise
   Symmetry sym_;
   Vec zhat_;
 };
