@@ -291,7 +291,6 @@ json result_to_json(const System& s, const SolveResult& r) {
                 {"unpaired_crossings", r.stats.unpaired_crossings},
                 {"unresolved_pieces", r.stats.unresolved_pieces},
                 {"unpolished_roots", r.stats.unpolished_roots},
-                {"unresolved_sign_changes", r.stats.unresolved_sign_changes},
                 {"decoupled_modes", r.decoupled_modes},
                 {"repeated_frequency_groups", r.repeated_groups},
                 {"seconds", r.stats.seconds}};

@@ -133,7 +133,7 @@ std::pair<double, double> default_lower_ends(const ModalForm& md, double t1_max,
 
 std::pair<double, double> axis_band(const ModalForm& md) {
   const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
-  return {2e-4 * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? 2e-4 * pi / (2.0 * dmax) : 0.0};
+  return {1e-3 * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? 1e-3 * pi / (2.0 * dmax) : 0.0};
 }
 
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
@@ -237,7 +237,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
   const double window_scale = opt.t1_max + opt.t2_max;
   // The axes are lines of limits: each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both
   // equations in the limit (pure contact oscillation), and there g vanishes with t1 while its rounding error grows
-  // like 1 / t1 (the gap to the next eigenvalue is O(t1)): sign changes within 2e-4 of the fastest quarter period of
+  // like 1 / t1 (the gap to the next eigenvalue is O(t1)): sign changes within 1e-3 of the fastest quarter period of
   // the axis are not resolvable in double precision (an independent brute force sees rounding noise there) and are
   // not reported, whatever the window, so that tilings stay consistent (axis_band). Likewise for t2 -> 0.
   const auto [band1, band2] = axis_band(md);
@@ -246,13 +246,6 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
            t2 <= opt.t2_max;
   };
   for (const Candidate& c : candidates) {
-    if (c.unresolvable) {  // inside the axis bands: the expected noise of the axis limits; elsewhere a gap
-      if (inside(c.t1, c.t2)) {
-        ++res.stats.unresolved_sign_changes;
-        res.uncertified.push_back({c.t1, c.t1, c.t2, c.t2, "noise"});
-      }
-      continue;
-    }
     const Polished p = polish(md, c.t1, c.t2, c.b, opt.symmetry);
     // Where Newton stalls with a small residual (N nearly rank-deficient in two directions, e.g. close to the limit
     // points on the axis t1 = 0) the root is reported with a flag. A candidate that does not polish at all is not
@@ -304,8 +297,6 @@ void finalize(const SolveOptions& options, SolveResult& res) {
   cause(st.unresolved_pieces, "curve piece(s) ran out of their step budget (nearly equal eigenvalues): a root there "
                               "is not excluded");
   cause(st.uncertified_corners, "cell corner(s) kept an eigenvalue within its error bound of zero");
-  cause(st.unresolved_sign_changes, "sign change(s) of g below its rounding error (g and the gap to the next "
-                                    "eigenvalue both tiny): a root there can be neither confirmed nor excluded");
   cause(st.unpaired_crossings, "curve crossing(s) of a pole line could not be paired: a root in that thin strip is "
                                "not excluded");
   for (const Solution& s : res.solutions)

@@ -158,3 +158,20 @@ TEST(Window, LowerEndsInsideTheAxisBandGiveTheAxisWindowsRoots) {
     }
   }
 }
+
+TEST(Window, PairOfRootsHiddenInOneSmallTurnStepIsFound) {
+  // Regression, found by the independent brute force on a random stiff 2-dof system (stiffness spread ~1e5): one
+  // midpoint-checked step took g from -4.2e-4 up through zero and back to -3.9e-2 with a turn of b below 0.2 rad
+  // (|g| much smaller than the turn), losing the SPP (0.00788137049781, 0.106633445732) (verified by the brute
+  // force at 50 digits). Steps where g keeps its sign now turn less than (asin|g_A| + asin|g_B|) / 2.
+  const System s(
+      (Eigen::Matrix2d() << 0.8008872524029951, 0.41573887331407317, 0.41573887331407317, 0.64514207494261)
+          .finished(),
+      (Eigen::Matrix2d() << 59088.85286319769, -49166.572409351524, -49166.572409351524, 40912.14713680231)
+          .finished(),
+      Eigen::Vector2d(0.3907743068107353, -0.9204865241471977), 1.0);
+  const SolveResult r = solve_window(s, 0.005, 0.01, 0.105, 0.125);
+  ASSERT_EQ(r.solutions.size(), 1u) << r.brief_report();
+  EXPECT_NEAR(r.solutions[0].t1, 0.00788137049781, 1e-10);
+  EXPECT_NEAR(r.solutions[0].t2, 0.106633445732, 1e-10);
+}

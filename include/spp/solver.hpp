@@ -90,14 +90,13 @@ struct SolveStats {
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces that ran out of their step budget (nearly equal eigenvalues)
   long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root
-  long unresolved_sign_changes = 0;  ///< sign changes of g below its rounding error, outside the axis bands
   double seconds = 0.0;
 };
 
 /// A part of the window that could not be certified, and why.
 struct UncertifiedRegion {
   double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;
-  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish", "noise"
+  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish"
 };
 
 struct SolveResult {
@@ -117,8 +116,8 @@ struct SolveResult {
 /// phase (flight: pi / (2 omega_max), contact: pi / (2 d_max)), at most 1e-3 of t1_max / t2_max.
 std::pair<double, double> default_lower_ends(const ModalForm& modal, double t1_max, double t2_max);
 
-/// The bands next to the axes where roots are not reported: t1 <= 2e-4 * pi / (2 omega_max) and
-/// t2 <= 2e-4 * pi / (2 d_max). There g vanishes with the distance to the axis while its rounding error grows like
+/// The bands next to the axes where roots are not reported: t1 <= 1e-3 * pi / (2 omega_max) and
+/// t2 <= 1e-3 * pi / (2 d_max). There g vanishes with the distance to the axis while its rounding error grows like
 /// its inverse; the band depends on the system only, so that a tiling gives the whole window's roots.
 std::pair<double, double> axis_band(const ModalForm& modal);
 

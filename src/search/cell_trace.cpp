@@ -272,6 +272,15 @@ class CellTracer::Impl {
         h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
         continue;
       }
+      // b reaches the hyperplane c^T b = 0 and comes back only along a path at least asin|g_A| + asin|g_B| long
+      // (angles of the ends to that hyperplane): where g keeps its sign over a half, its turn (a lower bound of the
+      // path) must stay below half of that, or the half could hide a pair of roots that a small turn allows when
+      // |g| is small (seen on a stiff 2-dof: g from -4e-4 through 0 and back to -4e-2 in one step of turn < 0.2).
+      const double slack = std::min(hidden_pair_slack(cur, mid), hidden_pair_slack(mid, q));
+      if (slack < 1.0 && step > hmin_) {
+        h = std::max(hmin_, step * std::clamp(0.6 * slack, 0.1, 0.5));
+        continue;
+      }
       ++st_.heuristic_steps;
       if (opt_.certify_steps) certified = false;
       halvings = 0;
@@ -336,24 +345,22 @@ class CellTracer::Impl {
     if (endpoints_differ) locate_root(r, k, A, B, false);
   }
 
+  // Angle of b to the hyperplane c^T b = 0 at a trace point.
+  double reach(const TracePoint& p) const {
+    const double cn = sym_ == Symmetry::Axial ? 1.0 : md_.onset_direction(p.t2, sym_).norm();
+    return std::asin(std::min(1.0, std::abs(p.g) / cn));
+  }
+  // (asin|g_A| + asin|g_B|) / (2 turn(A, B)) where g keeps its sign from A to B (>= 1: no pair of roots can hide in
+  // a path that short), infinity where it changes sign (one crossing, located by Brent).
+  double hidden_pair_slack(const TracePoint& A, const TracePoint& B) const {
+    if ((A.g > 0) != (B.g > 0)) return std::numeric_limits<double>::infinity();
+    const double turn = std::acos(std::min(1.0, std::abs(A.b.dot(B.b))));
+    return turn > 0 ? (reach(A) + reach(B)) / (2.0 * turn) : std::numeric_limits<double>::infinity();
+  }
+
   // The one sign change of g between A and B: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
   void locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B, bool uncertified) {
     const double h = B.s - A.s;
-    // A sign change is resolvable only where g exceeds its rounding error at an end of the step: the computed null
-    // vector is within (|H b| + eigenvalue error) / gap of the true one, gap = distance to the other eigenvalues.
-    // Next to the axis t1 = 0 the gap is O(t1) and g = O(t1^2): sign changes there are rounding noise.
-    auto noise = [&](const TracePoint& p) {
-      const double gap = std::min(p.lam_above, -p.lam_below);
-      const double cn = sym_ == Symmetry::Axial ? 1.0 : md_.onset_direction(p.t2, sym_).norm();
-      return gap > 0 ? 10.0 * cn * (p.residual + p.eig_error) / gap : std::numeric_limits<double>::infinity();
-    };
-    // (The floor kNoiseFloor covers what the residual does not see: the rounding of the modal form itself, G and d.)
-    if (std::max(std::abs(A.g), std::abs(B.g)) <= std::max({noise(A), noise(B), kNoiseFloor})) {
-      Candidate c{0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}};
-      c.unresolvable = true;
-      candidates_.push_back(std::move(c));
-      return;
-    }
     auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     auto g_at = [&](double s) {
       const Pair e = diagonal_root(r, s, guess(s), k);
@@ -377,7 +384,6 @@ class CellTracer::Impl {
   static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
   int examine_budget_ = kPieceBudget;
   static constexpr double kCertifiedFloor = 1e-4;  // shortest certified step, relative to the piece
-  static constexpr double kNoiseFloor = 1e-9;  // |g| (unit vectors) below which a sign change is not told from noise
   Symmetry sym_;
   Vec zhat_;
 };

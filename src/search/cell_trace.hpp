@@ -31,7 +31,6 @@ struct Candidate {
   double t1, t2;
   bool uncertified = false, near_pole = false;
   Eigen::VectorXd b;  // null vector of H from the trace (empty: take the SVD of N)
-  bool unresolvable = false;  ///< |g| below its rounding error at both ends of the step: not a root that can be told
 };
 
 
