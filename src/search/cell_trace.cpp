@@ -17,7 +17,9 @@ using Mat = Eigen::MatrixXd;
 // A point on curve k: position, oriented null vector, signed g and dg/ds along s = t2 - t1.
 struct TracePoint {
   double s = 0, t1 = 0, t2 = 0, g = 0, dg = 0;
-  double lam_below = 0, lam_above = 0, residual = 0, eig_error = 0, slope_sum = 0;  // for the step certificate
+  // for the step certificate (neighbouring eigenvalues and error bound filled with certify_steps only)
+  double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
+  double residual = 0, eig_error = 0, slope_sum = 0;
   Vec b;
 };
 
@@ -58,16 +60,13 @@ class CellTracer::Impl {
     double t1 = 0, t2 = 0, lam = 0, scale = 0;
     Vec b;
     std::shared_ptr<const HPoint> at;  // H at (t1, t2), for the bordered solve of point()
-    double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
-    double eig_error = 0;
+    int k = 0;
   };
   Pair eigenpair(double t1, double t2, int k) {
     const std::shared_ptr<const HPoint> T = ev_.at(t1, t2);
     Pair p{t1, t2, T->eigenvalue(k), T->norm_bound(), Vec(), T};
     p.b = T->eigenvector(p.lam);
-    p.eig_error = T->eigen_error();
-    if (k > 0) p.lam_below = T->eigenvalue(k - 1);
-    if (k + 1 < T->size()) p.lam_above = T->eigenvalue(k + 1);
+    p.k = k;
     return p;
   }
 
@@ -95,9 +94,11 @@ class CellTracer::Impl {
     const Vec dHb = tp * md_.dflight_dt1(q.t1, sym_).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
     const Vec dbh = q.at->solve_bordered(q.lam, b0, -(dHb - b0.dot(dHb) * b0));
     p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam);
-    p.lam_below = q.lam_below;
-    p.lam_above = q.lam_above;
-    p.eig_error = q.eig_error;
+    if (opt_.certify_steps) {  // the neighbouring eigenvalues and the error bound only feed the certificate
+      if (q.k > 0) p.lam_below = q.at->eigenvalue(q.k - 1);
+      if (q.k + 1 < q.at->size()) p.lam_above = q.at->eigenvalue(q.k + 1);
+      p.eig_error = q.at->eigen_error();
+    }
     p.slope_sum = l1 + l2;
     p.b = sign * b0;
     const auto [g, dg] = onset_g(b0, q.t2, &dbh, tp + 1.0);

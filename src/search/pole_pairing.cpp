@@ -26,18 +26,28 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
   };
   const size_t I = a1.cells(), J = a2.cells();
   std::map<std::pair<size_t, size_t>, std::vector<EdgeHit>> diag_out_v, diag_in_h, diag_out_h, diag_in_v;
-  auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
   auto unpaired = [&](long count, double t1, double t2) {
     stats.unpaired_crossings += count;
     uncertified.push_back({t1, t1, t2, t2, "pairing"});
+  };
+  auto sort_segment = [](std::vector<EdgeHit>& from, std::vector<EdgeHit>& to) {
+    auto by_pos = [](const EdgeHit& x, const EdgeHit& y) { return x.pos < y.pos; };
+    std::sort(from.begin(), from.end(), by_pos);
+    std::sort(to.begin(), to.end(), by_pos);
+  };
+  // What is left of a segment once its diagonal passes are set apart pairs in order, or not at all.
+  auto pair_segment = [&](const std::vector<EdgeHit>& from, const std::vector<EdgeHit>& to, double t1, double t2) {
+    if (from.size() == to.size())
+      pair_in_order(from, to);
+    else
+      unpaired(static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size())), t1, t2);
   };
   for (size_t i = 1; i < I; ++i) {  // vertical lines, segment j between horizontal lines j and j + 1
     if (!a1.pole[i]) continue;
     for (size_t j = 0; j < J; ++j) {
       auto& from = hits.v_from[i][j];
       auto& to = hits.v_to[i][j];
-      std::sort(from.begin(), from.end(), by_pos);
-      std::sort(to.begin(), to.end(), by_pos);
+      sort_segment(from, to);
       if (from.size() == to.size() + 1 && j + 1 < J && a2.pole[j + 1]) {
         diag_out_v[{i, j + 1}].push_back(from.back());
         from.pop_back();
@@ -45,11 +55,7 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
         diag_in_v[{i, j}].push_back(to.front());
         to.erase(to.begin());
       }
-      if (from.size() != to.size())
-        unpaired(static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size())), a1.bp[i],
-                 a2.bp[j]);
-      else
-        pair_in_order(from, to);
+      pair_segment(from, to, a1.bp[i], a2.bp[j]);
     }
   }
   for (size_t j = 1; j < J; ++j) {  // horizontal lines, segment i between vertical lines i and i + 1
@@ -57,8 +63,7 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
     for (size_t i = 0; i < I; ++i) {
       auto& from = hits.h_from[j][i];
       auto& to = hits.h_to[j][i];
-      std::sort(from.begin(), from.end(), by_pos);
-      std::sort(to.begin(), to.end(), by_pos);
+      sort_segment(from, to);
       if (from.size() == to.size() + 1 && i > 0 && a1.pole[i]) {
         diag_out_h[{i, j}].push_back(from.front());
         from.erase(from.begin());
@@ -66,11 +71,7 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
         diag_in_h[{i + 1, j}].push_back(to.back());
         to.pop_back();
       }
-      if (from.size() != to.size())
-        unpaired(static_cast<long>(std::max(from.size(), to.size()) - std::min(from.size(), to.size())), a1.bp[i],
-                 a2.bp[j]);
-      else
-        pair_in_order(from, to);
+      pair_segment(from, to, a1.bp[i], a2.bp[j]);
     }
   }
   // diagonal passes: left edge of the lower-right cell -> bottom edge of the upper-left cell, and top edge of the
