@@ -133,7 +133,7 @@ std::pair<double, double> default_lower_ends(const ModalForm& md, double t1_max,
 
 std::pair<double, double> axis_band(const ModalForm& md) {
   const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
-  return {1e-3 * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? 1e-3 * pi / (2.0 * dmax) : 0.0};
+  return {5e-2 * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? 5e-2 * pi / (2.0 * dmax) : 0.0};
 }
 
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
@@ -237,7 +237,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
   const double window_scale = opt.t1_max + opt.t2_max;
   // The axes are lines of limits: each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both
   // equations in the limit (pure contact oscillation), and there g vanishes with t1 while its rounding error grows
-  // like 1 / t1 (the gap to the next eigenvalue is O(t1)): sign changes within 1e-3 of the fastest quarter period of
+  // like 1 / t1 (the gap to the next eigenvalue is O(t1)): sign changes within 5% of the fastest quarter period of
   // the axis are not resolvable in double precision (an independent brute force sees rounding noise there) and are
   // not reported, whatever the window, so that tilings stay consistent (axis_band). Likewise for t2 -> 0.
   const auto [band1, band2] = axis_band(md);
@@ -318,9 +318,10 @@ SolveResult solve(const System& system, const SolveOptions& options) {
 
   // 1. plan the window: search region, pole lines, cells (refused if too many) before any evaluation
   const search::WindowPlan plan = search::plan_window(md, options);
-  res.t1_min = plan.options.t1_min;
+  const auto [band1, band2] = axis_band(md);
+  res.t1_min = std::max(plan.options.t1_min, band1);
   res.t1_max = plan.options.t1_max;
-  res.t2_min = plan.options.t2_min;
+  res.t2_min = std::max(plan.options.t2_min, band2);
   res.t2_max = plan.options.t2_max;
   res.stats.flight_pole_lines = static_cast<int>(std::count(plan.t1.pole.begin(), plan.t1.pole.end(), true));
   res.stats.contact_pole_lines = static_cast<int>(std::count(plan.t2.pole.begin(), plan.t2.pole.end(), true));

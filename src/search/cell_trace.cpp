@@ -355,6 +355,9 @@ class CellTracer::Impl {
   // a path that short), infinity where it changes sign (one crossing, located by Brent).
   double hidden_pair_slack(const TracePoint& A, const TracePoint& B) const {
     if ((A.g > 0) != (B.g > 0)) return std::numeric_limits<double>::infinity();
+    // Inside the axis bands nothing is reported and |g| = O(t1^2) is tiny: the rule would only make the trace crawl.
+    if (std::min(A.t1, B.t1) <= band_.first || std::min(A.t2, B.t2) <= band_.second)
+      return std::numeric_limits<double>::infinity();
     const double turn = std::acos(std::min(1.0, std::abs(A.b.dot(B.b))));
     return turn > 0 ? (reach(A) + reach(B)) / (2.0 * turn) : std::numeric_limits<double>::infinity();
   }
@@ -382,6 +385,7 @@ class CellTracer::Impl {
   const SolveOptions& opt_;
   SolveStats& st_;
   const double hmin_;                         // smallest trace step in s
+  const std::pair<double, double> band_ = axis_band(md_);  // roots are not reported within these of the axes
   static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
   int examine_budget_ = kPieceBudget;
   static constexpr double kCertifiedFloor = 1e-4;  // shortest certified step, relative to the piece
