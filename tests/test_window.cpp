@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "spp/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
 #include "spp/solver.hpp"
@@ -174,4 +176,22 @@ TEST(Window, PairOfRootsHiddenInOneSmallTurnStepIsFound) {
   ASSERT_EQ(r.solutions.size(), 1u) << r.brief_report();
   EXPECT_NEAR(r.solutions[0].t1, 0.00788137049781, 1e-10);
   EXPECT_NEAR(r.solutions[0].t2, 0.106633445732, 1e-10);
+}
+
+TEST(Window, RandomMassChainsEndSuccessInTheirFundamentalBox) {
+  // Chains of 10 masses drawn uniformly in [0.5, 2] (numpy default_rng seeds 1, 2, 3), unit springs, contact on the last
+  // mass, window t1 <= pi / omega_1, t2 <= pi / d_2. Two of the three ended incomplete: curves passing through the
+  // square where a vertical and a horizontal pole line cross (diagonally, or straight up inside the vertical strip).
+  const std::vector<std::vector<double>> masses = {
+      {1.267732,1.925696,0.716239,1.922974,0.967747,1.134990,1.741554,1.113799,1.324391,0.541339},
+      {0.892418,0.947737,1.721339,0.637874,1.400151,1.592841,0.781852,0.582720,0.912454,1.486150},
+      {0.628474,0.855216,1.701912,1.373243,0.641193,1.149690,1.218577,0.739608,1.601866,0.670508}};
+  const std::vector<size_t> roots = {247, 346, 244};
+  for (size_t c = 0; c < masses.size(); ++c) {
+    const System s = spp::chain(10, masses[c], {1.0}, 9, ContactSide::Upper, 1.0);
+    const ModalForm md(s);
+    const SolveResult r = solve_window(s, 0.0, std::numbers::pi / md.omega()(0), 0.0, std::numbers::pi / md.d()(1));
+    EXPECT_EQ(r.status, SolveStatus::Success) << c << ": " << r.brief_report();
+    EXPECT_EQ(r.solutions.size(), roots[c]) << c;
+  }
 }

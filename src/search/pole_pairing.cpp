@@ -6,11 +6,11 @@
 namespace spp::search {
 
 // Each segment of a pole line between two crossings with lines of the other phase is paired in order. A curve may
-// also pass diagonally through the tiny square where a vertical and a horizontal line cross: from the cell below
-// right, leaving through its left edge, into the cell above left through its bottom edge (or through the top edge
-// into the right edge). It shows as one extra exit at the top end of a vertical segment and one extra entry at the
-// right end of a horizontal segment (or the mirror): those are paired with each other, per crossing. Anything else
-// that does not pair is counted as unpaired.
+// also pass through the tiny square where a vertical and a horizontal line cross, leaving the cell below right
+// through its left or top edge and entering the cell above left through its bottom or right edge (seen: diagonally,
+// and straight up inside the vertical strip). It shows as one extra exit at an end of one segment next to the
+// crossing and one extra entry at an end of another: those are paired, per crossing. Anything else that does not
+// pair is counted as unpaired.
 void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& a2,
                             SolveStats& stats, std::vector<UncertifiedRegion>& uncertified,
                             std::vector<Candidate>& candidates) {
@@ -25,7 +25,8 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
     for (size_t i = 0; i < std::min(from.size(), to.size()); ++i) pair(from[i], to[i]);
   };
   const size_t I = a1.cells(), J = a2.cells();
-  std::map<std::pair<size_t, size_t>, std::vector<EdgeHit>> diag_out_v, diag_in_h, diag_out_h, diag_in_v;
+  // per crossing (vertical line, horizontal line): extra exits and extra entries of its four segment ends
+  std::map<std::pair<size_t, size_t>, std::pair<std::vector<EdgeHit>, std::vector<EdgeHit>>> passes;
   auto unpaired = [&](long count, double t1, double t2) {
     stats.unpaired_crossings += count;
     uncertified.push_back({t1, t1, t2, t2, "pairing"});
@@ -49,10 +50,10 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
       auto& to = hits.v_to[i][j];
       sort_segment(from, to);
       if (from.size() == to.size() + 1 && j + 1 < J && a2.pole[j + 1]) {
-        diag_out_v[{i, j + 1}].push_back(from.back());
+        passes[{i, j + 1}].first.push_back(from.back());
         from.pop_back();
       } else if (to.size() == from.size() + 1 && j > 0 && a2.pole[j]) {
-        diag_in_v[{i, j}].push_back(to.front());
+        passes[{i, j}].second.push_back(to.front());
         to.erase(to.begin());
       }
       pair_segment(from, to, a1.bp[i], a2.bp[j]);
@@ -65,31 +66,25 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
       auto& to = hits.h_to[j][i];
       sort_segment(from, to);
       if (from.size() == to.size() + 1 && i > 0 && a1.pole[i]) {
-        diag_out_h[{i, j}].push_back(from.front());
+        passes[{i, j}].first.push_back(from.front());
         from.erase(from.begin());
       } else if (to.size() == from.size() + 1 && i + 1 < I && a1.pole[i + 1]) {
-        diag_in_h[{i + 1, j}].push_back(to.back());
+        passes[{i + 1, j}].second.push_back(to.back());
         to.pop_back();
       }
       pair_segment(from, to, a1.bp[i], a2.bp[j]);
     }
   }
-  // diagonal passes: left edge of the lower-right cell -> bottom edge of the upper-left cell, and top edge of the
-  // lower-right cell -> right edge of the upper-left cell
-  auto match = [&](auto& outs, auto& ins) {
-    for (auto& [key, o] : outs) {
-      auto it = ins.find(key);
-      if (it != ins.end() && it->second.size() == o.size()) {
-        for (size_t q = 0; q < o.size(); ++q) pair(o[q], it->second[q]);
-        ins.erase(it);
-      } else {
-        unpaired(static_cast<long>(o.size()), a1.bp[key.first], a2.bp[key.second]);
-      }
-    }
-    for (auto& [key, in] : ins) unpaired(static_cast<long>(in.size()), a1.bp[key.first], a2.bp[key.second]);
-  };
-  match(diag_out_v, diag_in_h);
-  match(diag_out_h, diag_in_v);
+  // Passes through a crossing: each leaves one segment with an extra exit (the top of a vertical segment below the
+  // crossing, or the left end of a horizontal segment right of it) and enters another with an extra entry (the
+  // bottom of the vertical segment above, or the right end of the horizontal segment left of it), in any of the four
+  // combinations. One pass per crossing is paired; several at the same crossing are counted as unpaired.
+  for (auto& [key, p] : passes) {
+    if (p.first.size() == 1 && p.second.size() == 1)
+      pair(p.first[0], p.second[0]);
+    else
+      unpaired(static_cast<long>(std::max(p.first.size(), p.second.size())), a1.bp[key.first], a2.bp[key.second]);
+  }
 }
 
 
