@@ -317,8 +317,15 @@ SolveResult solve(const System& system, const SolveOptions& options) {
   res.symmetry = options.symmetry;
 
   // 1. plan the window: search region, pole lines, cells (refused if too many) before any evaluation
-  const search::WindowPlan plan = search::plan_window(md, options);
   const auto [band1, band2] = axis_band(md);
+  if (options.t1_max <= band1 || options.t2_max <= band2) {
+    std::ostringstream os;
+    os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
+       << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
+       << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
+    throw std::invalid_argument(os.str());
+  }
+  const search::WindowPlan plan = search::plan_window(md, options);
   res.t1_min = std::max(plan.options.t1_min, band1);
   res.t1_max = plan.options.t1_max;
   res.t2_min = std::max(plan.options.t2_min, band2);

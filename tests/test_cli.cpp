@@ -189,6 +189,10 @@ TEST(Cli, FarAndHugeWindowsAreRefusedWithTheirSize) {
   r = run("solve " + kChain + " --t1-max 1e300 --t2-max 1");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("--max-cells"), std::string::npos) << r.out;
+  r = run("solve " + kChain + " --t1-max 1e-300 --t2-max 3 --json " + (dir() / "band.json").string());
+  EXPECT_EQ(r.code, 1) << r.out;  // inside the axis band: refused, not an inverted window
+  EXPECT_NE(r.out.find("band next to an axis"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir() / "band.json"));
   r = run("solve " + kChain + " --t1-max 12 --t2-max 12 --max-cells 100 --quiet");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("460"), std::string::npos) << r.out;
