@@ -6,10 +6,13 @@
 //    exactly the indices k with lambda_k(bottom-left) < 0 < lambda_k(top-right) (Sylvester inertia);
 //  - each such curve is traced by its index k, one 1-D solve per anti-diagonal t2 - t1 = s, never by
 //    following a numerical branch; the signed g = z^T b / |z| (b the null vector, orientation kept
-//    continuous) changes sign exactly at the SPPs; steps are limited by the turn of b and checked with a
-//    Hermite model of g so that two close roots cannot hide in one step;
+//    continuous) changes sign exactly at the SPPs; steps are limited by the turn of b (and, where g keeps its
+//    sign, by asin|g| at the ends) and checked with a Hermite model of g: a careful heuristic, not a proof
+//    (SolveOptions::certify_steps proves the steps it can);
 //  - the thin strips left around pole lines are checked by pairing the curves across each line;
 //  - each root is polished by Newton on the pole-free bordered system N(t1,t2) a = 0, z^T cos(W t1) a = 0.
+// The steps, one file each: src/search/window_plan, evaluator, cell_trace, pole_pairing, polish (and
+// step_certificate); solve() in src/solver.cpp calls them in order.
 
 #include <Eigen/Dense>
 #include <string>
@@ -39,7 +42,7 @@ struct SolveOptions {
   /// proved. Today the bound is too weak next to pole lines: ~40x the evaluations on the paper's chain and rarely a
   /// fully certified window. Off: every step by the midpoint check (heuristic_steps), as in earlier versions.
   bool certify_steps = false;
-  double pole_margin = 1e-6;         ///< distance kept from pole lines, relative to the neighbouring cell width
+  double pole_margin = 1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)
   double max_turn = 0.2;             ///< largest angle (rad) of the null vector b between two trace points
   double min_step = 1e-13;           ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
   double admissibility_tol = 1e-9;   ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
