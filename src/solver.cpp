@@ -5,15 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <map>
 #include <mutex>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
-#include "spp/detail/brent.hpp"
-#include "spp/detail/tridiagonal.hpp"
 #include "spp/modal.hpp"
 #include "search/cell_trace.hpp"
 #include "search/evaluator.hpp"
@@ -86,6 +83,15 @@ using search::Candidate;
 using search::Polished;
 using search::polish;
 
+// A point (t1, t2) given by a caller (a guess, or an SPP to polish) must be positive and finite.
+void require_positive_guess(const char* who, double t1, double t2) {
+  if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
+    std::ostringstream os;
+    os << who << ": t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
+    throw std::invalid_argument(os.str());
+  }
+}
+
 // g0 = 0 is refused by every entry point with the same message.
 void require_nonzero_gap(const System& system) {
   if (system.g0() == 0.0)
@@ -137,11 +143,7 @@ std::pair<double, double> axis_band(const ModalForm& md) {
 }
 
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
-  if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
-    std::ostringstream os;
-    os << "solution_at: t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
-    throw std::invalid_argument(os.str());
-  }
+  require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
   const ModalForm md(system);
   const Polished p = polish(md, t1, t2, Vec(), options.symmetry);
@@ -345,11 +347,7 @@ SolveResult solve(const System& system, const SolveOptions& options) {
 }
 
 NearestSpp nearest_spp(const System& system, double t1, double t2, double radius, const SolveOptions& options) {
-  if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
-    std::ostringstream os;
-    os << "nearest_spp: t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
-    throw std::invalid_argument(os.str());
-  }
+  require_positive_guess("nearest_spp", t1, t2);
   if (!(radius > 0 && radius < 1)) {
     std::ostringstream os;
     os << "nearest_spp: radius must be in (0, 1), got " << radius;

@@ -17,7 +17,7 @@ using Mat = Eigen::MatrixXd;
 // A point on curve k: position, oriented null vector, signed g and dg/ds along s = t2 - t1.
 struct TracePoint {
   double s = 0, t1 = 0, t2 = 0, g = 0, dg = 0;
-  // for the step certificate (neighbouring eigenvalues and error bound filled with certify_steps only)
+  // for the step certificate (residual, neighbouring eigenvalues and error bound filled with certify_steps only)
   double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
   double residual = 0, eig_error = 0, slope_sum = 0;
   Vec b;
@@ -40,8 +40,8 @@ class CellTracer::Impl {
         sym_(opt.symmetry),
         zhat_(md.z().normalized()) {}
 
-  // g = c^T b / |c| with c the onset direction (z for axial symmetry: z^T p0 = 0 with p0 along b), and dg/ds
-  // given db/ds and dt2/ds. Axial: c is constant, its unit vector computed once (this runs at every trace point).
+  // g = c^T b with c the onset direction, and dg/ds given db/ds and dt2/ds. Axial: c = z / |z| (z^T p0 = 0 with p0
+  // along b), constant, computed once (this runs at every trace point). Point: c(t2), not normalised.
   std::pair<double, double> onset_g(const Vec& b, double t2, const Vec* db = nullptr, double dt2_ds = 0.0) const {
     if (sym_ == Symmetry::Axial) return {zhat_.dot(b), db ? zhat_.dot(*db) : 0.0};
     // Point symmetry: c(t2) is not normalised (its sign is all that matters, and the certificate bounds c^T b).
@@ -93,8 +93,8 @@ class CellTracer::Impl {
     const Vec e2 = md_.dcontact_eigs(q.t2, sym_);
     const Vec dHb = tp * md_.dflight_dt1(q.t1, sym_).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
     const Vec dbh = q.at->solve_bordered(q.lam, b0, -(dHb - b0.dot(dHb) * b0));
-    p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam);
-    if (opt_.certify_steps) {  // the neighbouring eigenvalues and the error bound only feed the certificate
+    if (opt_.certify_steps) {  // residual, neighbouring eigenvalues and error bound only feed the certificate
+      p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam);
       if (q.k > 0) p.lam_below = q.at->eigenvalue(q.k - 1);
       if (q.k + 1 < q.at->size()) p.lam_above = q.at->eigenvalue(q.k + 1);
       p.eig_error = q.at->eigen_error();
@@ -242,7 +242,7 @@ class CellTracer::Impl {
         if (cert.verdict != StepVerdict::Uncertified) {
           ++st_.certified_steps;
           halvings = 0;
-          if ((cur.g > 0) != (p.g > 0)) locate_root(r, k, cur, p, false);
+          if ((cur.g > 0) != (p.g > 0)) locate_root(r, k, cur, p);
           if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
           if (last) return p;
           cur = p;
@@ -266,7 +266,7 @@ class CellTracer::Impl {
       const TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
       const TracePoint q =
           last ? point(out, &mid.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &mid.b);
-      const double turn = turn_of(cur.b, mid.b) + turn_of(mid.b, q.b);
+      const double turn1 = turn_of(cur.b, mid.b), turn2 = turn_of(mid.b, q.b), turn = turn1 + turn2;
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
       if (turn > opt_.max_turn && step > hmin_) {
@@ -277,7 +277,7 @@ class CellTracer::Impl {
       // (angles of the ends to that hyperplane): where g keeps its sign over a half, its turn (a lower bound of the
       // path) must stay below half of that, or the half could hide a pair of roots that a small turn allows when
       // |g| is small (seen on a stiff 2-dof: g from -4e-4 through 0 and back to -4e-2 in one step of turn < 0.2).
-      const double slack = std::min(hidden_pair_slack(cur, mid), hidden_pair_slack(mid, q));
+      const double slack = std::min(hidden_pair_slack(cur, mid, turn1), hidden_pair_slack(mid, q, turn2));
       if (slack < 1.0 && step > hmin_) {
         h = std::max(hmin_, step * std::clamp(0.6 * slack, 0.1, 0.5));
         continue;
@@ -294,9 +294,8 @@ class CellTracer::Impl {
     }
   }
 
-  // Heuristic acceptance (the midpoint check of earlier versions), used only where the certificate's bounds are too
-  // weak (next to pole lines, where the pole mode's eigenvalue is huge and the single-gap resolvent bound fails):
-  // g on [A, B] of curve k: locate sign changes, refine where a Hermite model of g dips towards zero.
+  // The midpoint check's examination of g on [A, B] of curve k (every step by default; with certify_steps, the steps
+  // the certificate cannot prove): locate sign changes, refine where a Hermite model of g dips towards zero.
   void examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
     const double h = B.s - A.s;
     auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
@@ -343,7 +342,7 @@ class CellTracer::Impl {
         return;
       }
     }
-    if (endpoints_differ) locate_root(r, k, A, B, false);
+    if (endpoints_differ) locate_root(r, k, A, B);
   }
 
   // Angle of b to the hyperplane c^T b = 0 at a trace point.
@@ -351,19 +350,18 @@ class CellTracer::Impl {
     const double cn = sym_ == Symmetry::Axial ? 1.0 : md_.onset_direction(p.t2, sym_).norm();
     return std::asin(std::min(1.0, std::abs(p.g) / cn));
   }
-  // (asin|g_A| + asin|g_B|) / (2 turn(A, B)) where g keeps its sign from A to B (>= 1: no pair of roots can hide in
-  // a path that short), infinity where it changes sign (one crossing, located by Brent).
-  double hidden_pair_slack(const TracePoint& A, const TracePoint& B) const {
+  // (asin|g_A| + asin|g_B|) / (2 turn) for the turn of b from A to B, where g keeps its sign (>= 1: no pair of roots
+  // can hide in a path that short), infinity where it changes sign (one crossing, located by Brent).
+  double hidden_pair_slack(const TracePoint& A, const TracePoint& B, double turn) const {
     if ((A.g > 0) != (B.g > 0)) return std::numeric_limits<double>::infinity();
     // Inside the axis bands nothing is reported and |g| = O(t1^2) is tiny: the rule would only make the trace crawl.
     if (std::min(A.t1, B.t1) <= band_.first || std::min(A.t2, B.t2) <= band_.second)
       return std::numeric_limits<double>::infinity();
-    const double turn = std::acos(std::min(1.0, std::abs(A.b.dot(B.b))));
     return turn > 0 ? (reach(A) + reach(B)) / (2.0 * turn) : std::numeric_limits<double>::infinity();
   }
 
   // The one sign change of g between A and B: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
-  void locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B, bool uncertified) {
+  void locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B) {
     const double h = B.s - A.s;
     auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     auto g_at = [&](double s) {
@@ -374,7 +372,7 @@ class CellTracer::Impl {
     };
     const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
     const Pair e = diagonal_root(r, s, guess(s), k);
-    candidates_.push_back({e.t1, e.t2, uncertified, false, e.b});
+    candidates_.push_back({e.t1, e.t2, false, false, e.b});
   }
 
   std::vector<Candidate> candidates_;
