@@ -294,8 +294,9 @@ void finalize(const SolveOptions& options, SolveResult& res) {
   auto cause = [&](long count, const char* what) {
     if (count > 0) res.warnings.push_back(std::to_string(count) + " " + what);
   };
-  cause(st.uncertified_steps, "trace step(s) could not be certified at the minimum step length (g touches zero "
-                              "within the bounds' resolution: a near-double root, or nearly equal eigenvalues)");
+  cause(st.uncertified_steps, "trace step(s) were not proved: with certify_steps, steps no bound proved within the "
+                              "step budget (taken by the midpoint check); or g touches zero within the bounds' "
+                              "resolution at the minimum step length (a near-double root, or nearly equal eigenvalues)");
   cause(st.unresolved_pieces, "curve piece(s) ran out of their step budget (nearly equal eigenvalues): a root there "
                               "is not excluded");
   cause(st.uncertified_corners, "cell corner(s) kept an eigenvalue within its error bound of zero");

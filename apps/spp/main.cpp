@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
                     "refuse windows holding more cells between pole lines than this (default 1e7)")
       ->check(CLI::PositiveNumber);
   solve->add_flag("--certify-steps", opt.certify_steps,
-                  "experimental: prove each trace step with the curvature bound where it can; Incomplete unless all are");
+                  "prove every trace step (drift, curvature or onset-inertia bound; 5-10x the evaluations); Incomplete unless all are");
   std::string solve_symmetry = "axial";
   solve
       ->add_option("--symmetry", solve_symmetry,

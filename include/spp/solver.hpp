@@ -37,10 +37,12 @@ struct SolveOptions {
   /// Largest number of cells (rectangles between pole lines) a window may hold; larger windows are refused before
   /// any evaluation, with their count.
   long max_cells = 10'000'000;
-  /// Experimental: accept trace steps by the rigorous bound of search/step_certificate.hpp where it proves the step
-  /// (falling back to the midpoint check where it cannot), and report the window Incomplete unless every step was
-  /// proved. Today the bound is too weak next to pole lines: ~40x the evaluations on the paper's chain and rarely a
-  /// fully certified window. Off: every step by the midpoint check (heuristic_steps), as in earlier versions.
+  /// Prove every trace step outside the axis bands (search/step_certificate.hpp: zeroth-order drift of the null
+  /// vector, or the curvature bound, or the onset inertia of the step's box), falling back to the midpoint check where
+  /// none of them proves the step within the step budget, and report the window Incomplete unless every step was
+  /// proved. Costs 5-10x the evaluations of the default on the paper's examples (both end success); on stiff or
+  /// generic random systems pieces still run out of their step budget (Incomplete). Off: every step by the midpoint
+  /// check (heuristic_steps), a careful heuristic, not a proof.
   bool certify_steps = false;
   double pole_margin = 1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)
   double max_turn = 0.2;             ///< largest angle (rad) of the null vector b between two trace points
@@ -84,11 +86,12 @@ struct SolveStats {
   long evaluations = 0;  ///< symmetric eigen-decompositions of H
   long strip_pairs = 0;      ///< curves paired across pole lines (diagonal passes through a pole-line crossing too)
   long certified_steps = 0;  ///< trace steps with a proof that g keeps its sign, or changes it once (step_certificate)
-  /// Steps accepted by the midpoint turn check (all of them unless certify_steps; with it, where the certificate's
-  /// bounds are too weak, mostly next to pole lines): not a proof.
+  /// Steps accepted by the midpoint turn check (all of them unless certify_steps; with it, those inside the axis
+  /// bands and those no bound proved within the step budget): not a proof.
   long heuristic_steps = 0;
   // Causes of an Incomplete status, counted:
-  long uncertified_steps = 0;    ///< steps at the minimum length whose bound still fails (near-double roots)
+  long uncertified_steps = 0;    ///< steps not proved: certify_steps ones left to the midpoint check outside the
+                                 ///< axis bands, and steps at the minimum length where g touches zero (near-double roots)
   long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces that ran out of their step budget (nearly equal eigenvalues)

@@ -20,6 +20,7 @@ struct TracePoint {
   // for the step certificate (residual, neighbouring eigenvalues and error bound filled with certify_steps only)
   double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
   double residual = 0, eig_error = 0, slope_sum = 0;
+  double pos_err = 0;  // distance along (1, 1) to the true curve point on the same anti-diagonal (|lambda_k| + error) / (l1 + l2)
   Vec b;
 };
 
@@ -100,6 +101,7 @@ class CellTracer::Impl {
       p.eig_error = q.at->eigen_error();
     }
     p.slope_sum = l1 + l2;
+    p.pos_err = (std::abs(q.lam) + q.at->eigen_error()) / (l1 + l2);
     p.b = sign * b0;
     const auto [g, dg] = onset_g(b0, q.t2, &dbh, tp + 1.0);
     p.g = sign * g;
@@ -186,6 +188,9 @@ class CellTracer::Impl {
     if (kmin >= kmax) return certified;
     const std::shared_ptr<const HPoint> BRt = corner(r.b1, r.A), TLt = corner(r.a1, r.B);
     const int nBR = BRt->count_below(0.0), nTL = TLt->count_below(0.0);
+    // A cell where Hc is nonsingular throughout holds no SPP: its pieces need no trace, only their ends (the exit
+    // oriented so that g keeps its sign).
+    const bool root_free = opt_.certify_steps && onset_free(r.a1, r.A, r.b1, r.B);
     for (int k = kmin; k < kmax; ++k) {
       ++st_.curve_pieces;
       // entry on the lower-right path, exit on the upper-left path (design note §3b)
@@ -202,7 +207,14 @@ class CellTracer::Impl {
       else
         out = edge_root(r.a1, r.B, r.b1, r.B, k, tl, tr);
       TracePoint pin = point(in, nullptr);
-      TracePoint pout = trace(r, k, pin, out, certified);
+      TracePoint pout;
+      if (root_free) {
+        ++st_.certified_steps;
+        pout = point(out, &pin.b);
+        orient_like(pout, pin);
+      } else {
+        pout = trace(r, k, pin, out, certified);
+      }
       auto hit = [column](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b, column}; };
       if (in_bottom ? r.bottom_pole : r.right_pole)
         (in_bottom ? bottom_entries : right_entries).push_back(hit(pin, in_bottom ? pin.t1 : pin.t2));
@@ -224,10 +236,32 @@ class CellTracer::Impl {
     int halvings = 0;
     examine_budget_ = kPieceBudget;
     auto turn_of = [](const Vec& x, const Vec& y) { return std::acos(std::min(1.0, std::abs(x.dot(y)))); };
+    // Stall watch: when certified steps have shrunk 4x since the last step that grew, the trace may approach a pole
+    // line or a small gap (the zeroth-order and curvature bounds then shrink the step geometrically) while Hc stays
+    // nonsingular on a much larger box: one long step (16x) is tried on the onset inertia first.
+    double ref_h = h;
+    bool prove = opt_.certify_steps;
+    // Root watch: certified steps that shrink while |g| falls (both 4x, kApproach times) approach a root that the
+    // bounds only let a step cross late: one step of 3 |g / g'| is tried on the proofs; where they fail and half the
+    // piece's step budget is spent, the midpoint check takes it (counted as not proved); the proofs resume after it.
+    int approach = 0;
+    double root_g = std::abs(cur.g), root_h = h;
+    bool stalled = false;
     for (int budget = kPieceBudget;; --budget) {
+      const bool onset_first = stalled;
+      if (onset_first) {
+        stalled = false;
+        h = std::min(span, 16.0 * h);
+      }
       const double remaining = s_out - cur.s;
       const bool last = h >= remaining;
       const double step = last ? remaining : h;
+      if (prove && budget <= 0) {  // the proofs allow only tiny steps here: the midpoint trace finishes the piece
+        prove = false;
+        budget = kPieceBudget;
+        certified = false;
+        h = std::max(h, 1e-3 * span);
+      }
       if (budget <= 0 || examine_budget_ <= 0) {  // b turns faster than the step control can follow
         ++st_.unresolved_pieces;
         certified = false;
@@ -235,29 +269,66 @@ class CellTracer::Impl {
         examine(r, k, cur, p, 0);
         return p;
       }
-      if (opt_.certify_steps) {
-        const TracePoint p =
+      // Inside an axis band nothing is reported (axis_band): steps there need no proof, only the midpoint check that
+      // keeps b's orientation.
+      const bool in_band = cur.t1 <= band_.first || cur.t2 + step <= band_.second;
+      const bool crossing_try = approach >= kApproach;  // tried on the proofs once, else by the midpoint check
+      if (crossing_try) {
+        approach = 0;
+        root_g = std::abs(cur.g);
+        root_h = h;
+      }
+      if (prove && !in_band) {
+        TracePoint p =
             last ? point(out, &cur.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &cur.b);
-        const StepCertificate cert = certify_step(md_, sym_, step_end(cur), step_end(p));
-        if (cert.verdict != StepVerdict::Uncertified) {
+        auto box_free = [&] {  // the step's box, widened by the ends' distance to the true curve, inside the cell
+          const double e = 2.0 * std::max(p.pos_err, cur.pos_err);
+          return onset_free(std::max(r.a1, std::min(p.t1, cur.t1) - e), std::max(r.A, std::min(p.t2, cur.t2) - e),
+                            std::min(r.b1, std::max(p.t1, cur.t1) + e), std::min(r.B, std::max(p.t2, cur.t2) + e));
+        };
+        const bool onset_proved = onset_first && box_free();
+        const StepCertificate cert =
+            onset_proved ? StepCertificate{} : certify_step(md_, sym_, step_end(cur), step_end(p));
+        // Where the curvature bound is too weak (next to pole lines, mostly), the step's box may still be proved
+        // root-free by the onset inertia at its two Loewner corners; g keeps its sign then, which orients p.
+        const bool by_onset =
+            onset_proved || (cert.verdict == StepVerdict::Uncertified && !onset_first && box_free());
+        if (by_onset) orient_like(p, cur);
+        if (cert.verdict != StepVerdict::Uncertified || by_onset) {
           ++st_.certified_steps;
           halvings = 0;
           if ((cur.g > 0) != (p.g > 0)) locate_root(r, k, cur, p);
           if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
           if (last) return p;
+          const double next = by_onset ? 2.0 * step : std::clamp(0.9 * cert.safe_length, 0.5 * step, 4.0 * step);
+          if (std::abs(p.g) > root_g || next > root_h) {
+            root_g = std::abs(p.g);
+            root_h = next;
+          } else if (std::abs(p.g) < 0.25 * root_g && next < 0.25 * root_h && p.dg != 0.0) {
+            root_g = std::abs(p.g);
+            root_h = next;
+            if (++approach >= kApproach) {
+              cur = p;
+              h = std::min(span, 3.0 * std::abs(p.g / p.dg));
+              continue;
+            }
+          }
+          if (by_onset || next > ref_h) {
+            ref_h = next;
+          } else if (next < 0.25 * ref_h) {
+            stalled = true;
+            ref_h = next;
+          }
           cur = p;
-          h = std::min(span, std::clamp(cert.safe_length, 0.25 * step, 4.0 * step));
+          h = std::min(span, next);
           continue;
         }
-        // Shorten to the length the bound says it could prove; where that is below kCertifiedFloor of the piece (the
-        // bound is too weak there, mostly next to pole lines), or after 10 tries, the step goes to the midpoint
-        // check below.
-        const double floor = kCertifiedFloor * span;
+        // Shorten, towards the length the curvature bound says it could prove (at most 50x at once); after
+        // kCertifyTries failures in a row or at the minimum step, the step goes to the midpoint check below.
         const bool bounded = cert.gap > 0 && cert.curvature > 0;  // the bound was computed (not cut short)
-        const bool hopeless = (bounded && cert.safe_length < floor) || ++halvings > 10 || 0.5 * step < floor ||
-                              step <= hmin_;
-        if (!hopeless) {
-          h = std::max(hmin_, bounded ? std::min(0.5 * step, std::max(cert.safe_length, floor)) : 0.5 * step);
+        if (!(crossing_try && budget < kPieceBudget / 2) && ++halvings <= kCertifyTries && step > hmin_) {
+          const bool crossing = (cur.g > 0) != (p.g > 0);  // only the curvature bound proves a crossing step
+          h = std::max(hmin_, bounded && crossing ? std::clamp(cert.safe_length, 0.02 * step, 0.5 * step) : 0.5 * step);
           continue;
         }
       }
@@ -283,7 +354,10 @@ class CellTracer::Impl {
         continue;
       }
       ++st_.heuristic_steps;
-      if (opt_.certify_steps) certified = false;
+      if (opt_.certify_steps && !in_band) {
+        ++st_.uncertified_steps;
+        certified = false;
+      }
       halvings = 0;
       examine(r, k, cur, mid, 0);
       examine(r, k, mid, q, 0);
@@ -345,6 +419,22 @@ class CellTracer::Impl {
     if (endpoints_differ) locate_root(r, k, A, B);
   }
 
+  // True when no SPP lies in [t1lo, t1hi] x [t2lo, t2hi] (inside one cell), proved by the onset inertia: Hc grows
+  // with t1 and t2 there (Loewner), so equal counts at the two extreme corners, both certain, leave no eigenvalue of
+  // any Hc in the box at 0, and an SPP makes Hc singular. Axial symmetry only (c = z / |z| is constant).
+  bool onset_free(double t1lo, double t2lo, double t1hi, double t2hi) {
+    if (sym_ != Symmetry::Axial) return false;
+    const int lo = ev_.onset_inertia(t1lo, t2lo);
+    return lo >= 0 && lo == ev_.onset_inertia(t1hi, t2hi);
+  }
+  // Orients p's null vector like q's g (where g is proved not to change sign between them).
+  static void orient_like(TracePoint& p, const TracePoint& q) {
+    if ((p.g > 0) == (q.g > 0)) return;
+    p.b = -p.b;
+    p.g = -p.g;
+    p.dg = -p.dg;
+  }
+
   // Angle of b to the hyperplane c^T b = 0 at a trace point.
   double reach(const TracePoint& p) const {
     const double cn = sym_ == Symmetry::Axial ? 1.0 : md_.onset_direction(p.t2, sym_).norm();
@@ -386,7 +476,9 @@ class CellTracer::Impl {
   const std::pair<double, double> band_ = axis_band(md_);  // roots are not reported within these of the axes
   static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
   int examine_budget_ = kPieceBudget;
-  static constexpr double kCertifiedFloor = 1e-4;  // shortest certified step, relative to the piece
+  static constexpr int kCertifyTries = 40;
+  static constexpr int kApproach = 3;  // 4x falls of |g| and of the step towards a root before one step crosses it
+  static constexpr int kStalls = 3;  // failed certificates in a row before a step goes to the midpoint check
   Symmetry sym_;
   Vec zhat_;
 };

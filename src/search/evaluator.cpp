@@ -1,5 +1,9 @@
 #include "search/evaluator.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace spp::search {
 
 namespace {
@@ -43,6 +47,38 @@ std::shared_ptr<const HPoint> DenseEvaluator::at(double t1, double t2) {
   H.diagonal() += md_.flight_part(t1, sym_);
   ++evaluations_;
   return std::make_shared<DenseHPoint>(std::move(H));
+}
+
+int DenseEvaluator::onset_inertia(double t1, double t2) {
+  ++evaluations_;
+  const Eigen::Index m = md_.m();
+  const Eigen::VectorXd f = md_.flight_part(t1, Symmetry::Axial);
+  Eigen::VectorXd e(m);
+  for (Eigen::Index j = 0; j < m; ++j) e(j) = md_.d()(j) * std::tan(md_.d()(j) * t2);
+  const Eigen::VectorXd zhat = md_.z().normalized();
+  Eigen::MatrixXd A(m + 1, m + 1);
+  if (e.cwiseAbs().maxCoeff() <= f.cwiseAbs().maxCoeff()) {  // modal basis
+    A.topLeftCorner(m, m) = md_.G() * e.asDiagonal() * md_.G().transpose();
+    A.topLeftCorner(m, m).diagonal() += f;
+    A.col(m).head(m) = zhat;
+  } else {  // contact basis: G^T H G = G^T F G + D tan(D t2)
+    A.topLeftCorner(m, m) = md_.G().transpose() * f.asDiagonal() * md_.G();
+    A.topLeftCorner(m, m).diagonal() += e;
+    A.col(m).head(m) = md_.G().transpose() * zhat;
+  }
+  A.row(m).head(m) = A.col(m).head(m).transpose();
+  A(m, m) = 0.0;
+  // Diagonal congruence: rows with a large diagonal (a pole mode) scaled to O(1) against the non-pole scale.
+  const double ref = std::max(md_.omega().maxCoeff(), std::numeric_limits<double>::min());
+  Eigen::VectorXd s(m + 1);
+  for (Eigen::Index i = 0; i < m; ++i) s(i) = 1.0 / std::sqrt(std::max(std::abs(A(i, i)), ref));
+  s(m) = std::sqrt(ref);
+  A = s.asDiagonal() * A * s.asDiagonal();
+  const detail::SymmetricTridiagonal T(A);
+  const double err = 8.0 * static_cast<double>(m + 1) * std::numeric_limits<double>::epsilon() * T.norm_bound();
+  const int below = T.count_below(-err);
+  if (below != T.count_below(err)) return -1;
+  return below - 1;
 }
 
 }  // namespace spp::search

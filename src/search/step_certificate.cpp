@@ -76,7 +76,19 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     return e;
   };
   const End ea_ = make_end(a), eb_ = make_end(b);
-  // Orientation: b_b is compared with b_a through a turn below pi/2 only when one end's cone is proper.
+  // Zeroth order (axial, c constant): |g(s) - g_x| <= |b(s) - b_x| <= drift_x on the whole step, so |g_x| beyond its
+  // drift and error keeps the sign. Linear in |g|, and no derivative of H enters: this holds next to pole lines too.
+  // Its safe length from b: as long as b's drift (linear in the step, to first order) stays below |g_b|.
+  double zeroth_length = 0.0;
+  if (sym == Symmetry::Axial && (a.g > 0) == (b.g > 0)) {
+    const double ga = std::abs(a.g) - (a.residual + eig_err) / gamma, gb = std::abs(b.g) - (b.residual + eig_err) / gamma;
+    if ((ea_.sin < 1.0 && ga > ea_.drift) || (eb_.sin < 1.0 && gb > eb_.drift)) {
+      cert.verdict = StepVerdict::NoRoot;
+      cert.rotation = std::min(ea_.drift, eb_.drift);
+      zeroth_length = eb_.drift > 0 ? h * std::max(0.0, gb) / eb_.drift : 4.0 * h;
+      cert.safe_length = zeroth_length;
+    }
+  }
   if (!(std::min(ea_.sin, eb_.sin) < 0.9)) return cert;
   auto norm_bound = [&](const Eigen::VectorXd& w, bool contact) {  // |W b(s)|
     auto one = [&](const End& e) { return weighted_norm(w, contact ? e.y : e.b) + w.cwiseAbs().maxCoeff() * e.drift; };
@@ -94,7 +106,8 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
   // Rotation rate: |b'| <= |H' b| / gamma, H' = tau' F' + (1 + tau') C' a convex combination (tau' in [-1, 0]).
   const double A1 = norm_bound(F.d1, false), A2 = norm_bound(C.d1, true);
   const double L1 = std::max(A1, A2) / gamma;
-  cert.rotation = L1 * h;
+  const double rotation = L1 * h;
+  if (cert.verdict == StepVerdict::Uncertified) cert.rotation = rotation;
 
   // Curvature: tau'' = (-l2' - tau' (l1' + l2')) / (l1 + l2), l1 + l2 bounded below from its end values and
   // its rate (and by min f' >= w^2), then b'' = -H^+ (H'' b + 2 H' b') - |b'|^2 b, then g''.
@@ -122,17 +135,17 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     const double sigma = a.g > 0 ? 1.0 : -1.0;
     const double xa = zero_free_radius(std::abs(a.g) - ea, sigma * a.dg, L2);
     const double yb = zero_free_radius(std::abs(b.g) - eb, -sigma * b.dg, L2);
-    if (xa + yb > h && cert.rotation < 1.0) cert.verdict = StepVerdict::NoRoot;
+    if (xa + yb > h && rotation < 1.0) cert.verdict = StepVerdict::NoRoot;
   } else if (std::abs(a.g) > ea && std::abs(b.g) > eb) {
     const double sigma = b.g > 0 ? 1.0 : -1.0;  // direction of the crossing
     const double xa = std::max(0.0, sigma * a.dg) / L2, yb = std::max(0.0, sigma * b.dg) / L2;
-    if (xa + yb > h && cert.rotation < 1.0) cert.verdict = StepVerdict::OneRoot;
+    if (xa + yb > h && rotation < 1.0) cert.verdict = StepVerdict::OneRoot;
   }
   // A step from b that the same bounds would certify: past a zero-free stretch, or across one simple root.
   const double sb = b.g > 0 ? 1.0 : -1.0;
   const double free_b = zero_free_radius(std::abs(b.g) - eb, sb * b.dg, L2);
   const double cross_b = 0.9 * std::abs(b.dg) / L2;
-  cert.safe_length = std::min(std::max(free_b, cross_b), 0.5 / std::max(L1, 1e-300));
+  cert.safe_length = std::max(zeroth_length, std::min(std::max(free_b, cross_b), 0.5 / std::max(L1, 1e-300)));
   return cert;
 }
 

@@ -18,10 +18,14 @@
 //    cost little);
 //  - curvature: b'' = -H^+ (H'' b + 2 H' b') - |b'|^2 b, so |g''| <= L2 with L2 from bounds of F', F'', C', C''
 //    over the box (each a monotone or convex function of t between poles: its extreme is at a box end).
+// Zeroth order (axial symmetry, c constant): |g(s) - g_x| <= |b(s) - b_x| <= sqrt(2) sin angle, so |g_x| above that
+// drift (plus the error of the computed g) proves the sign on the whole step from one end x; no derivative of H enters,
+// so it holds next to pole lines, where the curvature bound below explodes.
 // With the end values g, g' and L2:
 //  - no sign change: the Taylor lower bounds |g_a| + sigma g'_a x - L2 x^2 / 2 (from a) and the same from b
 //    cover [s_a, s_b] between them;
 //  - exactly one sign change: sigma g' >= sigma g'_a - L2 x > 0 or sigma g'_b - L2 (h - x) > 0 on the step.
+// A third proof, of root-free boxes, is the onset inertia (Evaluator::onset_inertia, used by cell_trace).
 // Written here because no library bounds eigenvector curvature of a structured matrix family.
 
 #include <Eigen/Dense>
