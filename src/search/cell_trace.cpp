@@ -241,13 +241,15 @@ class CellTracer::Impl {
     // nonsingular on a much larger box: one long step (16x) is tried on the onset inertia first.
     double ref_h = h;
     bool prove = opt_.certify_steps;
+    int fallbacks = 0;  // steps of this piece the proofs left to the midpoint check
     // Root watch: certified steps that shrink while |g| falls (both 4x, kApproach times) approach a root that the
     // bounds only let a step cross late: one step of 3 |g / g'| is tried on the proofs; where they fail and half the
     // piece's step budget is spent, the midpoint check takes it (counted as not proved); the proofs resume after it.
     int approach = 0;
     double root_g = std::abs(cur.g), root_h = h;
     bool stalled = false;
-    for (int budget = kPieceBudget;; --budget) {
+    const int proof_budget = opt_.certify_steps && sym_ == Symmetry::Axial ? kProofBudget : kPieceBudget;
+    for (int budget = proof_budget;; --budget) {
       const bool onset_first = stalled;
       if (onset_first) {
         stalled = false;
@@ -326,7 +328,7 @@ class CellTracer::Impl {
         // Shorten, towards the length the curvature bound says it could prove (at most 50x at once); after
         // kCertifyTries failures in a row or at the minimum step, the step goes to the midpoint check below.
         const bool bounded = cert.gap > 0 && cert.curvature > 0;  // the bound was computed (not cut short)
-        if (!(crossing_try && budget < kPieceBudget / 2) && ++halvings <= kCertifyTries && step > hmin_) {
+        if (!(crossing_try && budget < proof_budget / 2) && ++halvings <= kCertifyTries && step > hmin_) {
           const bool crossing = (cur.g > 0) != (p.g > 0);  // only the curvature bound proves a crossing step
           h = std::max(hmin_, bounded && crossing ? std::clamp(cert.safe_length, 0.02 * step, 0.5 * step) : 0.5 * step);
           continue;
@@ -357,6 +359,8 @@ class CellTracer::Impl {
       if (opt_.certify_steps && !in_band) {
         ++st_.uncertified_steps;
         certified = false;
+        // The piece is unproved already: after kFallbacks such steps the proofs stop trying on it.
+        if (++fallbacks >= kFallbacks) prove = false;
       }
       halvings = 0;
       examine(r, k, cur, mid, 0);
@@ -475,10 +479,11 @@ class CellTracer::Impl {
   const double hmin_;                         // smallest trace step in s
   const std::pair<double, double> band_ = axis_band(md_);  // roots are not reported within these of the axes
   static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
+  static constexpr int kProofBudget = 200000;  // the same with certify_steps, before the midpoint check takes over
   int examine_budget_ = kPieceBudget;
-  static constexpr int kCertifyTries = 40;
+  static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
+  static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
   static constexpr int kApproach = 3;  // 4x falls of |g| and of the step towards a root before one step crosses it
-  static constexpr int kStalls = 3;  // failed certificates in a row before a step goes to the midpoint check
   Symmetry sym_;
   Vec zhat_;
 };

@@ -76,16 +76,26 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     return e;
   };
   const End ea_ = make_end(a), eb_ = make_end(b);
-  // Zeroth order (axial, c constant): |g(s) - g_x| <= |b(s) - b_x| <= drift_x on the whole step, so |g_x| beyond its
-  // drift and error keeps the sign. Linear in |g|, and no derivative of H enters: this holds next to pole lines too.
-  // Its safe length from b: as long as b's drift (linear in the step, to first order) stays below |g_b|.
+  // Zeroth order: |g(s) - g_x| <= |c(s) - c_x| + |c_x| |b(s) - b_x| <= dc + |c_x| drift_x on the whole step (c = z / |z|
+  // constant for axial symmetry, dc = 0; c(t2) = -G tan(D t2) D^-1 G^T z for point symmetry, dc from the increments
+  // of tan(d t2) / d weighted by |G^T z|), so |g_x| beyond that and its error keeps the sign. Linear in |g|, and no
+  // derivative of H enters: this holds next to pole lines too. Its safe length from b: as long as the bound (linear
+  // in the step, to first order) stays below |g_b|.
   double zeroth_length = 0.0;
-  if (sym == Symmetry::Axial && (a.g > 0) == (b.g > 0)) {
-    const double ga = std::abs(a.g) - (a.residual + eig_err) / gamma, gb = std::abs(b.g) - (b.residual + eig_err) / gamma;
-    if ((ea_.sin < 1.0 && ga > ea_.drift) || (eb_.sin < 1.0 && gb > eb_.drift)) {
+  if ((a.g > 0) == (b.g > 0)) {
+    double dc = 0.0, ca = 1.0, cb = 1.0;
+    if (sym == Symmetry::Point) {
+      dc = weighted_norm(C.increment, md.G().transpose() * md.z());
+      ca = md.onset_direction(a.t2, sym).norm();
+      cb = md.onset_direction(b.t2, sym).norm();
+    }
+    const double ga = std::abs(a.g) - ca * (a.residual + eig_err) / gamma;
+    const double gb = std::abs(b.g) - cb * (b.residual + eig_err) / gamma;
+    const double reach_a = dc + ca * ea_.drift, reach_b = dc + cb * eb_.drift;
+    if ((ea_.sin < 1.0 && ga > reach_a) || (eb_.sin < 1.0 && gb > reach_b)) {
       cert.verdict = StepVerdict::NoRoot;
       cert.rotation = std::min(ea_.drift, eb_.drift);
-      zeroth_length = eb_.drift > 0 ? h * std::max(0.0, gb) / eb_.drift : 4.0 * h;
+      zeroth_length = reach_b > 0 ? h * std::max(0.0, gb) / reach_b : 4.0 * h;
       cert.safe_length = zeroth_length;
     }
   }
