@@ -195,3 +195,28 @@ TEST(Window, RandomMassChainsEndSuccessInTheirFundamentalBox) {
     EXPECT_EQ(r.solutions.size(), roots[c]) << c;
   }
 }
+
+TEST(Window, SwingOfTheNullVectorInsideOneStepIsTracedAgain) {
+  // Regression (random stiff 5-dof system, stiffness spread 1e5): next to a flight pole line an eigenvalue sweeps past
+  // lambda_k and b swings past 90 degrees inside one midpoint-checked step and back (end turn 0.09 rad): the sign change
+  // of g it leaves was located on a jump of g (|g| = 0.68) and reported as a root that did not polish (incomplete).
+  // The step is now traced again finer; the window ends success with the two SPPs the brute force finds.
+  Eigen::MatrixXd M(5, 5), K(5, 5);
+  M << 0.7302547709435028, -0.4937304420004236, -0.28889372579631095, 0.05120677395772484, 0.3867094861218746,
+      -0.4937304420004236, 1.7233595908002586, 0.23847664944006577, 0.0403427765321794, -0.3750012913655771,
+      -0.28889372579631095, 0.23847664944006577, 1.1504799103023395, -0.5702922119151975, -0.2475476359967741,
+      0.05120677395772484, 0.0403427765321794, -0.5702922119151975, 1.5932558005433735, -0.17396232518853097,
+      0.3867094861218746, -0.3750012913655771, -0.2475476359967741, -0.17396232518853097, 0.8856133019343064;
+  K << 22339.76712409693, -11597.761344528039, 28040.35795777836, -10702.360140099358, 23346.071708509517,
+      -11597.761344528039, 39600.127547796284, -25458.710184821466, -35936.812437356086, -4323.089874330918,
+      28040.35795777836, -25458.710184821466, 44573.022517072684, -3856.8699846095856, 30150.93351967095,
+      -10702.360140099358, -35936.812437356086, -3856.8699846095856, 59001.35054150874, -23076.857095038322,
+      23346.071708509517, -4323.089874330918, 30150.93351967095, -23076.857095038322, 28173.447039136816;
+  Eigen::VectorXd w(5);
+  w << 0.004066285585204017, 0.7593764241393041, -0.44105336975674425, -0.1627528985161081, -0.44979365361659945;
+  const System s(M, K, w, 1.0);
+  const SolveResult r = solve_window(s, 0.005, 0.012, 0.0003, 0.0428);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_EQ(r.solutions.size(), 2u);
+}

@@ -267,8 +267,8 @@ class CellTracer::Impl {
       if (budget <= 0 || examine_budget_ <= 0) {  // b turns faster than the step control can follow
         ++st_.unresolved_pieces;
         certified = false;
-        const TracePoint p = point(out, &cur.b);
-        examine(r, k, cur, p, 0);
+        TracePoint p = point(out, &cur.b);
+        if (examine(r, k, cur, p, 0)) flip(p);
         return p;
       }
       // Inside an axis band nothing is reported (axis_band): steps there need no proof, only the midpoint check that
@@ -299,7 +299,7 @@ class CellTracer::Impl {
         if (cert.verdict != StepVerdict::Uncertified || by_onset) {
           ++st_.certified_steps;
           halvings = 0;
-          if ((cur.g > 0) != (p.g > 0)) locate_root(r, k, cur, p);
+          if ((cur.g > 0) != (p.g > 0) && locate_root(r, k, cur, p)) flip(p);
           if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
           if (last) return p;
           const double next = by_onset ? 2.0 * step : std::clamp(0.9 * cert.safe_length, 0.5 * step, 4.0 * step);
@@ -336,8 +336,8 @@ class CellTracer::Impl {
       }
       // Midpoint check: the turn of b is measured over both halves of the step (comparing only the ends would accept
       // a b that swings away and comes back near an avoided crossing), g examined on both halves. Not a proof.
-      const TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
-      const TracePoint q =
+      TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
+      TracePoint q =
           last ? point(out, &mid.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &mid.b);
       const double turn1 = turn_of(cur.b, mid.b), turn2 = turn_of(mid.b, q.b), turn = turn1 + turn2;
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
@@ -363,8 +363,11 @@ class CellTracer::Impl {
         if (++fallbacks >= kFallbacks) prove = false;
       }
       halvings = 0;
-      examine(r, k, cur, mid, 0);
-      examine(r, k, mid, q, 0);
+      if (examine(r, k, cur, mid, 0)) {
+        flip(mid);
+        flip(q);  // q was oriented from mid
+      }
+      if (examine(r, k, mid, q, 0)) flip(q);
       if (q.s > cur.s) slope = (q.t1 - cur.t1) / (q.s - cur.s);
       if (last) return q;
       cur = q;
@@ -374,7 +377,9 @@ class CellTracer::Impl {
 
   // The midpoint check's examination of g on [A, B] of curve k (every step by default; with certify_steps, the steps
   // the certificate cannot prove): locate sign changes, refine where a Hermite model of g dips towards zero.
-  void examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
+  // Returns true when B's orientation (given) is opposite to the one continuous tracking from A gives (a swing of b
+  // past 90 degrees inside the step, found by retrace): the caller flips B.
+  bool examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
     const double h = B.s - A.s;
     auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     // Hermite cubic in sigma in [0,1]
@@ -410,17 +415,40 @@ class CellTracer::Impl {
           ++st_.uncertified_steps;
           candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}});
         }
-        if (!endpoints_differ) return;
+        if (!endpoints_differ) return false;
       } else {
         --examine_budget_;
         const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
-        const TracePoint M = point(diagonal_root(r, s, guess(s), k), &A.b);
-        examine(r, k, A, M, depth + 1);
-        examine(r, k, M, B, depth + 1);
-        return;
+        TracePoint M = point(diagonal_root(r, s, guess(s), k), &A.b);
+        if (examine(r, k, A, M, depth + 1)) flip(M);
+        return examine(r, k, M, B, depth + 1);
       }
     }
-    if (endpoints_differ) locate_root(r, k, A, B);
+    return endpoints_differ && locate_root(r, k, A, B);
+  }
+
+  // Step A -> B traced again in kRetraceParts equal parts, each oriented from the previous one (parts where b still
+  // turns more than max_turn are traced again in turn), each examined. Returns true when B's given orientation is
+  // opposite to the continuous one.
+  bool retrace(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
+    const double h = B.s - A.s;
+    TracePoint prev = A;
+    for (int i = 1; i <= kRetraceParts; ++i) {
+      const double s = A.s + h * i / kRetraceParts;
+      TracePoint q = i == kRetraceParts ? B : point(diagonal_root(r, s, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), &prev.b);
+      if (i == kRetraceParts && q.b.dot(prev.b) < 0) flip(q);  // B oriented from its neighbour, as every part
+      const double turn = std::acos(std::min(1.0, std::abs(prev.b.dot(q.b))));
+      const bool again = turn > opt_.max_turn && depth < kRetraceDepth && q.s - prev.s > hmin_;
+      if (again ? retrace(r, k, prev, q, depth + 1) : examine(r, k, prev, q, 0)) flip(q);
+      prev = q;
+    }
+    return prev.b.dot(B.b) < 0;
+  }
+
+  static void flip(TracePoint& p) {
+    p.b = -p.b;
+    p.g = -p.g;
+    p.dg = -p.dg;
   }
 
   // True when no SPP lies in [t1lo, t1hi] x [t2lo, t2hi] (inside one cell), proved by the onset inertia: Hc grows
@@ -455,7 +483,8 @@ class CellTracer::Impl {
   }
 
   // The one sign change of g between A and B: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
-  void locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B) {
+  // Returns true when B's orientation must be flipped (see retrace).
+  bool locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth = 0) {
     const double h = B.s - A.s;
     auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     auto g_at = [&](double s) {
@@ -466,7 +495,15 @@ class CellTracer::Impl {
     };
     const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
     const Pair e = diagonal_root(r, s, guess(s), k);
+    // A zero of g is continuous: where |g| stays large at the closed bracket, g jumped there (b swung past 90 degrees
+    // from A's orientation inside the step, next to an eigenvalue that sweeps past lambda_k near a pole line): the
+    // step is traced again finer instead.
+    const double gs = std::abs(onset_g(e.b, e.t2).first);
+    if (gs > std::max(1e-3 * std::max(std::abs(A.g), std::abs(B.g)), 1e-9) && depth < kRetraceDepth &&
+        B.s - A.s > hmin_)
+      return retrace(r, k, A, B, depth + 1);
     candidates_.push_back({e.t1, e.t2, false, false, e.b});
+    return false;
   }
 
   std::vector<Candidate> candidates_;
@@ -483,6 +520,8 @@ class CellTracer::Impl {
   int examine_budget_ = kPieceBudget;
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
+  static constexpr int kRetraceParts = 8;  // parts of a step traced again where g jumped
+  static constexpr int kRetraceDepth = 4;  // nested retraces at most
   static constexpr int kApproach = 3;  // 4x falls of |g| and of the step towards a root before one step crosses it
   Symmetry sym_;
   Vec zhat_;
