@@ -176,6 +176,19 @@ TEST(Window, PairOfRootsHiddenInOneSmallTurnStepIsFound) {
   ASSERT_EQ(r.solutions.size(), 1u) << r.brief_report();
   EXPECT_NEAR(r.solutions[0].t1, 0.00788137049781, 1e-10);
   EXPECT_NEAR(r.solutions[0].t2, 0.106633445732, 1e-10);
+  // The certified trace proves every step of that window (the step that hid the pair is refused by all three bounds
+  // until it is short enough) and finds the same root.
+  SolveOptions o;
+  o.t1_min = 0.005;
+  o.t1_max = 0.01;
+  o.t2_min = 0.105;
+  o.t2_max = 0.125;
+  o.certify_steps = true;
+  const SolveResult c = solve(s, o);
+  EXPECT_EQ(c.status, SolveStatus::Success) << c.brief_report();
+  EXPECT_EQ(c.stats.heuristic_steps, 0);
+  ASSERT_EQ(c.solutions.size(), 1u);
+  EXPECT_NEAR(c.solutions[0].t1, 0.00788137049781, 1e-10);
 }
 
 TEST(Window, RandomMassChainsEndSuccessInTheirFundamentalBox) {
