@@ -3,6 +3,7 @@
 //  - ChainBox: the chain's fundamental box t1 <= pi/omega_1, t2 <= pi/d_2;
 //  - ChainWindow / RandomWindow: P x P pole lines, t1_max (t2_max) the smallest time with P poles of
 //    tan(W t1) (tan(D t2)) below it (P pi / sum(omega) only holds once every mode has several poles).
+//  - *Certified: the same with SolveOptions::certify_steps (every step proved; "complete" then means proved).
 // Counters: pole lines, rectangles, curve pieces, roots, H evaluations, seconds per root.
 #include <benchmark/benchmark.h>
 
@@ -56,15 +57,18 @@ void run(benchmark::State& state, const spp::System& s, const spp::SolveOptions&
   state.counters["complete"] = r.status == spp::SolveStatus::Success ? 1 : 0;
 }
 
-void ChainBox(benchmark::State& state) {
+void chain_box(benchmark::State& state, bool certify) {
   const spp::System s = chain_system(static_cast<int>(state.range(0)));
   const spp::ModalForm md(s);
   spp::SolveOptions o;
   o.t1_max = std::numbers::pi / md.omega()(0);
   o.t2_max = std::numbers::pi / md.d()(1);
   o.compute_return_error = false;
+  o.certify_steps = certify;
   run(state, s, o);
 }
+void ChainBox(benchmark::State& state) { chain_box(state, false); }
+void ChainBoxCertified(benchmark::State& state) { chain_box(state, true); }
 
 // Smallest t with at least P poles (k + 1/2) pi / f in (0, t], by bisection on the count.
 double time_for_poles(const Eigen::VectorXd& freqs, int P) {
@@ -80,13 +84,14 @@ double time_for_poles(const Eigen::VectorXd& freqs, int P) {
   return hi * (1.0 + 1e-9);
 }
 
-void window(benchmark::State& state, const spp::System& s) {
+void window(benchmark::State& state, const spp::System& s, bool certify = false) {
   const spp::ModalForm md(s);
   const int P = static_cast<int>(state.range(1));
   spp::SolveOptions o;
   o.t1_max = time_for_poles(md.omega(), P);
   o.t2_max = time_for_poles(md.d(), P);
   o.compute_return_error = false;
+  o.certify_steps = certify;
   run(state, s, o);
 }
 
@@ -96,18 +101,29 @@ void ChainWindow(benchmark::State& state) {
 void RandomWindow(benchmark::State& state) {
   window(state, random_system(static_cast<int>(state.range(0))));
 }
+void RandomWindowCertified(benchmark::State& state) {
+  window(state, random_system(static_cast<int>(state.range(0))), true);
+}
 
-void Chain5Window12(benchmark::State& state) {
+void chain5_window12(benchmark::State& state, bool certify) {
   spp::SolveOptions o;
   o.t1_max = o.t2_max = 12.0;
   o.compute_return_error = false;
+  o.certify_steps = certify;
   run(state, chain_system(5), o);
 }
+void Chain5Window12(benchmark::State& state) { chain5_window12(state, false); }
+void Chain5Window12Certified(benchmark::State& state) { chain5_window12(state, true); }
 
 }  // namespace
 
 BENCHMARK(Chain5Window12)->Unit(benchmark::kMillisecond);
+BENCHMARK(Chain5Window12Certified)->Unit(benchmark::kMillisecond);
 BENCHMARK(ChainBox)->DenseRange(2, 10)->Unit(benchmark::kMillisecond);
+BENCHMARK(ChainBoxCertified)->DenseRange(2, 8)->Iterations(1)->Unit(benchmark::kMillisecond);
+// {n, pole lines per direction}: what proofs cost on generic dense systems
+BENCHMARK(RandomWindow)->Args({5, 20})->Args({10, 20})->Args({20, 20})->Unit(benchmark::kMillisecond);
+BENCHMARK(RandomWindowCertified)->Args({5, 20})->Args({10, 20})->Args({20, 20})->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(ChainBox)->Arg(20)->Arg(30)->Iterations(1)->Unit(benchmark::kSecond);
 // {n, pole lines per direction}: windows sized to run in minutes here; cost grows with the rectangles
 void window_sweep(benchmark::internal::Benchmark* b) {
