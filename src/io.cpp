@@ -3,6 +3,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +13,8 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_set>
+#include <vector>
 
 namespace spp {
 
@@ -19,6 +24,33 @@ using nlohmann::json;
 namespace {
 [[noreturn]] void fail(const std::string& s) {
   throw std::invalid_argument(s);
+}
+
+// A value named in an error message, never echoed whole: nested or long input (a 100 000-deep array) is described,
+// not dumped (json::dump recurses: a stack overflow).
+std::string describe(const json& v) {
+  if (v.is_array()) return "a list (" + std::to_string(v.size()) + " entries)";
+  if (v.is_object()) return "an object (" + std::to_string(v.size()) + " fields)";
+  if (v.is_string()) {
+    const std::string& t = v.get_ref<const std::string&>();
+    return "the string \"" + (t.size() > 40 ? t.substr(0, 40) + "...\"" : t + "\"");
+  }
+  return v.dump();  // a number, boolean or null: short
+}
+
+// Fields a system file may hold; any other is named (a misspelt "G0" must not be silently ignored).
+void check_fields(const json& j, std::initializer_list<const char*> known, const std::string& where,
+                  std::initializer_list<const char*> also = {}) {
+  for (const auto& [k, _] : j.items()) {
+    bool ok = false;
+    for (const char* f : known) ok = ok || k == f;
+    for (const char* f : also) ok = ok || k == f;
+    if (!ok) {
+      std::string list;
+      for (const char* f : known) list += std::string(list.empty() ? "" : ", ") + f;
+      fail(where + ": unknown field \"" + (k.size() > 40 ? k.substr(0, 40) + "..." : k) + "\" (expected: " + list + ")");
+    }
+  }
 }
 
 std::string num(double v) {
@@ -57,7 +89,7 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
     for (size_t c = 0; c < cols; ++c) {
       if (!v[i][c].is_number()) {
         std::ostringstream os;
-        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got " << v[i][c].dump();
+        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got " << describe(v[i][c]);
         fail(os.str());
       }
       A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) = v[i][c].get<double>();
@@ -73,7 +105,7 @@ Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& 
   Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
   for (size_t i = 0; i < jw.size(); ++i) {
     if (!jw[i].is_number())
-      fail(where + ": field \"" + key + "\"[" + std::to_string(i) + "] must be a number, got " + jw[i].dump());
+      fail(where + ": field \"" + key + "\"[" + std::to_string(i) + "] must be a number, got " + describe(jw[i]));
     w(static_cast<Eigen::Index>(i)) = jw[i].get<double>();
   }
   return w;
@@ -81,7 +113,7 @@ Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& 
 
 double g0_field(const json& j, const std::string& where) {
   if (!j.contains("g0")) fail(where + ": missing field \"g0\" (the gap at rest)");
-  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + j.at("g0").dump());
+  if (!j.at("g0").is_number()) fail(where + ": field \"g0\" must be a number, got " + describe(j.at("g0")));
   return j.at("g0").get<double>();
 }
 
@@ -100,6 +132,8 @@ std::string read_file(const std::string& path) {
 
 System system_from_json(const json& j, const std::string& where, const std::string& dir) {
   if (!j.is_object()) fail(where + ": expected a JSON object with fields M, K, w, g0");
+  // (a result's "system" also carries what result_to_json adds)
+  check_fields(j, {"name", "description", "M", "K", "w", "g0"}, where, {"n", "w_normalized", "w_input_norm"});
   Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
   Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
   Eigen::VectorXd w = vector_field(j, "w", where);
@@ -153,6 +187,8 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   const json& p = j.at("parameter");
   if (!p.is_object() || !p.contains("name") || !p.at("name").is_string() || p.at("name").get<std::string>().empty())
     fail(where + ": field \"parameter\" must be {\"name\": \"...\", \"min\": number, \"max\": number}");
+  check_fields(j, {"name", "description", "M", "K", "w", "g0", "parameter"}, where);
+  check_fields(p, {"name", "min", "max"}, where + ": field \"parameter\"");
   Parameter par;
   par.name = p.at("name").get<std::string>();
   for (const char* k : {"min", "max"})
@@ -207,6 +243,32 @@ json system_to_json(const System& s) {
   return j;
 }
 
+namespace {
+// Whole-token number parsing ("1.5xyz" is not 1.5). Written here: std::from_chars for double is not in g++ 12's
+// libstdc++ for every target, and strtod with an end check is the portable equivalent.
+bool parse_number(const std::string& token, double& v) {
+  if (token.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtod(token.c_str(), &end);
+  return end == token.c_str() + token.size() && errno != ERANGE && std::isfinite(v);
+}
+bool parse_index(const std::string& token, long& v) {
+  double d = 0;
+  if (!parse_number(token, d) || d != std::floor(d) || std::abs(d) > 9e15) return false;
+  v = static_cast<long>(d);
+  return true;
+}
+std::vector<std::string> tokens(const std::string& line) {
+  std::istringstream ss(line);
+  std::vector<std::string> t;
+  for (std::string w; ss >> w;) t.push_back(w);
+  return t;
+}
+// Dense storage the reader may allocate (entries): larger sizes are refused with their size, not std::bad_alloc.
+constexpr double kMaxDenseEntries = 4e8;  // 3.2 GB of doubles
+}  // namespace
+
 Eigen::MatrixXd read_matrix_market(const std::string& path) {
   std::ifstream in(path);
   if (!in) fail("cannot open Matrix Market file \"" + path + "\"");
@@ -218,50 +280,90 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
   hs >> banner >> object >> format >> field >> symmetry;
   for (auto* s : {&object, &format, &field, &symmetry})
     for (auto& ch : *s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  if (object != "matrix") fail(path + ": expected object \"matrix\", got \"" + object + "\"");
+  if (object != "matrix") fail(path + ": expected object \"matrix\", got \"" + object.substr(0, 40) + "\"");
   if (format != "coordinate" && format != "array")
-    fail(path + ": expected format coordinate or array, got \"" + format + "\"");
+    fail(path + ": expected format coordinate or array, got \"" + format.substr(0, 40) + "\"");
   if (field != "real" && field != "integer" && field != "double")
-    fail(path + ": expected field real or integer, got \"" + field + "\"");
+    fail(path + ": expected field real or integer, got \"" + field.substr(0, 40) + "\"");
   if (symmetry != "general" && symmetry != "symmetric")
-    fail(path + ": expected symmetry general or symmetric, got \"" + symmetry + "\"");
+    fail(path + ": expected symmetry general or symmetric, got \"" + symmetry.substr(0, 40) + "\"");
   int lineno = 1;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (!line.empty() && line[0] != '%') break;
-  }
-  std::istringstream ss(line);
-  long rows = 0, cols = 0, nnz = 0;
-  ss >> rows >> cols;
-  if (format == "coordinate") ss >> nnz;
-  if (!ss || rows <= 0 || cols <= 0 || nnz < 0)
-    fail(path + ":" + std::to_string(lineno) + ": bad size line \"" + line + "\"");
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
-  const bool sym = symmetry == "symmetric";
-  if (format == "coordinate") {
-    for (long e = 0; e < nnz; ++e) {
-      if (!std::getline(in, line))
-        fail(path + ": expected " + std::to_string(nnz) + " entries, got " + std::to_string(e));
+  auto next_data_line = [&](std::string& l) {  // skips comments and blank lines
+    while (std::getline(in, l)) {
       ++lineno;
-      std::istringstream es(line);
+      if (!tokens(l).empty() && l[l.find_first_not_of(" \t\r\v\f")] != '%') return true;
+    }
+    return false;
+  };
+  auto where = [&] { return path + ":" + std::to_string(lineno); };
+  auto shown = [](const std::string& l) { return l.size() > 60 ? l.substr(0, 60) + "..." : l; };
+  if (!next_data_line(line)) fail(path + ": no size line");
+  const std::vector<std::string> size = tokens(line);
+  long rows = 0, cols = 0, nnz = 0;
+  const bool coordinate = format == "coordinate";
+  if (size.size() != (coordinate ? 3u : 2u) || !parse_index(size[0], rows) || !parse_index(size[1], cols) ||
+      (coordinate && !parse_index(size[2], nnz)) || rows <= 0 || cols <= 0 || nnz < 0)
+    fail(where() + ": bad size line \"" + shown(line) + "\" (expected rows cols" + (coordinate ? " entries" : "") +
+         ")");
+  if (static_cast<double>(rows) * static_cast<double>(cols) > kMaxDenseEntries)
+    fail(where() + ": a " + std::to_string(rows) + " x " + std::to_string(cols) +
+         " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) + " entries)");
+  const bool sym = symmetry == "symmetric";
+  if (sym && rows != cols) fail(where() + ": a symmetric matrix must be square, got " + size[0] + " x " + size[1]);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
+  if (coordinate) {
+    // Duplicate entries are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one
+    // triangle: an entry given in both triangles is refused.
+    Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic> side;
+    if (sym) side = Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic>::Zero(rows, cols);
+    for (long e = 0; e < nnz; ++e) {
+      if (!next_data_line(line))
+        fail(path + ": expected " + std::to_string(nnz) + " entries (size line), got " + std::to_string(e));
+      const std::vector<std::string> t = tokens(line);
       long i = 0, j = 0;
       double v = 0;
-      es >> i >> j >> v;
-      if (!es || i < 1 || i > rows || j < 1 || j > cols)
-        fail(path + ":" + std::to_string(lineno) + ": bad entry \"" + line + "\"");
-      A(i - 1, j - 1) = v;
-      if (sym) A(j - 1, i - 1) = v;
+      if (t.size() != 3 || !parse_index(t[0], i) || !parse_index(t[1], j) || !parse_number(t[2], v) || i < 1 ||
+          i > rows || j < 1 || j > cols)
+        fail(where() + ": bad entry \"" + shown(line) + "\" (expected row col value, 1 <= row <= " +
+             std::to_string(rows) + ", 1 <= col <= " + std::to_string(cols) + ")");
+      if (sym && i != j) {
+        const long lo = std::min(i, j) - 1, hi = std::max(i, j) - 1;
+        const signed char s = i > j ? 1 : 2;
+        if (side(hi, lo) != 0 && side(hi, lo) != s)
+          fail(where() + ": entry (" + std::to_string(i) + ", " + std::to_string(j) +
+               ") of a symmetric file: its mirror was given too (store one triangle)");
+        side(hi, lo) = s;
+        A(hi, lo) += v;
+        A(lo, hi) += v;
+      } else {
+        A(i - 1, j - 1) += v;
+      }
     }
+    if (next_data_line(line))
+      fail(where() + ": more entries than the " + std::to_string(nnz) + " the size line declares: \"" + shown(line) +
+           "\"");
   } else {
+    std::vector<std::string> pending;
+    size_t next = 0;
     for (long j = 0; j < cols; ++j)
       for (long i = sym ? j : 0; i < rows; ++i) {
+        while (next == pending.size()) {
+          if (!next_data_line(line))
+            fail(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+                 ")");
+          pending = tokens(line);
+          next = 0;
+        }
         double v = 0;
-        if (!(in >> v))
-          fail(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
-               ")");
+        if (!parse_number(pending[next++], v))
+          fail(where() + ": entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is not a number: \"" +
+               shown(pending[next - 1]) + "\"");
         A(i, j) = v;
         if (sym) A(j, i) = v;
       }
+    if (next != pending.size() || next_data_line(line))
+      fail(where() + ": more values than the " + std::to_string(sym ? rows * (rows + 1) / 2 : rows * cols) +
+           " the size line declares");
   }
   return A;
 }
@@ -325,11 +427,26 @@ json result_to_json(const System& s, const SolveResult& r) {
 
 json read_json_file(const std::string& path) {
   const std::string text = read_file(path);
+  // Duplicate keys are refused (nlohmann keeps the last one silently): one set of keys per open object.
+  std::vector<std::unordered_set<std::string>> keys;
+  std::string duplicate;
+  const json::parser_callback_t seen = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == json::parse_event_t::key && !keys.empty() && duplicate.empty()) {
+      const std::string k = parsed.get<std::string>();
+      if (!keys.back().insert(k).second) duplicate = k.size() > 40 ? k.substr(0, 40) + "..." : k;
+    }
+    return true;
+  };
+  json j;
   try {
-    return json::parse(text);
+    j = json::parse(text, seen);
   } catch (const json::exception& e) {
     fail(path + ": malformed JSON: " + e.what());
   }
+  if (!duplicate.empty()) fail(path + ": the key \"" + duplicate + "\" appears twice in one object");
+  return j;
 }
 
 System result_system(const json& r, const std::string& where) {

@@ -1,6 +1,7 @@
 #include "spp/system.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,14 +35,25 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
     fail(os.str());
   }
   Eigen::MatrixXd S = 0.5 * (A + A.transpose());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S, Eigen::EigenvaluesOnly);
+  // Positive definite, decided on the unit-diagonal congruent matrix D^-1/2 S D^-1/2 (D = diag S): the same answer for
+  // the same system in other units per dof (x = diag(1e3, 1, 1e-3) x' scales S by D, not its definiteness), with a
+  // margin above rounding (an eigenvalue at the level of rounding is singular).
+  for (Eigen::Index i = 0; i < S.rows(); ++i)
+    if (!(S(i, i) > 0.0)) {
+      std::ostringstream os;
+      os << "system: " << field << " must be positive definite, got the diagonal entry " << field << "[" << i << "]["
+         << i << "] = " << S(i, i);
+      fail(os.str());
+    }
+  const Eigen::VectorXd d = S.diagonal().cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd U = d.asDiagonal() * S * d.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(U, Eigen::EigenvaluesOnly);
   const double lmin = es.eigenvalues().minCoeff();
   const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
-  // Positive definite with a margin above rounding: an eigenvalue at the level of rounding is singular.
-  if (!(lmin > 1e3 * std::numeric_limits<double>::epsilon() * lmax * static_cast<double>(A.rows()))) {
+  if (!(lmin > kDefinitenessMargin * std::numeric_limits<double>::epsilon() * lmax * static_cast<double>(A.rows()))) {
     std::ostringstream os;
     os << "system: " << field << " must be positive definite, got smallest eigenvalue " << lmin << " (largest " << lmax
-       << ")";
+       << ") of " << field << " scaled to a unit diagonal";
     fail(os.str());
   }
   return S;
@@ -78,11 +90,21 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
   }
   M_ = check_spd(M, "M");
   K_ = check_spd(K, "K");
-  const double nw = w.norm();
+  const double nw = w.stableNorm();  // no overflow for |w_i| ~ 1e200, no underflow for 1e-200
   if (!(nw > 0.0)) fail("system: w must be non-zero, got the zero vector");
+  if (!std::isfinite(nw) || nw < std::numeric_limits<double>::min()) {
+    std::ostringstream os;
+    os << "system: |w| = " << nw << " is outside the range of normal doubles: rescale w and g0 by one factor";
+    fail(os.str());
+  }
   w_input_norm_ = nw;
   w_ = w / nw;
   g0_ = g0 / nw;
+  if (!std::isfinite(g0_)) {
+    std::ostringstream os;
+    os << "system: g0 / |w| = " << g0 << " / " << nw << " overflows: rescale w and g0 by one factor";
+    fail(os.str());
+  }
 }
 
 Eigen::MatrixXd System::contact_stiffness() const {

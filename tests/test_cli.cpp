@@ -362,3 +362,57 @@ TEST(Cli, ZeroGapSolveAndContinueOnAGeneratedParametricSystem) {
   EXPECT_EQ(rod.code, 1);
   EXPECT_NE(rod.out.find("no field \"parameter\""), std::string::npos) << rod.out;
 }
+
+TEST(Cli, InputThatCannotFoolIt) {
+  // Found by fuzzing malformed inputs: each is refused with a message naming what is wrong, exit 1, no output file.
+  const std::string deep = std::string(100000, '[') + "1" + std::string(100000, ']');
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,)" + deep + R"(], "g0": 1})",
+                  "field \"w\"[1] must be a number, got a list (1 entries)");  // was a segfault (json::dump recursion)
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": )" + deep + "}",
+                  "field \"g0\" must be a number, got a list");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, "g0": 2})",
+                  "the key \"g0\" appears twice");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, "G0": 2})",
+                  "unknown field \"G0\"");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1e-310], "g0": 1})",
+                  "outside the range of normal doubles");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1e-300], "g0": 1e10})", "overflows");
+  expect_rejected(kGood, "--at: ", "--at 2");  // not a parametric system
+  // Matrix Market: duplicates summed (the format's convention), both triangles of a symmetric file, more entries
+  // than declared, trailing garbage after a number and sizes too large to hold are refused.
+  auto mm = [](const std::string& name, const std::string& body) {
+    write(name + ".mtx", body);
+    return std::string(R"({"M": {"matrix_market": ")") + name + R"(.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})";
+  };
+  expect_rejected(mm("both", "%%MatrixMarket matrix coordinate real symmetric\n2 2 4\n1 1 1\n2 2 1\n2 1 0.1\n1 2 0.2\n"),
+                  "its mirror was given too");
+  expect_rejected(mm("extra", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2 2 1\n1 2 0\n"),
+                  "more entries than the 2");
+  expect_rejected(mm("xyz", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.5xyz\n2 2 1\n"), "bad entry");
+  expect_rejected(mm("huge", "%%MatrixMarket matrix coordinate real general\n1000000 1000000 1\n1 1 1\n"),
+                  "too large to hold densely");
+  const std::string dup = write("dup.json", mm("dup", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 0.5\n"
+                                                      "1 1 0.5\n2 2 1\n"));
+  const CliRun d = run("solve " + dup + " --t1-max 5 --t2-max 5 --quiet");
+  EXPECT_EQ(d.code, 0) << d.out;
+  EXPECT_NE(d.out.find("success, 2 SPPs"), std::string::npos) << d.out;  // the identity M, as kGood
+  // an output path equal to the input, or in a missing directory, is refused before any work
+  const std::string sys = write("same.json", kGood);
+  const CliRun same = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + sys);
+  EXPECT_EQ(same.code, 1);
+  EXPECT_NE(same.out.find("is the input file"), std::string::npos) << same.out;
+  const CliRun nodir = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + (dir() / "no_such_dir" / "r.json").string());
+  EXPECT_EQ(nodir.code, 1);
+  EXPECT_NE(nodir.out.find("does not exist"), std::string::npos) << nodir.out;
+}
+
+TEST(Cli, SystemInOtherUnitsPerDofIsTheSameSystem) {
+  // x = diag(1e3, 1, 1e-3, 1, 1e2) x' rescales M, K and w; definiteness was decided on the unscaled eigenvalues and
+  // refused it ("K must be positive definite, got smallest eigenvalue 3.33e-07"). Same 64 SPPs as the paper's chain.
+  const std::string sys = write("scaled.json", R"({"M": [[1e6,0,0,0,0],[0,1,0,0,0],[0,0,1e-6,0,0],[0,0,0,1,0],[0,0,0,0,1e4]],
+    "K": [[2e6,-1e3,0,0,0],[-1e3,2,-1e-3,0,0],[0,-1e-3,2e-6,-1e-3,0],[0,0,-1e-3,2,-1e2],[0,0,0,-1e2,1e4]],
+    "w": [0,0,0,0,-100], "g0": 1})");
+  const CliRun r = run("solve " + sys + " --t1-max 12 --t2-max 12 --quiet");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("success, 64 SPPs (7 admissible)"), std::string::npos) << r.out;
+}

@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdlib>
+#include <filesystem>
+#include <new>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,6 +22,21 @@
 #include "spp/verify.hpp"
 
 namespace {
+
+// An output file named by option `opt`: refused before any work when it is one of the inputs (it would be replaced by
+// the output) or when its directory does not exist (the work would be lost at the end).
+void check_output(const std::string& out, const std::string& opt, std::initializer_list<std::string> inputs) {
+  namespace fs = std::filesystem;
+  if (out.empty()) return;
+  std::error_code ec;
+  for (const std::string& in : inputs)
+    if (!in.empty() && fs::exists(out, ec) && fs::equivalent(out, in, ec))
+      throw std::invalid_argument(opt + ": \"" + out + "\" is the input file \"" + in +
+                                  "\": write the output to another file");
+  const fs::path dir = fs::path(out).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec))
+    throw std::invalid_argument(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
+}
 
 std::vector<double> parse_list(const std::string& s, const char* opt) {
   std::vector<double> v;
@@ -200,7 +217,11 @@ int main(int argc, char** argv) {
     if (*solve) {
       opt.symmetry = solve_symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
       opt.validate();
+      check_output(json_out, "--json", {sys_path});
+      check_output(csv_out, "--csv", {sys_path, json_out});
       const nlohmann::json sys_json = spp::read_json_file(sys_path);
+      if (!spp::declares_parameter(sys_json) && o_at->count() > 0)
+        throw std::invalid_argument("--at: " + sys_path + " is not a parametric system (it has no field \"parameter\")");
       if (spp::declares_parameter(sys_json) && o_at->count() == 0) {
         const spp::ParametricSystem ps = spp::load_parametric_system(sys_path);
         if (ps.g0() != 0.0)
@@ -242,6 +263,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*traj) {
+      check_output(traj_csv, "--csv", {traj_sys, traj_result});
       const spp::System sys = spp::load_system(traj_sys);
       if (!traj_result.empty()) {
         if (solution_index < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
@@ -280,6 +302,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*simc) {
+      check_output(sim_csv, "--csv", {sim_sys});
       const spp::System sys = spp::load_system(sim_sys);
       const std::vector<double> x0 = parse_list(sim_x0, "--x0"), v0 = parse_list(sim_v0, "--v0");
       sim_opt.validate();
@@ -300,6 +323,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*ver) {
+      check_output(ver_json, "--json", {ver_result});
       const nlohmann::json j = spp::read_json_file(ver_result);
       const spp::System sys = spp::result_system(j, ver_result);
       const std::vector<spp::SppCandidate> spps = spp::result_candidates(j, ver_result);
@@ -331,6 +355,7 @@ int main(int argc, char** argv) {
                                " (install python3 and the spp package)");
     }
     if (*cont) {
+      check_output(cont_json, "--json", {cont_sys});
       const spp::ParametricSystem ps = spp::load_parametric_system(cont_sys);
       copt.symmetry = cont_symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
       const spp::ContinuationResult cr = spp::continue_branches(ps, copt);
@@ -385,6 +410,10 @@ int main(int argc, char** argv) {
     }
   } catch (const std::invalid_argument& e) {
     std::cerr << "spp: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "spp: error: out of memory: the system or the window needs more memory than this machine gives "
+                 "(a smaller window, or --max-cells, bounds the work)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "spp: error: " << e.what() << "\n";

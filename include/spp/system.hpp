@@ -39,5 +39,8 @@ class System {
 
 /// Relative tolerance used to accept M and K as symmetric: |A - A^T|_max <= tol * |A|_max.
 inline constexpr double kSymmetryTolerance = 1e-10;
+/// M and K are positive definite when the smallest eigenvalue of their unit-diagonal scaling exceeds this many
+/// n eps times the largest: below, the matrix is singular to rounding and the modal form meaningless.
+inline constexpr double kDefinitenessMargin = 1e3;
 
 }  // namespace spp
