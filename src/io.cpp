@@ -417,7 +417,15 @@ json result_to_json(const System& s, const SolveResult& r) {
               {"mid_contact_force", x.admissibility.mid_contact_force},
               {"onset_force_rate", x.admissibility.onset_force_rate},
               {"admissibility_certified", x.admissibility.certified},
-              {"flags", x.flags}};
+              {"admissibility_ends_ok", x.admissibility.ends_ok},
+              {"flags", x.flags},
+              // the orbit in modal coordinates (modal form §2), so that load_result rebuilds the same Solution
+              {"orbit", {{"a", vec(x.orbit.a)},
+                         {"c", vec(x.orbit.c)},
+                         {"p0", vec(x.orbit.p0)},
+                         {"p0dot", vec(x.orbit.p0dot)},
+                         {"closure_ratio", x.orbit.closure_ratio},
+                         {"energy", x.orbit.energy}}}};
     if (x.orbit.symmetry == Symmetry::Point) o["obstacle_velocity"] = x.orbit.obstacle_velocity;
     sols.push_back(o);
   }
@@ -492,6 +500,157 @@ std::vector<SppCandidate> result_candidates(const json& r, const std::string& wh
     out.push_back(std::move(c));
   }
   return out;
+}
+
+namespace {
+// Readers for load_result: each names the field it could not read. Doubles written as null (NaN) read back as NaN.
+struct Reader {
+  const json& o;
+  std::string where;
+  const json& at(const char* k) const {
+    if (!o.is_object() || !o.contains(k)) fail(where + ": missing field \"" + k + "\"");
+    return o.at(k);
+  }
+  double number(const char* k) const {
+    const json& v = at(k);
+    if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (!v.is_number()) fail(where + ": field \"" + k + "\" must be a number, got " + describe(v));
+    return v.get<double>();
+  }
+  long integer(const char* k) const {
+    const json& v = at(k);
+    if (!v.is_number_integer()) fail(where + ": field \"" + k + "\" must be an integer, got " + describe(v));
+    return v.get<long>();
+  }
+  bool boolean(const char* k) const {
+    const json& v = at(k);
+    if (!v.is_boolean()) fail(where + ": field \"" + k + "\" must be true or false, got " + describe(v));
+    return v.get<bool>();
+  }
+  std::string text(const char* k) const {
+    const json& v = at(k);
+    if (!v.is_string()) fail(where + ": field \"" + k + "\" must be a string, got " + describe(v));
+    return v.get<std::string>();
+  }
+  std::vector<std::string> texts(const char* k) const {
+    const json& v = at(k);
+    std::vector<std::string> out;
+    if (!v.is_array()) fail(where + ": field \"" + k + "\" must be a list of strings, got " + describe(v));
+    for (const json& e : v) {
+      if (!e.is_string()) fail(where + ": field \"" + k + "\" must be a list of strings, got " + describe(e));
+      out.push_back(e.get<std::string>());
+    }
+    return out;
+  }
+  Eigen::VectorXd vector(const char* k) const {
+    const json& v = at(k);
+    if (!v.is_array()) fail(where + ": field \"" + k + "\" must be a list of numbers, got " + describe(v));
+    Eigen::VectorXd x(static_cast<Eigen::Index>(v.size()));
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (v[i].is_null()) {
+        x(static_cast<Eigen::Index>(i)) = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
+      if (!v[i].is_number())
+        fail(where + ": field \"" + k + "\"[" + std::to_string(i) + "] must be a number, got " + describe(v[i]));
+      x(static_cast<Eigen::Index>(i)) = v[i].get<double>();
+    }
+    return x;
+  }
+};
+}  // namespace
+
+SolveResult result_from_json(const json& r, const std::string& where) {
+  if (!r.is_object()) fail(where + ": expected a result of spp solve (a JSON object)");
+  SolveResult res;
+  const Reader top{r, where};
+  const std::string status = top.text("status");
+  if (status == "success")
+    res.status = SolveStatus::Success;
+  else if (status == "incomplete")
+    res.status = SolveStatus::Incomplete;
+  else
+    fail(where + ": field \"status\" must be \"success\" or \"incomplete\", got \"" + status.substr(0, 40) + "\"");
+  const std::string sym = top.text("symmetry");
+  if (sym != "axial" && sym != "point")
+    fail(where + ": field \"symmetry\" must be \"axial\" or \"point\", got \"" + sym.substr(0, 40) + "\"");
+  res.symmetry = sym == "point" ? Symmetry::Point : Symmetry::Axial;
+  res.warnings = top.texts("warnings");
+  const Reader win{top.at("window"), where + ": field \"window\""};
+  res.t1_min = win.number("t1_min");
+  res.t1_max = win.number("t1_max");
+  res.t2_min = win.number("t2_min");
+  res.t2_max = win.number("t2_max");
+  const Reader st{top.at("stats"), where + ": field \"stats\""};
+  SolveStats& s = res.stats;
+  s.flight_pole_lines = static_cast<int>(st.integer("flight_pole_lines"));
+  s.contact_pole_lines = static_cast<int>(st.integer("contact_pole_lines"));
+  s.rectangles = st.integer("rectangles");
+  s.curve_pieces = st.integer("curve_pieces");
+  s.roots = st.integer("roots");
+  s.evaluations = st.integer("evaluations");
+  s.strip_pairs = st.integer("strip_pairs");
+  s.certified_steps = st.integer("certified_steps");
+  s.heuristic_steps = st.integer("heuristic_steps");
+  s.uncertified_steps = st.integer("uncertified_steps");
+  s.uncertified_corners = st.integer("uncertified_corners");
+  s.unpaired_crossings = st.integer("unpaired_crossings");
+  s.unresolved_pieces = st.integer("unresolved_pieces");
+  s.unpolished_roots = st.integer("unpolished_roots");
+  s.seconds = st.number("seconds");
+  res.decoupled_modes = static_cast<int>(st.integer("decoupled_modes"));
+  res.repeated_groups = static_cast<int>(st.integer("repeated_frequency_groups"));
+  const json& unc = top.at("uncertified");
+  if (!unc.is_array()) fail(where + ": field \"uncertified\" must be a list, got " + describe(unc));
+  for (size_t i = 0; i < unc.size(); ++i) {
+    const Reader u{unc[i], where + ": field \"uncertified\"[" + std::to_string(i) + "]"};
+    res.uncertified.push_back({u.number("t1_lo"), u.number("t1_hi"), u.number("t2_lo"), u.number("t2_hi"), u.text("cause")});
+  }
+  const json& sols = top.at("solutions");
+  if (!sols.is_array()) fail(where + ": field \"solutions\" must be a list, got " + describe(sols));
+  for (size_t i = 0; i < sols.size(); ++i) {
+    const Reader o{sols[i], where + ": field \"solutions\"[" + std::to_string(i) + "]"};
+    Solution x;
+    x.t1 = o.number("t1");
+    x.t2 = o.number("t2");
+    x.period = o.number("period");
+    x.admissible = o.boolean("admissible");
+    x.min_gap = o.number("min_gap");
+    x.min_force = o.number("min_force");
+    x.energy = o.number("energy");
+    x.residual = o.number("residual");
+    x.return_error = o.number("return_error");
+    x.flags = o.texts("flags");
+    Admissibility& a = x.admissibility;
+    a.admissible = x.admissible;
+    a.min_gap = x.min_gap;
+    a.min_force = x.min_force;
+    a.mid_flight_gap = o.number("mid_flight_gap");
+    a.mid_contact_force = o.number("mid_contact_force");
+    a.onset_force_rate = o.number("onset_force_rate");
+    a.certified = o.boolean("admissibility_certified");
+    a.ends_ok = o.boolean("admissibility_ends_ok");
+    Orbit& b = x.orbit;
+    b.t1 = x.t1;
+    b.t2 = x.t2;
+    b.symmetry = res.symmetry;
+    b.x0 = o.vector("x0");
+    b.v0 = o.vector("v0");
+    const Reader ob{o.at("orbit"), o.where + ": field \"orbit\""};
+    b.a = ob.vector("a");
+    b.c = ob.vector("c");
+    b.p0 = ob.vector("p0");
+    b.p0dot = ob.vector("p0dot");
+    b.closure_ratio = ob.number("closure_ratio");
+    b.energy = ob.number("energy");
+    if (res.symmetry == Symmetry::Point) b.obstacle_velocity = o.number("obstacle_velocity");
+    res.solutions.push_back(std::move(x));
+  }
+  return res;
+}
+
+SolveResult load_result(const std::string& path) {
+  return result_from_json(read_json_file(path), path);
 }
 
 std::string result_to_csv(const SolveResult& r) {

@@ -5,6 +5,7 @@
 
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/solver.hpp"
 
 using namespace spp;
 namespace fs = std::filesystem;
@@ -67,4 +68,142 @@ TEST(Io, ErrorsNameTheFieldAndFile) {
 TEST(Io, AtomicWriteLeavesNoFileOnFailure) {
   EXPECT_THROW(write_file_atomic("/nonexistent_dir_spp/x.json", "{}"), std::invalid_argument);
   EXPECT_FALSE(fs::exists("/nonexistent_dir_spp/x.json"));
+}
+
+namespace {
+void expect_same_vector(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (Eigen::Index i = 0; i < a.size(); ++i) EXPECT_EQ(a(i), b(i)) << what << "[" << i << "]";
+}
+
+// Every field of a SolveResult, compared exactly (JSON numbers round-trip doubles exactly).
+void expect_same_result(const SolveResult& a, const SolveResult& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.symmetry, b.symmetry);
+  EXPECT_EQ(a.warnings, b.warnings);
+  EXPECT_EQ(a.t1_min, b.t1_min);
+  EXPECT_EQ(a.t1_max, b.t1_max);
+  EXPECT_EQ(a.t2_min, b.t2_min);
+  EXPECT_EQ(a.t2_max, b.t2_max);
+  EXPECT_EQ(a.decoupled_modes, b.decoupled_modes);
+  EXPECT_EQ(a.repeated_groups, b.repeated_groups);
+  const SolveStats &s = a.stats, &t = b.stats;
+  EXPECT_EQ(s.flight_pole_lines, t.flight_pole_lines);
+  EXPECT_EQ(s.contact_pole_lines, t.contact_pole_lines);
+  EXPECT_EQ(s.rectangles, t.rectangles);
+  EXPECT_EQ(s.curve_pieces, t.curve_pieces);
+  EXPECT_EQ(s.roots, t.roots);
+  EXPECT_EQ(s.evaluations, t.evaluations);
+  EXPECT_EQ(s.strip_pairs, t.strip_pairs);
+  EXPECT_EQ(s.certified_steps, t.certified_steps);
+  EXPECT_EQ(s.heuristic_steps, t.heuristic_steps);
+  EXPECT_EQ(s.uncertified_steps, t.uncertified_steps);
+  EXPECT_EQ(s.uncertified_corners, t.uncertified_corners);
+  EXPECT_EQ(s.unpaired_crossings, t.unpaired_crossings);
+  EXPECT_EQ(s.unresolved_pieces, t.unresolved_pieces);
+  EXPECT_EQ(s.unpolished_roots, t.unpolished_roots);
+  EXPECT_EQ(s.seconds, t.seconds);
+  ASSERT_EQ(a.uncertified.size(), b.uncertified.size());
+  for (size_t i = 0; i < a.uncertified.size(); ++i) {
+    EXPECT_EQ(a.uncertified[i].t1_lo, b.uncertified[i].t1_lo);
+    EXPECT_EQ(a.uncertified[i].t2_hi, b.uncertified[i].t2_hi);
+    EXPECT_EQ(a.uncertified[i].cause, b.uncertified[i].cause);
+  }
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  for (size_t i = 0; i < a.solutions.size(); ++i) {
+    const Solution &x = a.solutions[i], &y = b.solutions[i];
+    const std::string at = "solution " + std::to_string(i);
+    EXPECT_EQ(x.t1, y.t1) << at;
+    EXPECT_EQ(x.t2, y.t2) << at;
+    EXPECT_EQ(x.period, y.period) << at;
+    EXPECT_EQ(x.admissible, y.admissible) << at;
+    EXPECT_EQ(x.min_gap, y.min_gap) << at;
+    EXPECT_EQ(x.min_force, y.min_force) << at;
+    EXPECT_EQ(x.energy, y.energy) << at;
+    EXPECT_EQ(x.residual, y.residual) << at;
+    EXPECT_EQ(x.return_error, y.return_error) << at;
+    EXPECT_EQ(x.flags, y.flags) << at;
+    const Admissibility &p = x.admissibility, &q = y.admissibility;
+    EXPECT_EQ(p.admissible, q.admissible) << at;
+    EXPECT_EQ(p.min_gap, q.min_gap) << at;
+    EXPECT_EQ(p.min_force, q.min_force) << at;
+    EXPECT_EQ(p.mid_flight_gap, q.mid_flight_gap) << at;
+    EXPECT_EQ(p.mid_contact_force, q.mid_contact_force) << at;
+    EXPECT_EQ(p.onset_force_rate, q.onset_force_rate) << at;
+    EXPECT_EQ(p.ends_ok, q.ends_ok) << at;
+    EXPECT_EQ(p.certified, q.certified) << at;
+    const Orbit &o = x.orbit, &r = y.orbit;
+    EXPECT_EQ(o.t1, r.t1) << at;
+    EXPECT_EQ(o.t2, r.t2) << at;
+    EXPECT_EQ(o.symmetry, r.symmetry) << at;
+    EXPECT_EQ(o.closure_ratio, r.closure_ratio) << at;
+    EXPECT_EQ(o.energy, r.energy) << at;
+    EXPECT_EQ(o.obstacle_velocity, r.obstacle_velocity) << at;
+    expect_same_vector(o.a, r.a, at + " a");
+    expect_same_vector(o.c, r.c, at + " c");
+    expect_same_vector(o.p0, r.p0, at + " p0");
+    expect_same_vector(o.p0dot, r.p0dot, at + " p0dot");
+    expect_same_vector(o.x0, r.x0, at + " x0");
+    expect_same_vector(o.v0, r.v0, at + " v0");
+  }
+}
+}  // namespace
+
+TEST(Io, LoadResultGivesBackTheSolveResultThatWasWritten) {
+  // write, read, compare every field: the paper's chain window (axial, 64 SPPs), its point-symmetric solve, and an
+  // incomplete result (with uncertified regions and warnings).
+  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 12.0;
+  std::vector<SolveResult> results{solve(s, o)};
+  o.symmetry = Symmetry::Point;
+  o.t1_max = o.t2_max = 4.0;
+  results.push_back(solve(s, o));
+  // the chain plus an oscillator coupled to the contact by 1e-6: incomplete (sign changes of g that do not polish)
+  Eigen::MatrixXd K6 = Eigen::MatrixXd::Zero(6, 6);
+  K6.topLeftCorner(5, 5) = s.K();
+  K6(5, 5) = 1.7;
+  Eigen::VectorXd w6 = Eigen::VectorXd::Zero(6);
+  w6(4) = -1.0;
+  w6(5) = 1e-6;
+  const System weak(Eigen::MatrixXd::Identity(6, 6), K6, w6, 1.0);
+  SolveOptions ow;
+  ow.t1_min = ow.t2_min = 0.5;
+  ow.t1_max = ow.t2_max = 6.0;
+  results.push_back(solve(weak, ow));
+  ASSERT_EQ(results.back().status, SolveStatus::Incomplete);
+  ASSERT_FALSE(results.back().uncertified.empty());
+  ASSERT_FALSE(results.back().warnings.empty());
+  const std::vector<const System*> systems{&s, &s, &weak};
+  const fs::path p = tmpdir() / "result.json";
+  for (size_t i = 0; i < results.size(); ++i) {
+    const SolveResult& r = results[i];
+    ASSERT_FALSE(r.solutions.empty());
+    write_file_atomic(p.string(), result_to_json(*systems[i], r).dump(2));
+    expect_same_result(r, load_result(p.string()));
+    const System back = result_system(read_json_file(p.string()), p.string());
+    EXPECT_EQ(back.M(), systems[i]->M());
+    EXPECT_EQ(back.K(), systems[i]->K());
+  }
+  fs::remove(p);
+}
+
+TEST(Io, LoadResultNamesWhatItCannotRead) {
+  const fs::path p = tmpdir() / "bad_result.json";
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  nlohmann::json j = result_to_json(s, solve(s, o));
+  ASSERT_FALSE(j["solutions"].empty());
+  j["solutions"][0]["orbit"]["p0"][1] = "x";
+  write_file_atomic(p.string(), j.dump());
+  try {
+    load_result(p.string());
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("field \"solutions\"[0]: field \"orbit\": field \"p0\"[1] must be a number"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove(p);
 }

@@ -49,6 +49,11 @@ nlohmann::json result_to_json(const System& system, const SolveResult& result);
 nlohmann::json read_json_file(const std::string& path);
 System result_system(const nlohmann::json& result, const std::string& where);
 std::vector<SppCandidate> result_candidates(const nlohmann::json& result, const std::string& where);
+/// The SolveResult that result_to_json wrote (every field; the system: result_system). Throws std::invalid_argument
+/// naming the field it cannot read.
+SolveResult result_from_json(const nlohmann::json& result, const std::string& where);
+/// Reads a result file of spp solve: load_result(path) after writing result_to_json gives back the same SolveResult.
+SolveResult load_result(const std::string& path);
 std::string result_to_csv(const SolveResult& result);
 /// Human-readable table (t1, t2, period, admissible, min gap, min force).
 std::string result_table(const SolveResult& result);
