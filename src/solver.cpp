@@ -75,6 +75,12 @@ std::string SolveResult::brief_report() const {
 }
 
 namespace {
+// Unpolished sign changes named one by one in the warnings; beyond, one line counts them (a thin strip across a pole
+// line of a stiff system produced 1 856 of them).
+constexpr long kListedUnpolished = 5;
+}  // namespace
+
+namespace {
 
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
@@ -254,12 +260,19 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
     // reported as an SPP: it is a gap in the search, and the status says so.
     if (!p.converged && !(p.residual < 1e-6)) {
       if (!inside(c.t1, c.t2)) continue;
+      bool seen = false;  // the same sign change reached from several steps counts once
+      for (const UncertifiedRegion& u : res.uncertified)
+        if (u.cause == "polish" && std::hypot(u.t1_lo - c.t1, u.t2_lo - c.t2) <= 1e-9 * window_scale) seen = true;
+      if (seen) continue;
       ++res.stats.unpolished_roots;
       res.uncertified.push_back({c.t1, c.t1, c.t2, c.t2, "polish"});
-      std::ostringstream os;
-      os << "a sign change of g near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish to a root (residual "
-         << p.residual << ")";
-      res.warnings.push_back(os.str());
+      // The first kListedUnpolished are named; the rest are counted in one line (finalize), all are in uncertified.
+      if (res.stats.unpolished_roots <= kListedUnpolished) {
+        std::ostringstream os;
+        os << "a sign change of g near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish to a root (residual "
+           << p.residual << ")";
+        res.warnings.push_back(os.str());
+      }
       continue;
     }
     if (!inside(p.t1, p.t2)) continue;
@@ -302,6 +315,8 @@ void finalize(const SolveOptions& options, SolveResult& res) {
   cause(st.uncertified_corners, "cell corner(s) kept an eigenvalue within its error bound of zero");
   cause(st.unpaired_crossings, "curve crossing(s) of a pole line could not be paired: a root in that thin strip is "
                                "not excluded");
+  cause(st.unpolished_roots - kListedUnpolished, "more sign change(s) of g did not polish to a root (each in "
+                                                 "'uncertified')");
   for (const Solution& s : res.solutions)
     if (!s.admissibility.certified) res.warnings.push_back("admissibility of an SPP not certified to tolerance");
   res.status = res.warnings.empty() && res.uncertified.empty() ? SolveStatus::Success : SolveStatus::Incomplete;
