@@ -137,8 +137,17 @@ TEST(Cli, MissingFileAndUsageErrors) {
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("/nonexistent/sys.json"), std::string::npos);
   r = run("solve " + kChain + " --t2-max 5");
-  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(r.code, 1);  // usage errors exit 1 like every error (CLI11's own codes were 105-107)
   EXPECT_NE(r.out.find("--t1-max"), std::string::npos);
+  r = run("solve " + kChain + " --t1-max x --t2-max 5");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.out.find("--t1-max = x"), std::string::npos) << r.out;
+  r = run("solve " + kChain + " --t1-max 5 --t2-max 5 --no-such-option");
+  EXPECT_EQ(r.code, 1);
+  r = run("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.rfind("spp ", 0), 0u) << r.out;
+  EXPECT_EQ(run("solve --help").code, 0);
 }
 
 TEST(Cli, TrajectoryWritesOnePeriod) {

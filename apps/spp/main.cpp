@@ -211,7 +211,20 @@ int main(int argc, char** argv) {
   g2->add_option("--parameter", gen_param, "leave one value free: m1, m2, k1 or k2; needs --range");
   g2->add_option("--range", gen_range, "MIN,MAX of the --parameter");
 
-  CLI11_PARSE(app, argc, argv);
+  app.set_version_flag("--version", std::string("spp ") + SPP_VERSION);
+  // Usage errors exit 1 like every other error (README), not CLI11's 105-107; --help and --version exit 0.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "spp: error: " << e.what() << "\n(run with --help for the usage)\n";
+    return 1;
+  }
 
   try {
     if (*solve) {
