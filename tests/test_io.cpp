@@ -68,6 +68,22 @@ TEST(Io, ErrorsNameTheFieldAndFile) {
 TEST(Io, AtomicWriteLeavesNoFileOnFailure) {
   EXPECT_THROW(write_file_atomic("/nonexistent_dir_spp/x.json", "{}"), std::invalid_argument);
   EXPECT_FALSE(fs::exists("/nonexistent_dir_spp/x.json"));
+  // A failure after the temporary file was written (the final rename onto a directory fails): the target is
+  // untouched and no temporary file is left behind.
+  const fs::path d = tmpdir() / "atomic";
+  fs::remove_all(d);
+  fs::create_directories(d / "target");
+  EXPECT_THROW(write_file_atomic((d / "target").string(), "{}"), std::invalid_argument);
+  EXPECT_TRUE(fs::is_directory(d / "target"));
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d)) ++entries;
+  EXPECT_EQ(entries, 1u) << "a temporary file was left in " << d;
+  // and a successful write replaces the file whole
+  write_file_atomic((d / "r.json").string(), "old");
+  write_file_atomic((d / "r.json").string(), "new");
+  std::ifstream in(d / "r.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "new");
 }
 
 namespace {

@@ -88,8 +88,9 @@ int check_every_admissible(const System& s, const SolveResult& r) {
 
 TEST(PaperChain5, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
   const System s = chain5();
-  // The paper's fig. 4 marks several admissible SPPs (A and B among them) in this window.
-  EXPECT_GE(check_every_admissible(s, solve_window(s, 12.0, 12.0)), 2);
+  // The paper's fig. 4 marks several admissible SPPs (A and B among them) in this window; the complete search finds
+  // 7 (and 64 roots in all), each checked here.
+  EXPECT_EQ(check_every_admissible(s, solve_window(s, 12.0, 12.0)), 7);
 }
 
 TEST(PaperChain5, EveryRootSolvesThePapersOwnEquations) {
@@ -100,7 +101,7 @@ TEST(PaperChain5, EveryRootSolvesThePapersOwnEquations) {
 TEST(PaperRod4, EveryAdmissibleSppIsAPeriodicSymmetricAdmissibleOrbit) {
   const System s = rod4();
   const SolveResult r = solve_window(s, 12.0, 12.0);
-  EXPECT_GE(check_every_admissible(s, r), 1);  // the paper's fig. 7 shows one
+  EXPECT_EQ(check_every_admissible(s, r), 2);  // the paper's fig. 7 shows one; the complete search finds 2 of 26
   check_paper_equations(s, r);
 }
 

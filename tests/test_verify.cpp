@@ -2,6 +2,8 @@
 // and a reason; a perturbation starts at the requested distance from the orbit.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "spp/io.hpp"
 #include "spp/solver.hpp"
 #include "spp/verify.hpp"
@@ -77,7 +79,9 @@ TEST(Verify, PerturbationStartsAtTheRequestedDistance) {
     // the distance to the orbit (minimum over its phase) is at most the perturbation itself
     EXPECT_LE(c.perturbed_distances[0], 1e-6 * (1 + 1e-6));
     EXPECT_GT(c.perturbed_distances[0], 1e-8);
-    EXPECT_GT(c.growth_per_period, 0.0);
+    // the growth per period is the geometric mean of the 5 period-to-period ratios of those distances
+    EXPECT_NEAR(c.growth_per_period, std::pow(c.perturbed_distances[5] / c.perturbed_distances[0], 1.0 / 5.0),
+                1e-12 * c.growth_per_period);
   }
 }
 
