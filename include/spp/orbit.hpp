@@ -47,13 +47,16 @@ OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
 
 struct Admissibility {
   bool admissible = false;
-  double min_gap = 0.0;            ///< smallest gap over the whole flight (0 at its tangent ends), certified
-  double min_force = 0.0;          ///< smallest normal force over the whole contact phase, certified
+  double min_gap = 0.0;            ///< smallest gap over the whole flight (0 at its tangent ends); certified
+                                   ///< (axial), sampled on 2000 points per phase (point symmetry)
+  double min_force = 0.0;          ///< smallest normal force over the whole contact phase; as min_gap
   double mid_flight_gap = 0.0;     ///< gap at t = -t1
   double mid_contact_force = 0.0;  ///< force at t = t2
   double onset_force_rate = 0.0;   ///< lambda'(0+): must be >= 0 (equals minus the gap jerk times a positive factor)
   bool ends_ok = false;            ///< leading Taylor terms at the phase ends have the admissible sign
-  bool certified = false;          ///< both minima certified to tolerance
+  /// The verdict `admissible` is proved: axial, both minima certified to tolerance; point symmetry, structural (the
+  /// force is odd about t2, so never admissible), while its minima are only sampled.
+  bool certified = false;
 };
 
 /// Checks ineqs. (5.3) with a certified global minimum of each cosine sum; rel_tol scales the tolerance on

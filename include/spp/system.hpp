@@ -26,7 +26,8 @@ class System {
   /// K~ of Theorem 2.1, eq. (2.4): the stiffness that mimics the contact phase.
   Eigen::MatrixXd contact_stiffness() const;
 
-  /// Gap g(x) = w^T x + g0 and normal contact force of eq. (2.7) during contact.
+  /// Gap g(x) = w^T x + g0 (w unit, g0 divided by |w| as given). The contact force of eq. (2.7) is in orbit.hpp
+  /// (OrbitState::force).
   double gap(const Eigen::VectorXd& x) const { return w_.dot(x) + g0_; }
 
  private:
