@@ -16,6 +16,7 @@
 #include "search/evaluator.hpp"
 #include "search/pole_pairing.hpp"
 #include "search/polish.hpp"
+#include "search/tolerances.hpp"
 #include "search/window_plan.hpp"
 
 namespace spp {
@@ -122,14 +123,14 @@ Solution build_solution(const System& system, const ModalForm& md, const Polishe
   } else {
     s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
   }
-  if (s.orbit.closure_ratio < 1e-10) s.flags.push_back("gap_closure_degenerate");
+  if (s.orbit.closure_ratio < search::kClosureDegenerate) s.flags.push_back("gap_closure_degenerate");
   s.admissible = s.admissibility.admissible;
   s.min_gap = s.admissibility.min_gap;
   s.min_force = s.admissibility.min_force;
   s.energy = s.orbit.energy;
   for (Eigen::Index k = 0; k < md.omega_decoupled().size(); ++k) {
     const double r = md.omega_decoupled()(k) * (p.t1 + p.t2) / std::numbers::pi;
-    if (std::abs(r - std::round(r)) < 1e-9 * std::max(1.0, r)) s.flags.push_back("decoupled_mode_resonant");
+    if (std::abs(r - std::round(r)) < search::kResonance * std::max(1.0, r)) s.flags.push_back("decoupled_mode_resonant");
   }
   if (with_return_error) s.return_error = return_error(system, s.orbit);
   return s;
@@ -139,13 +140,14 @@ Solution build_solution(const System& system, const ModalForm& md, const Polishe
 
 std::pair<double, double> default_lower_ends(const ModalForm& md, double t1_max, double t2_max) {
   const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
-  return {std::min(1e-4 * pi / (2.0 * md.omega().maxCoeff()), 1e-3 * t1_max),
-          std::min(dmax > 0 ? 1e-4 * pi / (2.0 * dmax) : 1e-4 * t2_max, 1e-3 * t2_max)};
+  using search::kDefaultLower, search::kDefaultLowerCap;
+  return {std::min(kDefaultLower * pi / (2.0 * md.omega().maxCoeff()), kDefaultLowerCap * t1_max),
+          std::min(dmax > 0 ? kDefaultLower * pi / (2.0 * dmax) : kDefaultLower * t2_max, kDefaultLowerCap * t2_max)};
 }
 
 std::pair<double, double> axis_band(const ModalForm& md) {
   const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
-  return {5e-2 * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? 5e-2 * pi / (2.0 * dmax) : 0.0};
+  return {search::kAxisBand * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? search::kAxisBand * pi / (2.0 * dmax) : 0.0};
 }
 
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
@@ -153,7 +155,7 @@ Solution solution_at(const System& system, double t1, double t2, const SolveOpti
   require_nonzero_gap(system);
   const ModalForm md(system);
   const Polished p = polish(md, t1, t2, Vec(), options.symmetry);
-  if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > 1e-3 * (t1 + t2)) {
+  if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > search::kPolishReach * (t1 + t2)) {
     std::ostringstream os;
     os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual " << p.residual
        << " at (" << p.t1 << ", " << p.t2 << ")";
@@ -258,11 +260,11 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
     // Where Newton stalls with a small residual (N nearly rank-deficient in two directions, e.g. close to the limit
     // points on the axis t1 = 0) the root is reported with a flag. A candidate that does not polish at all is not
     // reported as an SPP: it is a gap in the search, and the status says so.
-    if (!p.converged && !(p.residual < 1e-6)) {
+    if (!p.converged && !(p.residual < search::kStalledResidual)) {
       if (!inside(c.t1, c.t2)) continue;
       bool seen = false;  // the same sign change reached from several steps counts once
       for (const UncertifiedRegion& u : res.uncertified)
-        if (u.cause == "polish" && std::hypot(u.t1_lo - c.t1, u.t2_lo - c.t2) <= 1e-9 * window_scale) seen = true;
+        if (u.cause == "polish" && std::hypot(u.t1_lo - c.t1, u.t2_lo - c.t2) <= search::kSameRoot * window_scale) seen = true;
       if (seen) continue;
       ++res.stats.unpolished_roots;
       res.uncertified.push_back({c.t1, c.t1, c.t2, c.t2, "polish"});
@@ -278,7 +280,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
     if (!inside(p.t1, p.t2)) continue;
     bool dup = false;
     for (const Solution& s : res.solutions)
-      if (std::hypot(s.t1 - p.t1, s.t2 - p.t2) <= 1e-9 * window_scale) dup = true;
+      if (std::hypot(s.t1 - p.t1, s.t2 - p.t2) <= search::kSameRoot * window_scale) dup = true;
     if (dup) continue;
     Solution s;
     try {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "search/step_certificate.hpp"
+#include "search/tolerances.hpp"
 #include "spp/detail/brent.hpp"
 
 namespace spp::search {
@@ -139,7 +140,7 @@ class CellTracer::Impl {
   // Root of lambda_k on the edge from (t1a, t2a) to (t1b, t2b), with lambda_k = fa <= 0 and fb > 0 there.
   Pair edge_root(double t1a, double t2a, double t1b, double t2b, int k, double fa, double fb) {
     const double guess = fa / (fa - fb);  // secant on the end values
-    return segment_root(t1a, t2a, t1b - t1a, t2b - t2a, 0.0, 1.0, guess, k, 1e-14);
+    return segment_root(t1a, t2a, t1b - t1a, t2b - t2a, 0.0, 1.0, guess, k, kEdgeRootTol);
   }
 
   // ---- one rectangle ----
@@ -148,7 +149,7 @@ class CellTracer::Impl {
   // Root of lambda_k on the anti-diagonal t2 - t1 = s inside rectangle r (tau = t1 on the segment).
   Pair diagonal_root(const Rect& r, double s, double guess, int k) {
     const double lo = std::max(r.a1, r.A - s), hi = std::min(r.b1, r.B - s);
-    return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, 1e-13);
+    return segment_root(0.0, s, 1.0, 1.0, lo, hi, guess, k, kDiagonalRootTol);
   }
 
   // One cell: count the curves at its corners, find each curve's entry and exit, trace it. Returns false when a
@@ -411,7 +412,7 @@ class CellTracer::Impl {
     if (suspicious) {
       if (h <= hmin_ || depth > 60 || examine_budget_ <= 0) {
         if (examine_budget_ <= 0 && !endpoints_differ) ++st_.unresolved_pieces;
-        if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < 1e-8) {
+        if (!endpoints_differ && std::min(std::abs(A.g), std::abs(B.g)) < kTouchesZero) {
           ++st_.uncertified_steps;
           candidates_.push_back({0.5 * (A.t1 + B.t1), 0.5 * (A.t2 + B.t2), true, false, {}});
         }
@@ -499,7 +500,7 @@ class CellTracer::Impl {
     // from A's orientation inside the step, next to an eigenvalue that sweeps past lambda_k near a pole line): the
     // step is traced again finer instead.
     const double gs = std::abs(onset_g(e.b, e.t2).first);
-    if (gs > std::max(1e-3 * std::max(std::abs(A.g), std::abs(B.g)), 1e-9) && depth < kRetraceDepth &&
+    if (gs > std::max(kJump * std::max(std::abs(A.g), std::abs(B.g)), kJumpFloor) && depth < kRetraceDepth &&
         B.s - A.s > hmin_)
       return retrace(r, k, A, B, depth + 1);
     candidates_.push_back({e.t1, e.t2, false, false, e.b});

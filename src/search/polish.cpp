@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "search/tolerances.hpp"
+
 namespace spp::search {
 
 using Vec = Eigen::VectorXd;
@@ -51,7 +53,7 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b, Symmetr
     double alpha = 1.0;
     while (alpha > 1e-6 &&
            (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
-            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) > 1e-3 * (t1_start + t2_start)))
+            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) > kPolishReach * (t1_start + t2_start)))
       alpha *= 0.5;
     dx *= alpha;
     t1 += dx(0);
@@ -64,7 +66,7 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b, Symmetr
     }
     if (dx.head(2).norm() <= 1e-15 * (std::abs(t1) + std::abs(t2))) break;
   }
-  out.converged = best < 1e-10;
+  out.converged = best < kConvergedResidual;
   return out;
 }
 

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "search/tolerances.hpp"
+
 namespace spp::search {
 
 // The region searched for the window (lo, hi] of one phase: the window widened by a hair (roots found outside the
@@ -16,7 +18,7 @@ AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool wide
                    double max_count) {
   constexpr double kEdgeSlack = 1e-9;  // relative widening of the window edges
   const double fmax = freqs.size() ? freqs.maxCoeff() : 0.0;
-  const double kappa = fmax > 0 ? 1e-4 * std::numbers::pi / (2.0 * fmax) : 0.0;  // kEdgePole: 1e-4 quarter period
+  const double kappa = fmax > 0 ? kEdgePole * std::numbers::pi / (2.0 * fmax) : 0.0;
   double rlo = widen_lo ? lo - kEdgeSlack * (hi - lo) : lo, rhi = hi + kEdgeSlack * (hi - lo);
   for (int pass = 0; pass < 8 && kappa > 0; ++pass) {  // poles may cluster: widen until no pole is near an edge
     bool moved = false;
