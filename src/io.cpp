@@ -26,6 +26,11 @@ namespace {
   throw std::invalid_argument(s);
 }
 
+// User text quoted in an error message: at most n characters of it.
+std::string shorten(const std::string& t, size_t n = 40) {
+  return t.size() > n ? t.substr(0, n) + "..." : t;
+}
+
 // A value named in an error message, never echoed whole: nested or long input (a 100 000-deep array) is described,
 // not dumped (json::dump recurses: a stack overflow).
 std::string describe(const json& v) {
@@ -33,7 +38,7 @@ std::string describe(const json& v) {
   if (v.is_object()) return "an object (" + std::to_string(v.size()) + " fields)";
   if (v.is_string()) {
     const std::string& t = v.get_ref<const std::string&>();
-    return "the string \"" + (t.size() > 40 ? t.substr(0, 40) + "...\"" : t + "\"");
+    return "the string \"" + shorten(t) + "\"";
   }
   return v.dump();  // a number, boolean or null: short
 }
@@ -48,7 +53,7 @@ void check_fields(const json& j, std::initializer_list<const char*> known, const
     if (!ok) {
       std::string list;
       for (const char* f : known) list += std::string(list.empty() ? "" : ", ") + f;
-      fail(where + ": unknown field \"" + (k.size() > 40 ? k.substr(0, 40) + "..." : k) + "\" (expected: " + list + ")");
+      fail(where + ": unknown field \"" + shorten(k) + "\" (expected: " + list + ")");
     }
   }
 }
@@ -280,13 +285,13 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
   hs >> banner >> object >> format >> field >> symmetry;
   for (auto* s : {&object, &format, &field, &symmetry})
     for (auto& ch : *s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  if (object != "matrix") fail(path + ": expected object \"matrix\", got \"" + object.substr(0, 40) + "\"");
+  if (object != "matrix") fail(path + ": expected object \"matrix\", got \"" + shorten(object) + "\"");
   if (format != "coordinate" && format != "array")
-    fail(path + ": expected format coordinate or array, got \"" + format.substr(0, 40) + "\"");
+    fail(path + ": expected format coordinate or array, got \"" + shorten(format) + "\"");
   if (field != "real" && field != "integer" && field != "double")
-    fail(path + ": expected field real or integer, got \"" + field.substr(0, 40) + "\"");
+    fail(path + ": expected field real or integer, got \"" + shorten(field) + "\"");
   if (symmetry != "general" && symmetry != "symmetric")
-    fail(path + ": expected symmetry general or symmetric, got \"" + symmetry.substr(0, 40) + "\"");
+    fail(path + ": expected symmetry general or symmetric, got \"" + shorten(symmetry) + "\"");
   int lineno = 1;
   auto next_data_line = [&](std::string& l) {  // skips comments and blank lines
     while (std::getline(in, l)) {
@@ -296,7 +301,7 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
     return false;
   };
   auto where = [&] { return path + ":" + std::to_string(lineno); };
-  auto shown = [](const std::string& l) { return l.size() > 60 ? l.substr(0, 60) + "..." : l; };
+  auto shown = [](const std::string& l) { return shorten(l, 60); };
   if (!next_data_line(line)) fail(path + ": no size line");
   const std::vector<std::string> size = tokens(line);
   long rows = 0, cols = 0, nnz = 0;
@@ -443,7 +448,7 @@ json read_json_file(const std::string& path) {
     if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
     if (event == json::parse_event_t::key && !keys.empty() && duplicate.empty()) {
       const std::string k = parsed.get<std::string>();
-      if (!keys.back().insert(k).second) duplicate = k.size() > 40 ? k.substr(0, 40) + "..." : k;
+      if (!keys.back().insert(k).second) duplicate = shorten(k);
     }
     return true;
   };
@@ -570,10 +575,10 @@ SolveResult result_from_json(const json& r, const std::string& where) {
   else if (status == "incomplete")
     res.status = SolveStatus::Incomplete;
   else
-    fail(where + ": field \"status\" must be \"success\" or \"incomplete\", got \"" + status.substr(0, 40) + "\"");
+    fail(where + ": field \"status\" must be \"success\" or \"incomplete\", got \"" + shorten(status) + "\"");
   const std::string sym = top.text("symmetry");
   if (sym != "axial" && sym != "point")
-    fail(where + ": field \"symmetry\" must be \"axial\" or \"point\", got \"" + sym.substr(0, 40) + "\"");
+    fail(where + ": field \"symmetry\" must be \"axial\" or \"point\", got \"" + shorten(sym) + "\"");
   res.symmetry = sym == "point" ? Symmetry::Point : Symmetry::Axial;
   res.warnings = top.texts("warnings");
   const Reader win{top.at("window"), where + ": field \"window\""};

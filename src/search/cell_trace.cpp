@@ -462,10 +462,7 @@ class CellTracer::Impl {
   }
   // Orients p's null vector like q's g (where g is proved not to change sign between them).
   static void orient_like(TracePoint& p, const TracePoint& q) {
-    if ((p.g > 0) == (q.g > 0)) return;
-    p.b = -p.b;
-    p.g = -p.g;
-    p.dg = -p.dg;
+    if ((p.g > 0) != (q.g > 0)) flip(p);
   }
 
   // Angle of b to the hyperplane c^T b = 0 at a trace point.
