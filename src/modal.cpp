@@ -98,11 +98,15 @@ Eigen::VectorXd ModalForm::dflight_dt1(double t1, Symmetry sym) const {
   return Eigen::VectorXd((omega_.array().square() * sec2).matrix());
 }
 
-Eigen::MatrixXd ModalForm::contact_part(double t2, Symmetry sym) const {
+Eigen::VectorXd ModalForm::contact_eigs(double t2, Symmetry sym) const {
   Eigen::VectorXd e(d_.size());
   for (Eigen::Index j = 0; j < d_.size(); ++j)
     e(j) = sym == Symmetry::Point ? tan_over(d_(j), t2) : d_(j) * std::tan(d_(j) * t2);
-  return G_ * e.asDiagonal() * G_.transpose();
+  return e;
+}
+
+Eigen::MatrixXd ModalForm::contact_part(double t2, Symmetry sym) const {
+  return G_ * contact_eigs(t2, sym).asDiagonal() * G_.transpose();
 }
 
 Eigen::VectorXd ModalForm::dcontact_eigs(double t2, Symmetry sym) const {

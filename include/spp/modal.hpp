@@ -50,6 +50,7 @@ class ModalForm {
   /// With Symmetry::Point the same quantities of the point form (H_T, N_T: see Symmetry).
   Eigen::MatrixXd H(double t1, double t2, Symmetry sym = Symmetry::Axial) const;
   Eigen::MatrixXd contact_part(double t2, Symmetry sym = Symmetry::Axial) const;  ///< G D tan(D t2) G^T
+  Eigen::VectorXd contact_eigs(double t2, Symmetry sym = Symmetry::Axial) const;  ///< diagonal of D tan(D t2)
   Eigen::VectorXd flight_part(double t1, Symmetry sym = Symmetry::Axial) const;   ///< diagonal of W tan(W t1)
   Eigen::VectorXd dflight_dt1(double t1, Symmetry sym = Symmetry::Axial) const;   ///< diagonal of W^2 sec^2(W t1)
   /// Eigenvalues of d(contact_part)/dt2 in the G basis: D^2 sec^2(D t2) (point: sec^2(D t2)).

@@ -112,13 +112,17 @@ class CellTracer::Impl {
 
   // Root of lambda_k on the segment (t1a, t2a) + sigma (dt1, dt2), sigma in [lo, hi], lambda_k(lo) <= 0 <
   // lambda_k(hi). lambda_k is non-decreasing along the segment (dt1, dt2 >= 0 in one of the two senses), so a
-  // Newton step safeguarded by bisection on the bracket converges; it stops at the rounding level of
-  // lambda_k (rel_ftol times the largest |eigenvalue|).
+  // Newton step safeguarded by bisection on the bracket converges: a Newton step that leaves the bracket, or two
+  // that did not halve it (near an avoided crossing lambda_k bends so much that Newton jumps from one end of the
+  // bracket to the other, shaving off only a sliver: seen for 200 iterations next to a pole line), is replaced by
+  // bisection. It stops at the rounding level of lambda_k (rel_ftol times the largest |eigenvalue|).
   Pair segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
                     double rel_ftol) {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     Pair e;
     const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
+    double width_before = std::numeric_limits<double>::infinity();  // bracket width two iterations ago
+    double width_last = hi - lo;
     for (int it = 0; it < 200; ++it) {
       e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
       const double f = e.lam;
@@ -130,7 +134,9 @@ class CellTracer::Impl {
       const auto [l1, l2] = grads(e.b, e.t1, e.t2);
       const double df = dt1 * l1 + dt2 * l2;
       double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (!(next > lo && next < hi) || hi - lo > 0.5 * width_before) next = 0.5 * (lo + hi);
+      width_before = width_last;
+      width_last = hi - lo;
       if (hi - lo <= xtol || next == x) break;
       x = next;
     }
@@ -216,7 +222,13 @@ class CellTracer::Impl {
       } else {
         pout = trace(r, k, pin, out, certified);
       }
-      auto hit = [column](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b, column}; };
+      // Hits next to a pole line carry g from the balanced eigenvector (pairing compares its sign across the strip,
+      // and there |H| ~ 1 / margin makes the sign of the traced g noise where |g| < ~1e-8).
+      auto hit = [&](const TracePoint& p, double pos) {
+        Vec b = ev_.balanced_eigenvector(p.t1, p.t2, k);
+        if (b.dot(p.b) < 0) b = -b;
+        return EdgeHit{pos, p.t1, p.t2, onset_g(b, p.t2).first, b, column};
+      };
       if (in_bottom ? r.bottom_pole : r.right_pole)
         (in_bottom ? bottom_entries : right_entries).push_back(hit(pin, in_bottom ? pin.t1 : pin.t2));
       if (out_left ? r.left_pole : r.top_pole)
