@@ -228,3 +228,16 @@ TEST(Window, SwingOfTheNullVectorInsideOneStepIsTracedAgain) {
   EXPECT_TRUE(r.warnings.empty());
   EXPECT_EQ(r.solutions.size(), 2u);
 }
+
+TEST(Window, EdgeRootNextToAPoleLineConvergesWhereNewtonAlternates) {
+  // Regression (30-mass unit chain, its fundamental box ended incomplete): on a cell edge next to the flight pole line
+  // t1 = 33.99744 lambda_k bends at an avoided crossing, and the Newton steps of the edge root jumped from one end of
+  // the bracket to the other for 200 iterations, returning a point with lambda_k = -0.024 as the curve's exit: its g
+  // did not match the neighbouring cell's, and two sign changes that are no roots were reported (warnings,
+  // incomplete). The brute force finds no root in this window.
+  const System s = spp::chain(30, {1.0}, {1.0}, 29, ContactSide::Upper, 1.0);
+  const SolveResult r = solve_window(s, 33.9, 34.17, 14.7, 14.85);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_TRUE(r.solutions.empty());
+}

@@ -112,17 +112,17 @@ class CellTracer::Impl {
 
   // Root of lambda_k on the segment (t1a, t2a) + sigma (dt1, dt2), sigma in [lo, hi], lambda_k(lo) <= 0 <
   // lambda_k(hi). lambda_k is non-decreasing along the segment (dt1, dt2 >= 0 in one of the two senses), so a
-  // Newton step safeguarded by bisection on the bracket converges: a Newton step that leaves the bracket, or two
-  // that did not halve it (near an avoided crossing lambda_k bends so much that Newton jumps from one end of the
-  // bracket to the other, shaving off only a sliver: seen for 200 iterations next to a pole line), is replaced by
-  // bisection. It stops at the rounding level of lambda_k (rel_ftol times the largest |eigenvalue|).
+  // Newton step safeguarded by bisection on the bracket converges (Numerical Recipes' rtsafe): a Newton step that
+  // leaves the bracket, or that is not below half the step before the last one, is replaced by bisection (near an
+  // avoided crossing next to a pole line lambda_k bends so much that plain Newton jumped from one end of the bracket to
+  // the other for 200 iterations, shaving off slivers, and returned a point with lambda_k = -0.024 as an edge root).
+  // It stops at the rounding level of lambda_k (rel_ftol times the largest |eigenvalue|).
   Pair segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
                     double rel_ftol) {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     Pair e;
     const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
-    double width_before = std::numeric_limits<double>::infinity();  // bracket width two iterations ago
-    double width_last = hi - lo;
+    double dx_before = std::numeric_limits<double>::infinity(), dx_last = hi - lo;  // the last two step lengths
     for (int it = 0; it < 200; ++it) {
       e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
       const double f = e.lam;
@@ -134,9 +134,9 @@ class CellTracer::Impl {
       const auto [l1, l2] = grads(e.b, e.t1, e.t2);
       const double df = dt1 * l1 + dt2 * l2;
       double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi) || hi - lo > 0.5 * width_before) next = 0.5 * (lo + hi);
-      width_before = width_last;
-      width_last = hi - lo;
+      if (!(next > lo && next < hi) || std::abs(next - x) > 0.5 * dx_before) next = 0.5 * (lo + hi);
+      dx_before = dx_last;
+      dx_last = std::abs(next - x);
       if (hi - lo <= xtol || next == x) break;
       x = next;
     }
