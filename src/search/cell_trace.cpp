@@ -112,17 +112,18 @@ class CellTracer::Impl {
 
   // Root of lambda_k on the segment (t1a, t2a) + sigma (dt1, dt2), sigma in [lo, hi], lambda_k(lo) <= 0 <
   // lambda_k(hi). lambda_k is non-decreasing along the segment (dt1, dt2 >= 0 in one of the two senses), so a
-  // Newton step safeguarded by bisection on the bracket converges (Numerical Recipes' rtsafe): a Newton step that
-  // leaves the bracket, or that is not below half the step before the last one, is replaced by bisection (near an
-  // avoided crossing next to a pole line lambda_k bends so much that plain Newton jumped from one end of the bracket to
-  // the other for 200 iterations, shaving off slivers, and returned a point with lambda_k = -0.024 as an edge root).
+  // Newton step safeguarded by bisection on the bracket converges: a Newton step that leaves the bracket is replaced
+  // by bisection, and so is every other step once kNewtonSteps have not converged (near an avoided crossing next to a
+  // pole line lambda_k bends so much that Newton jumped from one end of the bracket to the other for 200 iterations,
+  // shaving off slivers, and returned a point with lambda_k = -0.024 as an edge root). Rules that bisect earlier
+  // (rtsafe's) move the roots of ordinary pieces by rounding-level amounts and changed the outcome of fragile pieces
+  // next to pole lines both ways; this one leaves every root that converges within kNewtonSteps as it was.
   // It stops at the rounding level of lambda_k (rel_ftol times the largest |eigenvalue|).
   Pair segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
                     double rel_ftol) {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     Pair e;
     const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
-    double dx_before = std::numeric_limits<double>::infinity(), dx_last = hi - lo;  // the last two step lengths
     for (int it = 0; it < 200; ++it) {
       e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
       const double f = e.lam;
@@ -134,9 +135,7 @@ class CellTracer::Impl {
       const auto [l1, l2] = grads(e.b, e.t1, e.t2);
       const double df = dt1 * l1 + dt2 * l2;
       double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi) || std::abs(next - x) > 0.5 * dx_before) next = 0.5 * (lo + hi);
-      dx_before = dx_last;
-      dx_last = std::abs(next - x);
+      if (!(next > lo && next < hi) || (it >= kNewtonSteps && it % 2 == 0)) next = 0.5 * (lo + hi);
       if (hi - lo <= xtol || next == x) break;
       x = next;
     }
@@ -532,7 +531,8 @@ class CellTracer::Impl {
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
   static constexpr int kRetraceParts = 8;  // parts of a step traced again where g jumped
   static constexpr int kRetraceDepth = 4;  // nested retraces at most
-  static constexpr int kApproach = 3;  // 4x falls of |g| and of the step towards a root before one step crosses it
+  static constexpr int kApproach = 3;
+  static constexpr int kNewtonSteps = 12;  // plain Newton steps of a 1-D root before every other one bisects  // 4x falls of |g| and of the step towards a root before one step crosses it
   Symmetry sym_;
   Vec zhat_;
 };
