@@ -97,7 +97,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("t2_max", &spp::SolveResult::t2_max)
       .def("brief_report", &spp::SolveResult::brief_report)
       .def(
-          "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_to_json(s, r).dump(); },
+          "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_json(s, r, -1); },
           "system"_a, "The result JSON text, as spp solve --json writes it.");
 
   m.def(
@@ -205,15 +205,14 @@ PYBIND11_MODULE(_spp, m) {
   m.def(
       "load_result",
       [](const std::string& path) {
-        const nlohmann::json r = spp::read_json_file(path);
-        spp::System system = spp::result_system(r, path);
-        std::vector<spp::SppCandidate> spps = spp::result_candidates(r, path);
+        spp::System system = spp::load_result_system(path);
+        const spp::SolveResult r = spp::load_result(path);
+        std::vector<spp::SppCandidate> spps = spp::candidates(r);
         py::dict window;
-        for (const char* key : {"t1_min", "t1_max", "t2_min", "t2_max"}) {
-          if (!r.contains("window") || !r.at("window").contains(key) || !r.at("window").at(key).is_number())
-            throw std::invalid_argument(path + ": field \"window\" must hold the number \"" + key + "\"");
-          window[key] = r.at("window").at(key).get<double>();
-        }
+        window["t1_min"] = r.t1_min;
+        window["t1_max"] = r.t1_max;
+        window["t2_min"] = r.t2_min;
+        window["t2_max"] = r.t2_max;
         return py::make_tuple(std::move(system), std::move(spps), window);
       },
       "path"_a,

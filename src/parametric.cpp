@@ -1,4 +1,5 @@
 #include "spp/parametric.hpp"
+#include "spp/detail/invalid.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -7,10 +8,6 @@
 namespace spp {
 
 namespace {
-[[noreturn]] void fail(const std::string& what) {
-  throw std::invalid_argument(what);
-}
-
 template <typename A>
 A zero_if_empty(A part, const A& like, const std::string& label) {
   if (part.size() == 0) return A::Zero(like.rows(), like.cols());
@@ -18,7 +15,7 @@ A zero_if_empty(A part, const A& like, const std::string& label) {
     std::ostringstream os;
     os << "parametric system: " << label << " is " << part.rows() << " x " << part.cols() << ", the constant part "
        << like.rows() << " x " << like.cols();
-    fail(os.str());
+    detail::invalid(os.str());
   }
   return part;
 }
@@ -34,18 +31,18 @@ ParametricSystem::ParametricSystem(Eigen::MatrixXd M_constant, Eigen::MatrixXd M
       parameter_(std::move(parameter)),
       name_(std::move(name)) {
   const std::string& p = parameter_.name;
-  if (p.empty()) fail("parametric system: the parameter needs a name");
+  if (p.empty()) detail::invalid("parametric system: the parameter needs a name");
   if (!(std::isfinite(parameter_.min) && std::isfinite(parameter_.max) && parameter_.min < parameter_.max)) {
     std::ostringstream os;
     os << "parametric system: parameter \"" << p << "\" needs finite min < max, got min = " << parameter_.min
        << ", max = " << parameter_.max;
-    fail(os.str());
+    detail::invalid(os.str());
   }
   M1_ = zero_if_empty(std::move(M_mu), M0_, "M's \"" + p + "\" part");
   K1_ = zero_if_empty(std::move(K_mu), K0_, "K's \"" + p + "\" part");
   w1_ = zero_if_empty(std::move(w_mu), w0_, "w's \"" + p + "\" part");
   if (M1_.isZero(0.0) && K1_.isZero(0.0) && w1_.isZero(0.0))
-    fail("parametric system: parameter \"" + p + "\" is declared but M, K and w do not depend on it");
+    detail::invalid("parametric system: parameter \"" + p + "\" is declared but M, K and w do not depend on it");
   // Every check of System (sizes, symmetry, SPD, w != 0) at both ends of the range.
   at(parameter_.min);
   at(parameter_.max);
@@ -57,7 +54,7 @@ System ParametricSystem::at(double mu) const {
   } catch (const std::invalid_argument& e) {
     std::ostringstream os;
     os << "parametric system at " << parameter_.name << " = " << mu << ": " << e.what();
-    fail(os.str());
+    detail::invalid(os.str());
   }
 }
 

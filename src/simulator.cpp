@@ -12,10 +12,6 @@ namespace spp {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
-  throw std::invalid_argument(what);
-}
-
 // Modes of M y'' + K y = 0 restricted to the range of the orthonormal basis T (n x m).
 Simulator::Phase make_phase(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const Eigen::MatrixXd& T) {
   Simulator::Phase p;
@@ -104,7 +100,7 @@ std::vector<double> uniform_times(double duration, double per_unit) {
   if (!(per_unit >= 0.0 && std::isfinite(per_unit))) {
     std::ostringstream os;
     os << "simulate: samples per unit time must be finite and >= 0, got " << per_unit;
-    fail(os.str());
+    detail::invalid(os.str());
   }
   std::vector<double> t;
   if (per_unit == 0.0 || !(duration > 0.0)) return t;
@@ -113,7 +109,7 @@ std::vector<double> uniform_times(double duration, double per_unit) {
     std::ostringstream os;
     os << "simulate: " << count << " samples requested (duration " << duration << " x " << per_unit
        << " per unit time); at most 1e8";
-    fail(os.str());
+    detail::invalid(os.str());
   }
   t.reserve(static_cast<size_t>(count) + 1);
   for (long k = 0; k <= static_cast<long>(count); ++k) t.push_back(static_cast<double>(k) / per_unit);
@@ -188,9 +184,9 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     std::ostringstream os;
     os << "simulate: expected x0 and v0 of size " << n << " (the system's dofs), got " << x0.size() << " and "
        << v0.size();
-    fail(os.str());
+    detail::invalid(os.str());
   }
-  if (!x0.allFinite() || !v0.allFinite()) fail("simulate: x0 and v0 must be finite numbers");
+  if (!x0.allFinite() || !v0.allFinite()) detail::invalid("simulate: x0 and v0 must be finite numbers");
   const Eigen::MatrixXd& M = system_.M();
   const Eigen::VectorXd& w = system_.w();
   const double e = opt.restitution;
@@ -283,7 +279,7 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     if (g < -gtol) {
       std::ostringstream os;
       os << "simulate: the initial state penetrates the obstacle: gap w^T x0 + g0 = " << g << " < 0";
-      fail(os.str());
+      detail::invalid(os.str());
     }
     res.energy_initial = energy(x, v);
     push_sample(0.0, x, v, false);

@@ -1,4 +1,5 @@
 #include "spp/system.hpp"
+#include "spp/detail/invalid.hpp"
 
 #include <cmath>
 #include <limits>
@@ -8,17 +9,13 @@
 namespace spp {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
-  throw std::invalid_argument(what);
-}
-
 void check_finite(const Eigen::MatrixXd& A, const char* field) {
   for (Eigen::Index j = 0; j < A.cols(); ++j)
     for (Eigen::Index i = 0; i < A.rows(); ++i)
       if (!std::isfinite(A(i, j))) {
         std::ostringstream os;
         os << "system: " << field << "[" << i << "][" << j << "] must be finite, got " << A(i, j);
-        fail(os.str());
+        detail::invalid(os.str());
       }
 }
 
@@ -32,7 +29,7 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
     std::ostringstream os;
     os << "system: " << field << " must be symmetric (relative tolerance " << kSymmetryTolerance << "), got " << field
        << "[" << i << "][" << j << "] = " << A(i, j) << " but " << field << "[" << j << "][" << i << "] = " << A(j, i);
-    fail(os.str());
+    detail::invalid(os.str());
   }
   Eigen::MatrixXd S = 0.5 * (A + A.transpose());
   // Positive definite, decided on the unit-diagonal congruent matrix D^-1/2 S D^-1/2 (D = diag S): the same answer for
@@ -43,7 +40,7 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
       std::ostringstream os;
       os << "system: " << field << " must be positive definite, got the diagonal entry " << field << "[" << i << "]["
          << i << "] = " << S(i, i);
-      fail(os.str());
+      detail::invalid(os.str());
     }
   const Eigen::VectorXd d = S.diagonal().cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd U = d.asDiagonal() * S * d.asDiagonal();
@@ -54,7 +51,7 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
     std::ostringstream os;
     os << "system: " << field << " must be positive definite, got smallest eigenvalue " << lmin << " (largest " << lmax
        << ") of " << field << " scaled to a unit diagonal";
-    fail(os.str());
+    detail::invalid(os.str());
   }
   return S;
 }
@@ -63,22 +60,22 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
 
 System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, std::string name)
     : name_(std::move(name)) {
-  if (M.rows() == 0) fail("system: M must have at least one row, got an empty matrix");
+  if (M.rows() == 0) detail::invalid("system: M must have at least one row, got an empty matrix");
   if (M.rows() != M.cols()) {
     std::ostringstream os;
     os << "system: M must be square, got " << M.rows() << " x " << M.cols();
-    fail(os.str());
+    detail::invalid(os.str());
   }
   const Eigen::Index n = M.rows();
   if (K.rows() != n || K.cols() != n) {
     std::ostringstream os;
     os << "system: K must be " << n << " x " << n << " like M, got " << K.rows() << " x " << K.cols();
-    fail(os.str());
+    detail::invalid(os.str());
   }
   if (w.size() != n) {
     std::ostringstream os;
     os << "system: w must have " << n << " entries like M, got " << w.size();
-    fail(os.str());
+    detail::invalid(os.str());
   }
   check_finite(M, "M");
   check_finite(K, "K");
@@ -86,16 +83,16 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
   if (!std::isfinite(g0)) {
     std::ostringstream os;
     os << "system: g0 must be finite, got " << g0;
-    fail(os.str());
+    detail::invalid(os.str());
   }
   M_ = check_spd(M, "M");
   K_ = check_spd(K, "K");
   const double nw = w.stableNorm();  // no overflow for |w_i| ~ 1e200, no underflow for 1e-200
-  if (!(nw > 0.0)) fail("system: w must be non-zero, got the zero vector");
+  if (!(nw > 0.0)) detail::invalid("system: w must be non-zero, got the zero vector");
   if (!std::isfinite(nw) || nw < std::numeric_limits<double>::min()) {
     std::ostringstream os;
     os << "system: |w| = " << nw << " is outside the range of normal doubles: rescale w and g0 by one factor";
-    fail(os.str());
+    detail::invalid(os.str());
   }
   w_input_norm_ = nw;
   w_ = w / nw;
@@ -103,7 +100,7 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
   if (!std::isfinite(g0_)) {
     std::ostringstream os;
     os << "system: g0 / |w| = " << g0 << " / " << nw << " overflows: rescale w and g0 by one factor";
-    fail(os.str());
+    detail::invalid(os.str());
   }
 }
 

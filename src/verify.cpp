@@ -12,10 +12,6 @@ namespace spp {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
-  throw std::invalid_argument(what);
-}
-
 Eigen::VectorXd stack(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
   Eigen::VectorXd X(x.size() + v.size());
   X << x, v;
@@ -183,10 +179,10 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
   for (size_t i = 0; i < spps.size(); ++i) {
     const SppCandidate& c = spps[i];
     if (c.x0.size() != system.n() || c.v0.size() != system.n())
-      fail("verify: solution " + std::to_string(i) + ": x0 and v0 must have " + std::to_string(system.n()) +
+      detail::invalid("verify: solution " + std::to_string(i) + ": x0 and v0 must have " + std::to_string(system.n()) +
            " entries (the system's dofs), got " + std::to_string(c.x0.size()) + " and " + std::to_string(c.v0.size()));
     if (!(c.t1 > 0.0 && c.t2 > 0.0))
-      fail("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0, got " + fmt(c.t1) + " and " + fmt(c.t2));
+      detail::invalid("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0, got " + fmt(c.t1) + " and " + fmt(c.t2));
     const double T = c.period();
     SppCheck chk;
     chk.candidate = c;

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <new>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
@@ -20,6 +19,7 @@
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"
 #include "spp/verify.hpp"
+#include "tables.hpp"
 
 namespace {
 
@@ -232,10 +232,10 @@ int main(int argc, char** argv) {
       opt.validate();
       check_output(json_out, "--json", {sys_path});
       check_output(csv_out, "--csv", {sys_path, json_out});
-      const nlohmann::json sys_json = spp::read_json_file(sys_path);
-      if (!spp::declares_parameter(sys_json) && o_at->count() > 0)
+      const bool parametric = spp::file_declares_parameter(sys_path);
+      if (!parametric && o_at->count() > 0)
         throw std::invalid_argument("--at: " + sys_path + " is not a parametric system (it has no field \"parameter\")");
-      if (spp::declares_parameter(sys_json) && o_at->count() == 0) {
+      if (parametric && o_at->count() == 0) {
         const spp::ParametricSystem ps = spp::load_parametric_system(sys_path);
         if (ps.g0() != 0.0)
           throw std::invalid_argument(sys_path + ": a parametric system with g0 != 0: give --at VALUE of \"" +
@@ -248,9 +248,9 @@ int main(int argc, char** argv) {
         co.threads = opt.threads;
         co.symmetry = opt.symmetry;
         const spp::ContinuationResult cr = spp::continue_branches(ps, co);
-        const std::string json_text = json_out.empty() ? "" : spp::zero_gap_to_json(ps, cr).dump(2) + "\n";
+        const std::string json_text = json_out.empty() ? "" : spp::zero_gap_json(ps, cr);
         if (!csv_out.empty()) throw std::invalid_argument("--csv: not available for the g0 = 0 solve (use --json)");
-        if (!quiet) std::cout << spp::zero_gap_table(cr);
+        if (!quiet) std::cout << spp::cli::zero_gap_table(cr);
         std::cout << "spp: g0 = 0, solved for (t1, t2, " << ps.parameter().name << "): " << spp::gap_closures(cr).size()
                   << (opt.symmetry == spp::Symmetry::Point ? " point-symmetric potential SPPs with " : " SPPs with ")
                   << "" << ps.parameter().name << " in [" << ps.parameter().min << ", " << ps.parameter().max << "] ("
@@ -259,16 +259,16 @@ int main(int argc, char** argv) {
         if (!json_out.empty()) spp::write_file_atomic(json_out, json_text);
         return 0;
       }
-      const spp::System sys = spp::declares_parameter(sys_json) ? spp::load_parametric_system(sys_path).at(solve_at)
-                                                                : spp::load_system(sys_path);
+      const spp::System sys =
+          parametric ? spp::load_parametric_system(sys_path).at(solve_at) : spp::load_system(sys_path);
       const spp::SolveResult res = spp::solve(sys, opt);
       // prepare every output before writing any
-      const std::string json_text = json_out.empty() ? "" : spp::result_to_json(sys, res).dump(2) + "\n";
+      const std::string json_text = json_out.empty() ? "" : spp::result_json(sys, res);
       const std::string csv_text = csv_out.empty() ? "" : spp::result_to_csv(res);
       if (sys.w_input_norm() != 1.0)
         std::cerr << "note: w was normalised (|w| = " << sys.w_input_norm() << "); g0 divided by it: g0 = " << sys.g0()
                   << "\n";
-      if (!quiet) std::cout << spp::result_table(res);
+      if (!quiet) std::cout << spp::cli::result_table(res);
       std::cout << res.brief_report() << "\n";
       for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
       if (!json_out.empty()) spp::write_file_atomic(json_out, json_text);
@@ -280,8 +280,7 @@ int main(int argc, char** argv) {
       const spp::System sys = spp::load_system(traj_sys);
       if (!traj_result.empty()) {
         if (solution_index < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
-        const std::vector<spp::SppCandidate> sols =
-            spp::result_candidates(spp::read_json_file(traj_result), traj_result);
+        const std::vector<spp::SppCandidate> sols = spp::load_result_candidates(traj_result);
         if (static_cast<size_t>(solution_index) >= sols.size())
           throw std::invalid_argument(traj_result + ": --solution " + std::to_string(solution_index) +
                                       " out of range, the file has " + std::to_string(sols.size()) + " solutions");
@@ -337,12 +336,11 @@ int main(int argc, char** argv) {
     }
     if (*ver) {
       check_output(ver_json, "--json", {ver_result});
-      const nlohmann::json j = spp::read_json_file(ver_result);
-      const spp::System sys = spp::result_system(j, ver_result);
-      const std::vector<spp::SppCandidate> spps = spp::result_candidates(j, ver_result);
+      const spp::System sys = spp::load_result_system(ver_result);
+      const std::vector<spp::SppCandidate> spps = spp::load_result_candidates(ver_result);
       const spp::VerifyResult r = spp::verify(sys, spps, ver_opt);
-      const std::string json_text = ver_json.empty() ? "" : spp::verify_to_json(r).dump(2) + "\n";
-      std::cout << spp::verify_table(r) << r.brief_report() << "\n";
+      const std::string json_text = ver_json.empty() ? "" : spp::verify_json(r);
+      std::cout << spp::cli::verify_table(r) << r.brief_report() << "\n";
       if (!ver_json.empty()) spp::write_file_atomic(ver_json, json_text);
       return r.all_consistent() ? 0 : 3;
     }
@@ -372,8 +370,8 @@ int main(int argc, char** argv) {
       const spp::ParametricSystem ps = spp::load_parametric_system(cont_sys);
       copt.symmetry = cont_symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
       const spp::ContinuationResult cr = spp::continue_branches(ps, copt);
-      const std::string json_text = cont_json.empty() ? "" : spp::continuation_to_json(ps, cr).dump(1) + "\n";
-      if (!cont_quiet) std::cout << spp::continuation_table(cr);
+      const std::string json_text = cont_json.empty() ? "" : spp::continuation_json(ps, cr);
+      if (!cont_quiet) std::cout << spp::cli::continuation_table(cr);
       std::cout << cr.brief_report() << "\n";
       for (const auto& w : cr.warnings) std::cerr << "warning: " << w << "\n";
       if (!cont_json.empty()) spp::write_file_atomic(cont_json, json_text);
@@ -411,13 +409,13 @@ int main(int argc, char** argv) {
                                       ", got \"" + gen_param + "\"");
         const spp::ParametricSystem ps = spp::parametrize([&](double v) { return make(std::make_pair(gen_param, v)); },
                                                           {gen_param, range[0], range[1]});
-        spp::write_file_atomic(gen_out, spp::parametric_system_to_json(ps).dump(2) + "\n");
+        spp::write_file_atomic(gen_out, spp::parametric_system_json(ps));
         std::cout << "wrote " << ps.name() << " (n = " << ps.n() << ", " << gen_param << " in [" << range[0] << ", "
                   << range[1] << "]) to " << gen_out << "\n";
         return 0;
       }
       spp::System sys = make(std::nullopt);
-      spp::write_file_atomic(gen_out, spp::system_to_json(sys).dump(2) + "\n");
+      spp::write_file_atomic(gen_out, spp::system_json(sys));
       std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ") to " << gen_out << "\n";
       return 0;
     }

@@ -1,11 +1,16 @@
 #pragma once
-// One way to refuse a bad option: std::invalid_argument with "<where>: <field> must be <rule>, got <value>".
+// One way to refuse a caller's mistake: std::invalid_argument, its message naming what is wrong and where
+// ("<where>: <field> must be <rule>, got <value>"). Numerical outcomes are statuses, never these.
 
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace spp::detail {
+
+[[noreturn]] inline void invalid(const std::string& message) {
+  throw std::invalid_argument(message);
+}
 
 [[noreturn]] inline void invalid_option(const char* where, const std::string& field, double value,
                                         const std::string& rule) {

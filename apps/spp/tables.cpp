@@ -1,0 +1,81 @@
+#include "tables.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+namespace spp::cli {
+
+std::string result_table(const SolveResult& r) {
+  std::ostringstream os;
+  os << std::setw(4) << "#" << std::setw(14) << "t1" << std::setw(14) << "t2" << std::setw(14) << "period"
+     << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force"
+     << "\n";
+  int i = 0;
+  for (const Solution& x : r.solutions) {
+    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1 << std::setw(14) << x.t2 << std::setw(14)
+       << x.period << std::setw(12) << (x.admissible ? "yes" : "no") << std::setprecision(3) << std::setw(14)
+       << x.min_gap << std::setw(14) << x.min_force;
+    for (const auto& f : x.flags) os << "  [" << f << "]";
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string verify_table(const VerifyResult& r) {
+  std::ostringstream os;
+  const bool perturbed =
+      std::any_of(r.checks.begin(), r.checks.end(), [](const SppCheck& c) { return !c.perturbed_distances.empty(); });
+  const int periods = r.checks.empty() ? 0 : static_cast<int>(r.checks[0].return_errors.size());
+  os << std::setw(4) << "#" << std::setw(13) << "t1" << std::setw(13) << "t2" << std::setw(12) << "admissible"
+     << std::setw(14) << "return_err" << std::setw(9) << "verdict";
+  if (periods > 1) os << std::setw(10) << "followed" << std::setw(14) << "err_last";
+  if (perturbed) os << std::setw(12) << "growth/T";
+  os << "  note\n";
+  int i = 0;
+  for (const SppCheck& c : r.checks) {
+    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(13) << c.candidate.t1 << std::setw(13)
+       << c.candidate.t2 << std::setw(12) << (c.candidate.admissible ? "yes" : "no") << std::setprecision(3)
+       << std::setw(14) << (c.return_errors.empty() ? 0.0 : c.return_errors[0]) << std::setw(9) << to_string(c.verdict);
+    if (periods > 1)
+      os << std::setw(10) << (std::to_string(c.periods_followed) + "/" + std::to_string(periods)) << std::setw(14)
+         << c.return_errors.back();
+    if (perturbed) {
+      if (c.perturbed_distances.empty())
+        os << std::setw(12) << "-";
+      else
+        os << std::setprecision(6) << std::setw(12) << c.growth_per_period;
+    }
+    const bool departs = c.verdict == Verdict::Leaves || c.periods_followed < periods;
+    os << "  " << (c.consistent ? "" : "INCONSISTENT with the solver: ")
+       << (departs ? (c.verdict == Verdict::Returns ? "later: " : "") + c.departure : "") << "\n";
+  }
+  return os.str();
+}
+
+std::string continuation_table(const ContinuationResult& r) {
+  std::ostringstream os;
+  os << std::setw(7) << "branch" << std::setw(22) << "event" << std::setw(15) << r.parameter.name << std::setw(13)
+     << "t1" << std::setw(13) << "t2" << std::setw(12) << "margin"
+     << "  detail\n";
+  for (size_t b = 0; b < r.branches.size(); ++b)
+    for (const BranchEvent& e : r.branches[b].events)
+      os << std::setw(7) << b << std::setw(22) << to_string(e.kind) << std::setw(15) << std::setprecision(10) << e.at.mu
+         << std::setw(13) << std::setprecision(7) << e.at.t1 << std::setw(13) << e.at.t2 << std::setw(12)
+         << std::setprecision(3) << e.at.margin << "  " << e.detail << "\n";
+  return os.str();
+}
+
+std::string zero_gap_table(const ContinuationResult& r) {
+  std::ostringstream os;
+  os << std::setw(4) << "#" << std::setw(18) << r.parameter.name << std::setw(15) << "t1" << std::setw(15) << "t2"
+     << std::setw(15) << "period" << std::setw(12) << "admissible" << std::setw(12) << "margin\n";
+  int k = 0;
+  for (const BranchPoint& p : gap_closures(r))
+    os << std::setw(4) << k++ << std::setw(18) << std::setprecision(12) << p.mu << std::setw(15) << std::setprecision(9)
+       << p.t1 << std::setw(15) << p.t2 << std::setw(15) << p.period << std::setw(12) << (p.admissible ? "yes" : "no")
+       << std::setw(12) << std::setprecision(3) << p.margin << "\n";
+  return os.str();
+}
+
+}  // namespace spp::cli

@@ -1,0 +1,26 @@
+#pragma once
+// Result files of spp solve: {"system": {...}, "window", "status", "symmetry", "warnings", "stats", "uncertified",
+// "solutions": [{"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy", "residual",
+// "return_error", ..., "orbit": {"a", "c", "p0", "p0dot", "closure_ratio", "energy"}}]}. The whole system is embedded
+// (after normalising w) so that a result can be verified, plotted or animated alone.
+
+#include <string>
+#include <vector>
+
+#include "spp/solver.hpp"
+#include "spp/system.hpp"
+#include "spp/verify.hpp"
+
+namespace spp {
+
+/// The result file's text. indent < 0: one line.
+std::string result_json(const System& system, const SolveResult& result, int indent = 2);
+/// The SolveResult that result_json wrote, every field (tested: write, read, compare). Throws std::invalid_argument
+/// naming the file and the field it cannot read.
+SolveResult load_result(const std::string& path);
+/// The system embedded in a result file.
+System load_result_system(const std::string& path);
+/// Only what verify, trajectory and the plots need of each SPP (t1, t2, x0, v0, admissible, energy).
+std::vector<SppCandidate> load_result_candidates(const std::string& path);
+
+}  // namespace spp

@@ -1,0 +1,26 @@
+#pragma once
+// System files: {"name", "description", "M", "K", "w", "g0"} (M, K n x n lists of rows, or {"matrix_market":
+// "file.mtx"} relative to the JSON file; w a list of n numbers), and parametric system files (the same with
+// "parameter": {"name": "k2", "min": 1, "max": 10} and each of M, K, w either a value or {"constant": value,
+// "k2": value}, affine in the parameter). Unknown fields and keys given twice are refused.
+
+#include <string>
+
+#include "spp/parametric.hpp"
+#include "spp/system.hpp"
+
+namespace spp {
+
+/// Throws std::invalid_argument naming the file and the field (and refuses a parametric file, with a pointer to
+/// load_parametric_system).
+System load_system(const std::string& path);
+/// Throws std::invalid_argument naming the file and the field.
+ParametricSystem load_parametric_system(const std::string& path);
+/// True when the JSON file declares a "parameter" (read it with load_parametric_system).
+bool file_declares_parameter(const std::string& path);
+
+/// The system file's text (load_system reads it back). indent < 0: one line.
+std::string system_json(const System& system, int indent = 2);
+std::string parametric_system_json(const ParametricSystem& system, int indent = 2);
+
+}  // namespace spp

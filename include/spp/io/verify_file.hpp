@@ -1,0 +1,15 @@
+#pragma once
+// Result files of spp verify: {"checks": [{"t1", "t2", "period", "admissible", "verdict", "consistent",
+// "return_errors", "impacts", "contact_onsets", "releases", "periods_followed", "departure"?,
+// "perturbed_distances"?, "growth_per_period"?}], "returned", "left", "inconsistent", "all_consistent"}.
+
+#include <string>
+
+#include "spp/verify.hpp"
+
+namespace spp {
+
+/// indent < 0: one line.
+std::string verify_json(const VerifyResult& result, int indent = 2);
+
+}  // namespace spp

@@ -1,0 +1,87 @@
+#include "spp/io/csv.hpp"
+
+#include <sstream>
+
+#include "io/text.hpp"
+
+namespace spp {
+
+using io::num;
+
+std::string result_to_csv(const SolveResult& r) {
+  std::ostringstream os;
+  os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error";
+  const int n = r.solutions.empty() ? 0 : static_cast<int>(r.solutions[0].orbit.x0.size());
+  for (int i = 1; i <= n; ++i) os << ",x0_" << i;
+  for (int i = 1; i <= n; ++i) os << ",v0_" << i;
+  os << "\n";
+  for (const Solution& x : r.solutions) {
+    os << num(x.t1) << "," << num(x.t2) << "," << num(x.period) << "," << (x.admissible ? 1 : 0) << ","
+       << num(x.min_gap) << "," << num(x.min_force) << "," << num(x.energy) << "," << num(x.residual) << ","
+       << num(x.return_error);
+    for (int i = 0; i < n; ++i) os << "," << num(x.orbit.x0(i));
+    for (int i = 0; i < n; ++i) os << "," << num(x.orbit.v0(i));
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string trajectory_csv(const ModalForm& md, const Orbit& o, int samples) {
+  std::ostringstream os;
+  const int n = md.n();
+  os << "t";
+  for (int i = 1; i <= n; ++i) os << ",x" << i;
+  for (int i = 1; i <= n; ++i) os << ",v" << i;
+  os << ",gap,force\n";
+  const double T = o.period();
+  for (int k = 0; k < samples; ++k) {
+    const double t = T * k / (samples - 1);
+    const OrbitState st = orbit_state(md, o, t);
+    os << num(t);
+    for (int i = 0; i < n; ++i) os << "," << num(st.x(i));
+    for (int i = 0; i < n; ++i) os << "," << num(st.v(i));
+    os << "," << num(st.gap) << "," << num(st.force) << "\n";
+  }
+  return os.str();
+}
+
+namespace {
+// ",x1..xn,v1..vn" and the matching values: the state columns shared by every CSV of states.
+void state_columns(std::ostringstream& os, Eigen::Index n) {
+  for (Eigen::Index i = 1; i <= n; ++i) os << ",x" << i;
+  for (Eigen::Index i = 1; i <= n; ++i) os << ",v" << i;
+}
+void state_values(std::ostringstream& os, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+  for (Eigen::Index i = 0; i < x.size(); ++i) os << "," << num(x(i));
+  for (Eigen::Index i = 0; i < v.size(); ++i) os << "," << num(v(i));
+}
+}  // namespace
+
+std::string simulation_csv(const SimulationResult& r) {
+  std::ostringstream os;
+  os << "t";
+  state_columns(os, r.samples.empty() ? 0 : r.samples[0].x.size());
+  os << ",gap,force,contact\n";
+  for (const Sample& s : r.samples) {
+    os << num(s.t);
+    state_values(os, s.x, s.v);
+    os << "," << num(s.gap) << "," << num(s.force) << "," << (s.in_contact ? 1 : 0) << "\n";
+  }
+  return os.str();
+}
+
+std::string events_csv(const SimulationResult& r) {
+  std::ostringstream os;
+  os << "t,event,normal_velocity_before,normal_velocity_after,force";
+  state_columns(os, r.samples.empty() ? 0 : r.samples[0].x.size());
+  os << "\n";
+  for (const Event& e : r.events) {
+    os << num(e.t) << "," << to_string(e.kind) << "," << num(e.normal_velocity_before) << ","
+       << num(e.normal_velocity_after) << "," << num(e.force);
+    state_values(os, e.x, e.v_after);
+    os << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace spp

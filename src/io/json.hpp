@@ -1,0 +1,65 @@
+#pragma once
+// JSON of every io type (private: nlohmann is not part of spp's public headers). Readers name the file and the field
+// they cannot read; writers give what the readers read back.
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/text.hpp"
+#include "spp/continuation.hpp"
+#include "spp/parametric.hpp"
+#include "spp/solver.hpp"
+#include "spp/system.hpp"
+#include "spp/verify.hpp"
+
+namespace spp::io {
+
+using json = nlohmann::json;
+
+/// A value named in an error message, never echoed whole: nested or long input (a 100 000-deep array) is described,
+/// not dumped (json::dump recurses: a stack overflow).
+std::string describe(const json& v);
+/// Refuses any field not in `known` (nor in `also`, accepted silently), naming it and listing `known`.
+void check_fields(const json& j, std::initializer_list<const char*> known, const std::string& where,
+                  std::initializer_list<const char*> also = {});
+/// Parses a JSON file; malformed JSON and a key given twice in one object are refused, naming the file.
+json read_json_file(const std::string& path);
+
+json matrix_json(const Eigen::MatrixXd& A);
+json vector_json(const Eigen::VectorXd& v);
+/// A field "key" of j: a list of rows (or {"matrix_market": "file.mtx"}, relative to dir) / a list of numbers.
+Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir);
+Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where);
+
+/// Reads the fields of one JSON object, each naming where it is when it cannot. Doubles written as null (NaN) read
+/// back as NaN.
+struct Reader {
+  const json& o;
+  std::string where;
+  const json& at(const char* k) const;
+  double number(const char* k) const;
+  long integer(const char* k) const;
+  bool boolean(const char* k) const;
+  std::string text(const char* k) const;
+  std::vector<std::string> texts(const char* k) const;
+  Eigen::VectorXd vector(const char* k) const;
+};
+
+System system_from_json(const json& j, const std::string& where, const std::string& dir = ".");
+json system_to_json(const System& system);
+bool declares_parameter(const json& j);
+ParametricSystem parametric_system_from_json(const json& j, const std::string& where, const std::string& dir = ".");
+json parametric_system_to_json(const ParametricSystem& system);
+
+json result_to_json(const System& system, const SolveResult& result);
+SolveResult result_from_json(const json& result, const std::string& where);
+System result_system(const json& result, const std::string& where);
+std::vector<SppCandidate> result_candidates(const json& result, const std::string& where);
+
+json continuation_to_json(const ParametricSystem& system, const ContinuationResult& result);
+json zero_gap_to_json(const ParametricSystem& system, const ContinuationResult& result);
+json verify_to_json(const VerifyResult& result);
+
+}  // namespace spp::io

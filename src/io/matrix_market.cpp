@@ -1,0 +1,143 @@
+#include "spp/io/matrix_market.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "io/text.hpp"
+
+namespace spp {
+
+using io::invalid;
+using io::num;
+using io::shorten;
+
+namespace {
+// Whole-token number parsing ("1.5xyz" is not 1.5). Written here: std::from_chars for double is not in g++ 12's
+// libstdc++ for every target, and strtod with an end check is the portable equivalent.
+bool parse_number(const std::string& token, double& v) {
+  if (token.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtod(token.c_str(), &end);
+  return end == token.c_str() + token.size() && errno != ERANGE && std::isfinite(v);
+}
+bool parse_index(const std::string& token, long& v) {
+  double d = 0;
+  if (!parse_number(token, d) || d != std::floor(d) || std::abs(d) > 9e15) return false;
+  v = static_cast<long>(d);
+  return true;
+}
+std::vector<std::string> tokens(const std::string& line) {
+  std::istringstream ss(line);
+  std::vector<std::string> t;
+  for (std::string w; ss >> w;) t.push_back(w);
+  return t;
+}
+// Dense storage the reader may allocate (entries): larger sizes are refused with their size, not std::bad_alloc.
+constexpr double kMaxDenseEntries = 4e8;  // 3.2 GB of doubles
+}  // namespace
+
+Eigen::MatrixXd read_matrix_market(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) invalid("cannot open Matrix Market file \"" + path + "\"");
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("%%MatrixMarket", 0) != 0)
+    invalid(path + ": line 1 must start with %%MatrixMarket");
+  std::istringstream hs(line);
+  std::string banner, object, format, field, symmetry;
+  hs >> banner >> object >> format >> field >> symmetry;
+  for (auto* s : {&object, &format, &field, &symmetry})
+    for (auto& ch : *s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (object != "matrix") invalid(path + ": expected object \"matrix\", got \"" + shorten(object) + "\"");
+  if (format != "coordinate" && format != "array")
+    invalid(path + ": expected format coordinate or array, got \"" + shorten(format) + "\"");
+  if (field != "real" && field != "integer" && field != "double")
+    invalid(path + ": expected field real or integer, got \"" + shorten(field) + "\"");
+  if (symmetry != "general" && symmetry != "symmetric")
+    invalid(path + ": expected symmetry general or symmetric, got \"" + shorten(symmetry) + "\"");
+  int lineno = 1;
+  auto next_data_line = [&](std::string& l) {  // skips comments and blank lines
+    while (std::getline(in, l)) {
+      ++lineno;
+      if (!tokens(l).empty() && l[l.find_first_not_of(" \t\r\v\f")] != '%') return true;
+    }
+    return false;
+  };
+  auto where = [&] { return path + ":" + std::to_string(lineno); };
+  auto shown = [](const std::string& l) { return shorten(l, 60); };
+  if (!next_data_line(line)) invalid(path + ": no size line");
+  const std::vector<std::string> size = tokens(line);
+  long rows = 0, cols = 0, nnz = 0;
+  const bool coordinate = format == "coordinate";
+  if (size.size() != (coordinate ? 3u : 2u) || !parse_index(size[0], rows) || !parse_index(size[1], cols) ||
+      (coordinate && !parse_index(size[2], nnz)) || rows <= 0 || cols <= 0 || nnz < 0)
+    invalid(where() + ": bad size line \"" + shown(line) + "\" (expected rows cols" + (coordinate ? " entries" : "") +
+         ")");
+  if (static_cast<double>(rows) * static_cast<double>(cols) > kMaxDenseEntries)
+    invalid(where() + ": a " + std::to_string(rows) + " x " + std::to_string(cols) +
+         " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) + " entries)");
+  const bool sym = symmetry == "symmetric";
+  if (sym && rows != cols) invalid(where() + ": a symmetric matrix must be square, got " + size[0] + " x " + size[1]);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
+  if (coordinate) {
+    // Duplicate entries are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one
+    // triangle: an entry given in both triangles is refused.
+    Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic> side;
+    if (sym) side = Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic>::Zero(rows, cols);
+    for (long e = 0; e < nnz; ++e) {
+      if (!next_data_line(line))
+        invalid(path + ": expected " + std::to_string(nnz) + " entries (size line), got " + std::to_string(e));
+      const std::vector<std::string> t = tokens(line);
+      long i = 0, j = 0;
+      double v = 0;
+      if (t.size() != 3 || !parse_index(t[0], i) || !parse_index(t[1], j) || !parse_number(t[2], v) || i < 1 ||
+          i > rows || j < 1 || j > cols)
+        invalid(where() + ": bad entry \"" + shown(line) + "\" (expected row col value, 1 <= row <= " +
+             std::to_string(rows) + ", 1 <= col <= " + std::to_string(cols) + ")");
+      if (sym && i != j) {
+        const long lo = std::min(i, j) - 1, hi = std::max(i, j) - 1;
+        const signed char s = i > j ? 1 : 2;
+        if (side(hi, lo) != 0 && side(hi, lo) != s)
+          invalid(where() + ": entry (" + std::to_string(i) + ", " + std::to_string(j) +
+               ") of a symmetric file: its mirror was given too (store one triangle)");
+        side(hi, lo) = s;
+        A(hi, lo) += v;
+        A(lo, hi) += v;
+      } else {
+        A(i - 1, j - 1) += v;
+      }
+    }
+    if (next_data_line(line))
+      invalid(where() + ": more entries than the " + std::to_string(nnz) + " the size line declares: \"" + shown(line) +
+           "\"");
+  } else {
+    std::vector<std::string> pending;
+    size_t next = 0;
+    for (long j = 0; j < cols; ++j)
+      for (long i = sym ? j : 0; i < rows; ++i) {
+        while (next == pending.size()) {
+          if (!next_data_line(line))
+            invalid(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+                 ")");
+          pending = tokens(line);
+          next = 0;
+        }
+        double v = 0;
+        if (!parse_number(pending[next++], v))
+          invalid(where() + ": entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is not a number: \"" +
+               shown(pending[next - 1]) + "\"");
+        A(i, j) = v;
+        if (sym) A(j, i) = v;
+      }
+    if (next != pending.size() || next_data_line(line))
+      invalid(where() + ": more values than the " + std::to_string(sym ? rows * (rows + 1) / 2 : rows * cols) +
+           " the size line declares");
+  }
+  return A;
+}
+
+}  // namespace spp

@@ -1,0 +1,229 @@
+#include "spp/io/result_file.hpp"
+
+#include <limits>
+
+#include "io/json.hpp"
+
+namespace spp::io {
+
+json result_to_json(const System& s, const SolveResult& r) {
+  json j;
+  auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  j["system"] = system_to_json(s);
+  j["system"]["n"] = s.n();
+  j["system"]["w_normalized"] = s.w_input_norm() != 1.0;
+  j["system"]["w_input_norm"] = s.w_input_norm();
+  j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
+  j["status"] = to_string(r.status);
+  j["symmetry"] = to_string(r.symmetry);
+  j["warnings"] = r.warnings;
+  j["stats"] = {{"flight_pole_lines", r.stats.flight_pole_lines},
+                {"contact_pole_lines", r.stats.contact_pole_lines},
+                {"rectangles", r.stats.rectangles},
+                {"curve_pieces", r.stats.curve_pieces},
+                {"roots", r.stats.roots},
+                {"evaluations", r.stats.evaluations},
+                {"strip_pairs", r.stats.strip_pairs},
+                {"certified_steps", r.stats.certified_steps},
+                {"heuristic_steps", r.stats.heuristic_steps},
+                {"uncertified_steps", r.stats.uncertified_steps},
+                {"uncertified_corners", r.stats.uncertified_corners},
+                {"unpaired_crossings", r.stats.unpaired_crossings},
+                {"unresolved_pieces", r.stats.unresolved_pieces},
+                {"unpolished_roots", r.stats.unpolished_roots},
+                {"decoupled_modes", r.decoupled_modes},
+                {"repeated_frequency_groups", r.repeated_groups},
+                {"seconds", r.stats.seconds}};
+  json unc = json::array();
+  for (const UncertifiedRegion& u : r.uncertified)
+    unc.push_back({{"t1_lo", u.t1_lo}, {"t1_hi", u.t1_hi}, {"t2_lo", u.t2_lo}, {"t2_hi", u.t2_hi}, {"cause", u.cause}});
+  j["uncertified"] = unc;
+  json sols = json::array();
+  for (const Solution& x : r.solutions) {
+    json o = {{"t1", x.t1},
+              {"t2", x.t2},
+              {"period", x.period},
+              {"admissible", x.admissible},
+              {"min_gap", x.min_gap},
+              {"min_force", x.min_force},
+              {"x0", vec(x.orbit.x0)},
+              {"v0", vec(x.orbit.v0)},
+              {"energy", x.energy},
+              {"residual", x.residual},
+              {"return_error", x.return_error},
+              {"mid_flight_gap", x.admissibility.mid_flight_gap},
+              {"mid_contact_force", x.admissibility.mid_contact_force},
+              {"onset_force_rate", x.admissibility.onset_force_rate},
+              {"admissibility_certified", x.admissibility.certified},
+              {"admissibility_ends_ok", x.admissibility.ends_ok},
+              {"flags", x.flags},
+              // the orbit in modal coordinates (modal form §2), so that load_result rebuilds the same Solution
+              {"orbit", {{"a", vec(x.orbit.a)},
+                         {"c", vec(x.orbit.c)},
+                         {"p0", vec(x.orbit.p0)},
+                         {"p0dot", vec(x.orbit.p0dot)},
+                         {"closure_ratio", x.orbit.closure_ratio},
+                         {"energy", x.orbit.energy}}}};
+    if (x.orbit.symmetry == Symmetry::Point) o["obstacle_velocity"] = x.orbit.obstacle_velocity;
+    sols.push_back(o);
+  }
+  j["solutions"] = sols;
+  return j;
+}
+
+SolveResult result_from_json(const json& r, const std::string& where) {
+  if (!r.is_object() || !r.contains("system") || !r.contains("solutions"))
+    invalid(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
+  SolveResult res;
+  const Reader top{r, where};
+  const std::string status = top.text("status");
+  if (status == "success")
+    res.status = SolveStatus::Success;
+  else if (status == "incomplete")
+    res.status = SolveStatus::Incomplete;
+  else
+    invalid(where + ": field \"status\" must be \"success\" or \"incomplete\", got \"" + shorten(status) + "\"");
+  const std::string sym = top.text("symmetry");
+  if (sym != "axial" && sym != "point")
+    invalid(where + ": field \"symmetry\" must be \"axial\" or \"point\", got \"" + shorten(sym) + "\"");
+  res.symmetry = sym == "point" ? Symmetry::Point : Symmetry::Axial;
+  res.warnings = top.texts("warnings");
+  const Reader win{top.at("window"), where + ": field \"window\""};
+  res.t1_min = win.number("t1_min");
+  res.t1_max = win.number("t1_max");
+  res.t2_min = win.number("t2_min");
+  res.t2_max = win.number("t2_max");
+  const Reader st{top.at("stats"), where + ": field \"stats\""};
+  SolveStats& s = res.stats;
+  s.flight_pole_lines = static_cast<int>(st.integer("flight_pole_lines"));
+  s.contact_pole_lines = static_cast<int>(st.integer("contact_pole_lines"));
+  s.rectangles = st.integer("rectangles");
+  s.curve_pieces = st.integer("curve_pieces");
+  s.roots = st.integer("roots");
+  s.evaluations = st.integer("evaluations");
+  s.strip_pairs = st.integer("strip_pairs");
+  s.certified_steps = st.integer("certified_steps");
+  s.heuristic_steps = st.integer("heuristic_steps");
+  s.uncertified_steps = st.integer("uncertified_steps");
+  s.uncertified_corners = st.integer("uncertified_corners");
+  s.unpaired_crossings = st.integer("unpaired_crossings");
+  s.unresolved_pieces = st.integer("unresolved_pieces");
+  s.unpolished_roots = st.integer("unpolished_roots");
+  s.seconds = st.number("seconds");
+  res.decoupled_modes = static_cast<int>(st.integer("decoupled_modes"));
+  res.repeated_groups = static_cast<int>(st.integer("repeated_frequency_groups"));
+  const json& unc = top.at("uncertified");
+  if (!unc.is_array()) invalid(where + ": field \"uncertified\" must be a list, got " + describe(unc));
+  for (size_t i = 0; i < unc.size(); ++i) {
+    const Reader u{unc[i], where + ": field \"uncertified\"[" + std::to_string(i) + "]"};
+    res.uncertified.push_back({u.number("t1_lo"), u.number("t1_hi"), u.number("t2_lo"), u.number("t2_hi"), u.text("cause")});
+  }
+  const json& sols = top.at("solutions");
+  if (!sols.is_array()) invalid(where + ": field \"solutions\" must be a list, got " + describe(sols));
+  for (size_t i = 0; i < sols.size(); ++i) {
+    const Reader o{sols[i], where + ": field \"solutions\"[" + std::to_string(i) + "]"};
+    Solution x;
+    x.t1 = o.number("t1");
+    x.t2 = o.number("t2");
+    x.period = o.number("period");
+    x.admissible = o.boolean("admissible");
+    x.min_gap = o.number("min_gap");
+    x.min_force = o.number("min_force");
+    x.energy = o.number("energy");
+    x.residual = o.number("residual");
+    x.return_error = o.number("return_error");
+    x.flags = o.texts("flags");
+    Admissibility& a = x.admissibility;
+    a.admissible = x.admissible;
+    a.min_gap = x.min_gap;
+    a.min_force = x.min_force;
+    a.mid_flight_gap = o.number("mid_flight_gap");
+    a.mid_contact_force = o.number("mid_contact_force");
+    a.onset_force_rate = o.number("onset_force_rate");
+    a.certified = o.boolean("admissibility_certified");
+    a.ends_ok = o.boolean("admissibility_ends_ok");
+    Orbit& b = x.orbit;
+    b.t1 = x.t1;
+    b.t2 = x.t2;
+    b.symmetry = res.symmetry;
+    b.x0 = o.vector("x0");
+    b.v0 = o.vector("v0");
+    const Reader ob{o.at("orbit"), o.where + ": field \"orbit\""};
+    b.a = ob.vector("a");
+    b.c = ob.vector("c");
+    b.p0 = ob.vector("p0");
+    b.p0dot = ob.vector("p0dot");
+    b.closure_ratio = ob.number("closure_ratio");
+    b.energy = ob.number("energy");
+    if (res.symmetry == Symmetry::Point) b.obstacle_velocity = o.number("obstacle_velocity");
+    res.solutions.push_back(std::move(x));
+  }
+  return res;
+}
+
+System result_system(const json& r, const std::string& where) {
+  if (!r.is_object() || !r.contains("system") || !r.contains("solutions"))
+    invalid(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
+  if (!r.at("system").contains("M") || !r.at("system").contains("K"))
+    invalid(where + ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): run spp solve again");
+  return system_from_json(r.at("system"), where + ": field \"system\"");
+}
+
+std::vector<SppCandidate> result_candidates(const json& r, const std::string& where) {
+  if (!r.is_object() || !r.contains("solutions") || !r.at("solutions").is_array())
+    invalid(where + ": missing field \"solutions\" (expected a result of spp solve)");
+  std::vector<SppCandidate> out;
+  const json& sols = r.at("solutions");
+  for (size_t i = 0; i < sols.size(); ++i) {
+    const std::string at = where + ": solutions[" + std::to_string(i) + "]";
+    const json& o = sols[i];
+    auto number = [&](const char* key) {
+      if (!o.is_object() || !o.contains(key) || !o.at(key).is_number())
+        invalid(at + ": field \"" + key + "\" must be a number");
+      return o.at(key).get<double>();
+    };
+    auto vector = [&](const char* key) {
+      if (!o.contains(key) || !o.at(key).is_array()) invalid(at + ": field \"" + key + "\" must be a list of numbers");
+      const json& a = o.at(key);
+      Eigen::VectorXd v(static_cast<Eigen::Index>(a.size()));
+      for (size_t k = 0; k < a.size(); ++k) {
+        if (!a[k].is_number()) invalid(at + ": field \"" + key + "\"[" + std::to_string(k) + "] must be a number");
+        v(static_cast<Eigen::Index>(k)) = a[k].get<double>();
+      }
+      return v;
+    };
+    SppCandidate c;
+    c.t1 = number("t1");
+    c.t2 = number("t2");
+    c.x0 = vector("x0");
+    c.v0 = vector("v0");
+    if (!o.contains("admissible") || !o.at("admissible").is_boolean())
+      invalid(at + ": field \"admissible\" must be true or false");
+    c.admissible = o.at("admissible").get<bool>();
+    c.energy = o.contains("energy") ? number("energy") : std::numeric_limits<double>::quiet_NaN();
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace spp::io
+
+namespace spp {
+
+std::string result_json(const System& system, const SolveResult& result, int indent) {
+  return io::result_to_json(system, result).dump(indent) + "\n";
+}
+
+SolveResult load_result(const std::string& path) {
+  return io::result_from_json(io::read_json_file(path), path);
+}
+
+System load_result_system(const std::string& path) {
+  return io::result_system(io::read_json_file(path), path);
+}
+
+std::vector<SppCandidate> load_result_candidates(const std::string& path) {
+  return io::result_candidates(io::read_json_file(path), path);
+}
+
+}  // namespace spp

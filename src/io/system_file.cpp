@@ -1,0 +1,146 @@
+#include <filesystem>
+
+#include "spp/io/system_file.hpp"
+
+#include "io/json.hpp"
+
+namespace spp::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+double g0_field(const json& j, const std::string& where) {
+  if (!j.contains("g0")) invalid(where + ": missing field \"g0\" (the gap at rest)");
+  if (!j.at("g0").is_number()) invalid(where + ": field \"g0\" must be a number, got " + describe(j.at("g0")));
+  return j.at("g0").get<double>();
+}
+
+std::string name_field(const json& j) {
+  return j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+}
+
+// {"constant": A, "<name>": B} -> (A, B); a plain value -> (value, empty).
+template <typename Read>
+auto affine_field(const json& j, const char* key, const std::string& name, const std::string& where, Read read) {
+  using T = decltype(read(j, key));
+  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\"");
+  const json& v = j.at(key);
+  if (v.is_object() && v.contains("constant")) {
+    for (const auto& [k, _] : v.items())
+      if (k != "constant" && k != name)
+        invalid(where + ": field \"" + key + "\" has a part \"" + k + "\": expected only \"constant\" and \"" + name +
+             "\" (the declared parameter)");
+    T c = read(v, "constant");
+    T m = v.contains(name) ? read(v, name.c_str()) : T();
+    return std::make_pair(std::move(c), std::move(m));
+  }
+  return std::make_pair(read(j, key), T());
+}
+
+}  // namespace
+
+System system_from_json(const json& j, const std::string& where, const std::string& dir) {
+  if (!j.is_object()) invalid(where + ": expected a JSON object with fields M, K, w, g0");
+  // (a result's "system" also carries what result_to_json adds)
+  check_fields(j, {"name", "description", "M", "K", "w", "g0"}, where, {"n", "w_normalized", "w_input_norm"});
+  Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
+  Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
+  Eigen::VectorXd w = vector_field(j, "w", where);
+  const double g0 = g0_field(j, where);
+  try {
+    return System(std::move(M), std::move(K), std::move(w), g0, name_field(j));
+  } catch (const std::invalid_argument& e) {
+    invalid(where + ": " + e.what());
+  }
+}
+
+json system_to_json(const System& s) {
+  const auto mat = matrix_json;
+  json j;
+  j["name"] = s.name();
+  j["M"] = mat(s.M());
+  j["K"] = mat(s.K());
+  j["w"] = std::vector<double>(s.w().data(), s.w().data() + s.w().size());
+  j["g0"] = s.g0();
+  return j;
+}
+
+bool declares_parameter(const json& j) {
+  return j.is_object() && j.contains("parameter");
+}
+
+ParametricSystem parametric_system_from_json(const json& j, const std::string& where, const std::string& dir) {
+  if (!j.is_object()) invalid(where + ": expected a JSON object with fields M, K, w, g0, parameter");
+  if (!j.contains("parameter"))
+    invalid(where + ": no field \"parameter\" (e.g. \"parameter\": {\"name\": \"k2\", \"min\": 1, \"max\": 10})");
+  const json& p = j.at("parameter");
+  if (!p.is_object() || !p.contains("name") || !p.at("name").is_string() || p.at("name").get<std::string>().empty())
+    invalid(where + ": field \"parameter\" must be {\"name\": \"...\", \"min\": number, \"max\": number}");
+  check_fields(j, {"name", "description", "M", "K", "w", "g0", "parameter"}, where);
+  check_fields(p, {"name", "min", "max"}, where + ": field \"parameter\"");
+  Parameter par;
+  par.name = p.at("name").get<std::string>();
+  for (const char* k : {"min", "max"})
+    if (!p.contains(k) || !p.at(k).is_number())
+      invalid(where + ": field \"parameter\" needs the number \"" + std::string(k) + "\"");
+  par.min = p.at("min").get<double>();
+  par.max = p.at("max").get<double>();
+  if (par.name == "constant") invalid(where + ": the parameter cannot be named \"constant\"");
+  auto mat = [&](const json& o, const char* k) { return matrix_field(o, k, where, dir); };
+  auto vec = [&](const json& o, const char* k) { return vector_field(o, k, where); };
+  auto [M0, M1] = affine_field(j, "M", par.name, where, mat);
+  auto [K0, K1] = affine_field(j, "K", par.name, where, mat);
+  auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
+  const double g0 = g0_field(j, where);
+  try {
+    return ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0), std::move(w1),
+                            g0, par, name_field(j));
+  } catch (const std::invalid_argument& e) {
+    invalid(where + ": " + e.what());
+  }
+}
+
+json parametric_system_to_json(const ParametricSystem& s) {
+  const std::string& p = s.parameter().name;
+  json j;
+  j["name"] = s.name();
+  j["parameter"] = {{"name", p}, {"min", s.parameter().min}, {"max", s.parameter().max}};
+  j["M"] = {{"constant", matrix_json(s.M_constant())}, {p, matrix_json(s.M_mu())}};
+  j["K"] = {{"constant", matrix_json(s.K_constant())}, {p, matrix_json(s.K_mu())}};
+  j["w"] = {{"constant", vector_json(s.w_constant())}, {p, vector_json(s.w_mu())}};
+  j["g0"] = s.g0();
+  return j;
+}
+
+}  // namespace spp::io
+
+namespace spp {
+
+System load_system(const std::string& path) {
+  const io::json j = io::read_json_file(path);
+  if (io::declares_parameter(j))
+    io::invalid(path + ": declares the parameter \"" + j.at("parameter").value("name", std::string("?")) +
+                "\" (a parametric system): use spp continue, or spp solve --at VALUE (or with g0 = 0 spp solve alone)");
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return io::system_from_json(j, path, dir.empty() ? "." : dir);
+}
+
+ParametricSystem load_parametric_system(const std::string& path) {
+  const io::json j = io::read_json_file(path);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return io::parametric_system_from_json(j, path, dir.empty() ? "." : dir);
+}
+
+bool file_declares_parameter(const std::string& path) {
+  return io::declares_parameter(io::read_json_file(path));
+}
+
+std::string system_json(const System& system, int indent) {
+  return io::system_to_json(system).dump(indent) + "\n";
+}
+
+std::string parametric_system_json(const ParametricSystem& system, int indent) {
+  return io::parametric_system_to_json(system).dump(indent) + "\n";
+}
+
+}  // namespace spp
