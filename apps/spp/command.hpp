@@ -1,0 +1,35 @@
+#pragma once
+// The spp command line: one file per subcommand (solve.cpp, continue.cpp, ...), each registering its options on the
+// application and returning how to run it. Exit codes: 0 success, 1 invalid input or failed run (message on stderr),
+// 3 verify: a simulation disagrees with the solver's admissibility.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+namespace spp::cli {
+
+/// A registered subcommand: run() is called when the user chose it (after parsing); returns the exit code.
+struct Subcommand {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Subcommand add_solve(CLI::App& app);
+Subcommand add_continue(CLI::App& app);
+Subcommand add_trajectory(CLI::App& app);
+Subcommand add_simulate(CLI::App& app);
+Subcommand add_verify(CLI::App& app);
+/// plot and animate: delegated to the Python package (python3 -m spp plot|animate).
+std::vector<Subcommand> add_figures(CLI::App& app);
+Subcommand add_generate(CLI::App& app);
+
+/// An output file named by option `opt`: refused before any work when it is one of the inputs (it would be replaced by
+/// the output) or when its directory does not exist (the work would be lost at the end).
+void check_output(const std::string& out, const std::string& opt, std::initializer_list<std::string> inputs);
+/// "1,2.5,3" -> {1, 2.5, 3}; anything else is refused naming the option.
+std::vector<double> parse_list(const std::string& s, const char* opt);
+
+}  // namespace spp::cli

@@ -1,0 +1,39 @@
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "command.hpp"
+
+namespace spp::cli {
+
+void check_output(const std::string& out, const std::string& opt, std::initializer_list<std::string> inputs) {
+  namespace fs = std::filesystem;
+  if (out.empty()) return;
+  std::error_code ec;
+  for (const std::string& in : inputs)
+    if (!in.empty() && fs::exists(out, ec) && fs::equivalent(out, in, ec))
+      throw std::invalid_argument(opt + ": \"" + out + "\" is the input file \"" + in +
+                                  "\": write the output to another file");
+  const fs::path dir = fs::path(out).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec))
+    throw std::invalid_argument(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
+}
+
+std::vector<double> parse_list(const std::string& s, const char* opt) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      size_t pos = 0;
+      v.push_back(std::stod(item, &pos));
+      if (pos != item.size()) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + s + "\"");
+    }
+  }
+  if (v.empty()) throw std::invalid_argument(std::string(opt) + ": expected at least one number");
+  return v;
+}
+
+}  // namespace spp::cli

@@ -1,0 +1,69 @@
+// spp plot and spp animate: delegated to the Python package (python3 -m spp plot|animate), which draws with matplotlib.
+#include <unistd.h>
+
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+
+#include "command.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+// Replaces this process by /usr/bin/python3 -m spp <args>, the build tree's package first on the path, then wherever
+// Debian's python3 finds an installed one. Returns only on failure.
+[[noreturn]] void exec_python(std::vector<std::string> args) {
+  const char* old = std::getenv("PYTHONPATH");
+  const std::string path = std::string(SPP_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+  ::setenv("PYTHONPATH", path.c_str(), 1);
+  args.insert(args.begin(), {"/usr/bin/python3", "-m", "spp"});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  ::execv(argv[0], argv.data());
+  throw std::runtime_error("cannot run /usr/bin/python3 for spp " + args[3] + " (install python3 and the spp package)");
+}
+
+struct PlotArgs {
+  std::string result, out, formats = "png,svg";
+  int points = 400;
+};
+
+struct AnimateArgs {
+  std::string result, out, layout = "auto";
+  int solution = -1, frames = 120, periods = 1, fps = 25, dpi = 80;
+};
+
+}  // namespace
+
+std::vector<Subcommand> add_figures(CLI::App& app) {
+  auto p = std::make_shared<PlotArgs>();
+  auto* plot = app.add_subcommand("plot", "figures of a result: root map, one per admissible SPP, frequency-energy");
+  plot->add_option("result", p->result, "result JSON of spp solve")->required();
+  plot->add_option("--out", p->out, "output directory")->required();
+  plot->add_option("--formats", p->formats, "comma-separated png, svg, pdf (default png,svg)");
+  plot->add_option("--root-map-points", p->points, "root map grid points per axis; 0: no root map (default 400)");
+  auto a = std::make_shared<AnimateArgs>();
+  auto* anim = app.add_subcommand("animate", "animation of one SPP of a result (GIF, or MP4 with ffmpeg)");
+  anim->add_option("result", a->result, "result JSON of spp solve")->required();
+  anim->add_option("--solution", a->solution, "index of the solution in the result (default: first admissible)");
+  anim->add_option("--out", a->out, "output file, .gif or .mp4")->required();
+  anim->add_option("--frames", a->frames, "frames per period (default 120)");
+  anim->add_option("--periods", a->periods, "periods shown (default 1)");
+  anim->add_option("--fps", a->fps, "frames per second (default 25)");
+  anim->add_option("--dpi", a->dpi, "resolution: the frame is 6.4 x 4.8 inches (default 80: 512 x 384)");
+  anim->add_option("--layout", a->layout, "auto, chain, plane or dofs (default auto: from M, K and w)");
+  auto run_plot = [p]() -> int {
+    exec_python({"plot", p->result, "--out", p->out, "--formats", p->formats, "--root-map-points",
+                 std::to_string(p->points)});
+  };
+  auto run_animate = [a]() -> int {
+    exec_python({"animate", a->result, "--out", a->out, "--solution", std::to_string(a->solution), "--frames",
+                 std::to_string(a->frames), "--periods", std::to_string(a->periods), "--fps", std::to_string(a->fps),
+                 "--dpi", std::to_string(a->dpi), "--layout", a->layout});
+  };
+  return {{plot, run_plot}, {anim, run_animate}};
+}
+
+}  // namespace spp::cli

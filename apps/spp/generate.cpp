@@ -1,0 +1,100 @@
+// spp generate: system files of the paper's models (chain, rod, two-dof), optionally with one value left free as the
+// parameter of a parametric system.
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "command.hpp"
+#include "spp/generators.hpp"
+#include "spp/io.hpp"
+#include "spp/parametric.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+struct GenerateArgs {
+  std::string out, parameter, range;
+  CLI::App *chain = nullptr, *rod = nullptr;
+  int n = 5, contact_dof = 0;  // contact_dof 1-based, 0: the last
+  std::string masses = "1", stiffnesses = "1", side = "upper";
+  double chain_g0 = 1.0;
+  double a = -0.25, b = 0.25;
+  double m1 = 1, m2 = 1, k1 = 1, k2 = 1, two_dof_g0 = 1;
+};
+
+// The chosen generator with the value named `free->first` (if any) replaced by `free->second`.
+System make(const GenerateArgs& g, const std::optional<std::pair<std::string, double>>& free) {
+  auto take = [&](const std::string& name, double value) { return free && free->first == name ? free->second : value; };
+  if (*g.chain) {
+    std::vector<double> ms = parse_list(g.masses, "--masses"), ks = parse_list(g.stiffnesses, "--stiffnesses");
+    if (ms.size() == 1) ms.assign(static_cast<size_t>(g.n), ms[0]);
+    if (ks.size() == 1) ks.assign(static_cast<size_t>(g.n), ks[0]);
+    for (size_t i = 0; i < ms.size(); ++i) ms[i] = take("m" + std::to_string(i + 1), ms[i]);
+    for (size_t i = 0; i < ks.size(); ++i) ks[i] = take("k" + std::to_string(i + 1), ks[i]);
+    const int dof = g.contact_dof == 0 ? g.n - 1 : g.contact_dof - 1;
+    return chain(g.n, ms, ks, dof, g.side == "upper" ? ContactSide::Upper : ContactSide::Lower, g.chain_g0);
+  }
+  if (*g.rod) return rod_with_slip(g.a, g.b);
+  return two_dof(take("m1", g.m1), take("m2", g.m2), take("k1", g.k1), take("k2", g.k2), g.two_dof_g0);
+}
+
+int run(const GenerateArgs& g) {
+  if (g.parameter.empty() && g.range.empty()) {
+    const System sys = make(g, std::nullopt);
+    write_file_atomic(g.out, system_json(sys));
+    std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ") to " << g.out << "\n";
+    return 0;
+  }
+  if (g.parameter.empty() || g.range.empty()) throw std::invalid_argument("generate: --parameter and --range go together");
+  const std::vector<double> range = parse_list(g.range, "--range");
+  if (range.size() != 2) throw std::invalid_argument("--range: expected MIN,MAX, got \"" + g.range + "\"");
+  const int n = *g.chain ? g.n : 2;
+  bool known = false;
+  for (int i = 1; i <= n; ++i) known |= g.parameter == "m" + std::to_string(i) || g.parameter == "k" + std::to_string(i);
+  if (!known)
+    throw std::invalid_argument("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) + ", got \"" +
+                                g.parameter + "\"");
+  const ParametricSystem ps =
+      parametrize([&](double v) { return make(g, std::make_pair(g.parameter, v)); }, {g.parameter, range[0], range[1]});
+  write_file_atomic(g.out, parametric_system_json(ps));
+  std::cout << "wrote " << ps.name() << " (n = " << ps.n() << ", " << g.parameter << " in [" << range[0] << ", "
+            << range[1] << "]) to " << g.out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+Subcommand add_generate(CLI::App& app) {
+  auto g = std::make_shared<GenerateArgs>();
+  auto* gen = app.add_subcommand("generate", "write a system JSON for one of the paper's models");
+  gen->require_subcommand(1);
+  g->chain = gen->add_subcommand("chain", "spring-mass chain fixed at one end (paper §5.2)");
+  g->chain->add_option("--n", g->n, "number of masses")->check(CLI::Range(1, 100000));
+  g->chain->add_option("--masses", g->masses, "one value or n comma-separated values");
+  g->chain->add_option("--stiffnesses", g->stiffnesses,
+                       "one value or n comma-separated values (k1 ties mass 1 to ground)");
+  g->chain->add_option("--contact-dof", g->contact_dof, "1-based dof that meets the obstacle (default: the last)");
+  g->chain->add_option("--side", g->side, "obstacle above (upper: g = g0 - x) or below (lower: g = g0 + x)")
+      ->check(CLI::IsMember({"upper", "lower"}));
+  g->chain->add_option("--g0", g->chain_g0, "gap at rest");
+  g->chain->add_option("--out", g->out, "output JSON")->required();
+  g->chain->add_option("--parameter", g->parameter, "leave one value free: m<i> or k<i> (1-based); needs --range");
+  g->chain->add_option("--range", g->range, "MIN,MAX of the --parameter");
+  g->rod = gen->add_subcommand("rod", "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b");
+  g->rod->add_option("--a", g->a, "slope of the obstacle line");
+  g->rod->add_option("--b", g->b, "intercept of the obstacle line");
+  g->rod->add_option("--out", g->out, "output JSON")->required();
+  auto* two = gen->add_subcommand("two-dof", "2-dof system of paper §2.3");
+  two->add_option("--m1", g->m1);
+  two->add_option("--m2", g->m2);
+  two->add_option("--k1", g->k1);
+  two->add_option("--k2", g->k2);
+  two->add_option("--g0", g->two_dof_g0);
+  two->add_option("--out", g->out, "output JSON")->required();
+  two->add_option("--parameter", g->parameter, "leave one value free: m1, m2, k1 or k2; needs --range");
+  two->add_option("--range", g->range, "MIN,MAX of the --parameter");
+  return {gen, [g] { return run(*g); }};
+}
+
+}  // namespace spp::cli

@@ -1,0 +1,107 @@
+// spp solve: every SPP of a window (or, for a parametric system with g0 = 0, of (t1, t2, parameter), paper §6.1).
+#include <iostream>
+#include <memory>
+
+#include "command.hpp"
+#include "spp/continuation.hpp"
+#include "spp/io.hpp"
+#include "spp/solver.hpp"
+#include "tables.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+struct SolveArgs {
+  std::string system, json, csv, symmetry = "axial";
+  SolveOptions options;
+  bool quiet = false;
+  double at = 0.0;
+  CLI::Option* at_given = nullptr;
+};
+
+// A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
+int run_zero_gap(const SolveArgs& a) {
+  const ParametricSystem ps = load_parametric_system(a.system);
+  if (ps.g0() != 0.0)
+    throw std::invalid_argument(a.system + ": a parametric system with g0 != 0: give --at VALUE of \"" +
+                                ps.parameter().name + "\", or follow its SPPs with spp continue");
+  if (!a.csv.empty()) throw std::invalid_argument("--csv: not available for the g0 = 0 solve (use --json)");
+  ContinueOptions co;
+  co.t1_max = a.options.t1_max;
+  co.t2_max = a.options.t2_max;
+  co.t1_min = a.options.t1_min;
+  co.t2_min = a.options.t2_min;
+  co.threads = a.options.threads;
+  co.symmetry = a.options.symmetry;
+  const ContinuationResult cr = continue_branches(ps, co);
+  const std::string json_text = a.json.empty() ? "" : zero_gap_json(ps, cr);
+  if (!a.quiet) std::cout << zero_gap_table(cr);
+  std::cout << "spp: g0 = 0, solved for (t1, t2, " << ps.parameter().name << "): " << gap_closures(cr).size()
+            << (a.options.symmetry == Symmetry::Point ? " point-symmetric potential SPPs with " : " SPPs with ")
+            << ps.parameter().name << " in [" << ps.parameter().min << ", " << ps.parameter().max << "] ("
+            << cr.brief_report() << ")\n";
+  for (const auto& w : cr.warnings) std::cerr << "warning: " << w << "\n";
+  if (!a.json.empty()) write_file_atomic(a.json, json_text);
+  return 0;
+}
+
+int run(SolveArgs& a) {
+  a.options.symmetry = a.symmetry == "point" ? Symmetry::Point : Symmetry::Axial;
+  a.options.validate();
+  check_output(a.json, "--json", {a.system});
+  check_output(a.csv, "--csv", {a.system, a.json});
+  const bool parametric = file_declares_parameter(a.system);
+  const bool at_given = a.at_given->count() > 0;
+  if (!parametric && at_given)
+    throw std::invalid_argument("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
+  if (parametric && !at_given) return run_zero_gap(a);
+  const System sys = parametric ? load_parametric_system(a.system).at(a.at) : load_system(a.system);
+  const SolveResult res = solve(sys, a.options);
+  // prepare every output before writing any
+  const std::string json_text = a.json.empty() ? "" : result_json(sys, res);
+  const std::string csv_text = a.csv.empty() ? "" : result_to_csv(res);
+  if (sys.w_input_norm() != 1.0)
+    std::cerr << "note: w was normalised (|w| = " << sys.w_input_norm() << "); g0 divided by it: g0 = " << sys.g0()
+              << "\n";
+  if (!a.quiet) std::cout << result_table(res);
+  std::cout << res.brief_report() << "\n";
+  for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
+  if (!a.json.empty()) write_file_atomic(a.json, json_text);
+  if (!a.csv.empty()) write_file_atomic(a.csv, csv_text);
+  return 0;
+}
+
+}  // namespace
+
+Subcommand add_solve(CLI::App& app) {
+  auto a = std::make_shared<SolveArgs>();
+  auto* s = app.add_subcommand("solve", "find every SPP whose half-durations lie in a window");
+  SolveOptions& o = a->options;
+  s->add_option("system", a->system, "system JSON file")->required();
+  s->add_option("--t1-max", o.t1_max, "largest flight half-duration t1")->required();
+  s->add_option("--t2-max", o.t2_max, "largest contact half-duration t2")->required();
+  s->add_option("--t1-min", o.t1_min, "smallest t1 (default: 1e-4 pi / (2 omega_max))");
+  s->add_option("--t2-min", o.t2_min, "smallest t2 (default: 1e-4 pi / (2 d_max))");
+  s->add_option("--json", a->json, "write the result as JSON");
+  s->add_option("--csv", a->csv, "write the solutions as CSV");
+  s->add_flag("--admissible-only", o.admissible_only, "keep only admissible SPPs");
+  s->add_flag("--quiet", a->quiet, "print only the one-line summary");
+  s->add_option("--threads", o.threads, "worker threads (default 0: all hardware threads)");
+  s->add_option("--max-cells", o.max_cells,
+                "refuse windows holding more cells between pole lines than this (default 1e7)")
+      ->check(CLI::PositiveNumber);
+  s->add_flag("--certify-steps", o.certify_steps,
+              "prove every trace step (drift, curvature or onset-inertia bound; 5-10x the evaluations); Incomplete "
+              "unless all are");
+  s->add_option("--symmetry", a->symmetry,
+                "axial: the SPPs (default); point: the point-symmetric potential SPPs of det T2 = 0 (paper §6.2, "
+                "never admissible, a moving obstacle)")
+      ->check(CLI::IsMember({"axial", "point"}));
+  a->at_given = s->add_option("--at", a->at,
+                              "parametric system: solve at this parameter value (without it, a parametric system "
+                              "with g0 = 0 is solved for (t1, t2, parameter), paper §6.1)");
+  return {s, [a] { return run(*a); }};
+}
+
+}  // namespace spp::cli

@@ -1,0 +1,82 @@
+// spp trajectory: one period of an SPP (of a result file, or the nearest to a guess) as CSV.
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "command.hpp"
+#include "spp/io.hpp"
+#include "spp/modal.hpp"
+#include "spp/solver.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+struct TrajectoryArgs {
+  std::string system, csv, result;
+  double t1 = 0, t2 = 0, radius = 0.05;
+  int samples = 1001, solution = -1;
+  CLI::Option* t1_given = nullptr;
+};
+
+int run(TrajectoryArgs& a) {
+  check_output(a.csv, "--csv", {a.system, a.result});
+  const System sys = load_system(a.system);
+  if (!a.result.empty()) {
+    if (a.solution < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
+    const std::vector<SppCandidate> sols = load_result_candidates(a.result);
+    if (static_cast<size_t>(a.solution) >= sols.size())
+      throw std::invalid_argument(a.result + ": --solution " + std::to_string(a.solution) +
+                                  " out of range, the file has " + std::to_string(sols.size()) + " solutions");
+    a.t1 = sols[static_cast<size_t>(a.solution)].t1;
+    a.t2 = sols[static_cast<size_t>(a.solution)].t2;
+  } else if (a.t1_given->count() == 0) {
+    throw std::invalid_argument("trajectory: give --t1 and --t2, or --result and --solution");
+  }
+  SolveOptions o;
+  o.compute_return_error = false;
+  Solution s;
+  if (!a.result.empty()) {
+    s = solution_at(sys, a.t1, a.t2, o);  // an SPP of a result file: polish it where it is
+  } else {  // a guess (e.g. read off the root map): the complete solver around it, then the nearest SPP
+    const NearestSpp near = nearest_spp(sys, a.t1, a.t2, a.radius, o);
+    if (!near.found) {
+      std::ostringstream os;
+      os << "trajectory: no SPP near (t1, t2) = (" << a.t1 << ", " << a.t2 << "): the window (" << near.t1_lo << ", "
+         << near.t1_hi << "] x (" << near.t2_lo << ", " << near.t2_hi << "] holds none (search "
+         << to_string(near.search_status) << "); widen it with --radius";
+      throw std::invalid_argument(os.str());
+    }
+    s = near.solution;
+    if (near.search_status != SolveStatus::Success)
+      std::cerr << "warning: the search around the guess ended " << to_string(near.search_status) << "\n";
+  }
+  const ModalForm md(sys);
+  write_file_atomic(a.csv, trajectory_csv(md, s.orbit, a.samples));
+  std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period << ", "
+            << (s.admissible ? "admissible" : "not admissible") << ") written to " << a.csv << "\n";
+  return 0;
+}
+
+}  // namespace
+
+Subcommand add_trajectory(CLI::App& app) {
+  auto a = std::make_shared<TrajectoryArgs>();
+  auto* t = app.add_subcommand("trajectory", "sample one period of an SPP: t, x, v, gap, force");
+  t->add_option("system", a->system, "system JSON file")->required();
+  a->t1_given = t->add_option("--t1", a->t1, "flight half-duration (refined to the nearest SPP)");
+  auto* t2 = t->add_option("--t2", a->t2, "contact half-duration (refined to the nearest SPP)");
+  t->add_option("--radius", a->radius,
+                "with --t1/--t2: relative half-width of the window searched around the guess (default 0.05)")
+      ->check(CLI::Range(1e-12, 0.999));
+  auto* res = t->add_option("--result", a->result, "result JSON of spp solve");
+  t->add_option("--solution", a->solution, "index of the solution in --result");
+  t->add_option("--csv", a->csv, "output CSV")->required();
+  t->add_option("--samples", a->samples, "number of samples over one period")->check(CLI::Range(2, 10000000));
+  a->t1_given->needs(t2);
+  t2->needs(a->t1_given);
+  res->excludes(a->t1_given);
+  return {t, [a] { return run(*a); }};
+}
+
+}  // namespace spp::cli

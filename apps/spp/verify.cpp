@@ -1,0 +1,44 @@
+// spp verify: every SPP of a result re-simulated by the exact event-driven simulator.
+#include <iostream>
+#include <memory>
+
+#include "command.hpp"
+#include "spp/io.hpp"
+#include "spp/verify.hpp"
+#include "tables.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+struct VerifyArgs {
+  std::string result, json;
+  VerifyOptions options;
+};
+
+int run(const VerifyArgs& a) {
+  check_output(a.json, "--json", {a.result});
+  const System sys = load_result_system(a.result);
+  const std::vector<SppCandidate> spps = load_result_candidates(a.result);
+  const VerifyResult r = verify(sys, spps, a.options);
+  const std::string json_text = a.json.empty() ? "" : verify_json(r);
+  std::cout << verify_table(r) << r.brief_report() << "\n";
+  if (!a.json.empty()) write_file_atomic(a.json, json_text);
+  return r.all_consistent() ? 0 : 3;
+}
+
+}  // namespace
+
+Subcommand add_verify(CLI::App& app) {
+  auto a = std::make_shared<VerifyArgs>();
+  auto* v = app.add_subcommand("verify", "re-simulate every SPP of a result and check it");
+  v->add_option("result", a->result, "result JSON of spp solve")->required();
+  v->add_option("--periods", a->options.periods, "simulated periods (default 1)");
+  v->add_option("--perturb", a->options.perturbation,
+                "relative size of a perturbation of the mid-flight state of each returning SPP");
+  v->add_option("--restitution", a->options.restitution, "Newton's coefficient e for the simulations (default 0)");
+  v->add_option("--json", a->json, "write the verification as JSON");
+  return {v, [a] { return run(*a); }};
+}
+
+}  // namespace spp::cli
