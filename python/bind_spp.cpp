@@ -296,6 +296,11 @@ PYBIND11_MODULE(_spp, m) {
           },
           "(N, 4): mu, t1, t2, margin of every point");
   py::class_<spp::ContinuationResult>(m, "ContinuationResult")
+      .def_property_readonly("status",
+                             [](const spp::ContinuationResult& r) { return std::string(spp::to_string(r.status)); })
+      .def_readonly("incomplete_seed_solves", &spp::ContinuationResult::incomplete_seed_solves)
+      .def_readonly("stalled_branches", &spp::ContinuationResult::stalled_branches)
+      .def_readonly("unlisted_crossings", &spp::ContinuationResult::unlisted_crossings)
       .def_readonly("branches", &spp::ContinuationResult::branches)
       .def_readonly("warnings", &spp::ContinuationResult::warnings)
       .def("brief_report", &spp::ContinuationResult::brief_report)
@@ -332,6 +337,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period);
 
   py::class_<spp::VerifyResult>(m, "VerifyResult")
+      .def_property_readonly("status", [](const spp::VerifyResult& r) { return std::string(spp::to_string(r.status)); })
       .def_readonly("checks", &spp::VerifyResult::checks)
       .def_readonly("returned", &spp::VerifyResult::returned)
       .def_readonly("left", &spp::VerifyResult::left)

@@ -48,6 +48,10 @@ const char* to_string(BranchEventKind k) {
   return "?";
 }
 
+const char* to_string(ContinuationStatus s) {
+  return s == ContinuationStatus::Success ? "success" : "incomplete";
+}
+
 std::string ContinuationResult::brief_report() const {
   long points = 0;
   std::map<std::string, int> kinds;
@@ -56,11 +60,15 @@ std::string ContinuationResult::brief_report() const {
     for (const BranchEvent& e : b.events) ++kinds[to_string(e.kind)];
   }
   std::ostringstream os;
-  os << "continue: " << branches.size() << " branches, " << points << " points over " << parameter.name << " in ["
+  os << "continue: " << to_string(status) << ", " << branches.size() << " branches, " << points << " points over " << parameter.name << " in ["
      << parameter.min << ", " << parameter.max << "]; events:";
   if (kinds.empty()) os << " none";
   for (const auto& [k, c] : kinds) os << " " << c << " " << k;
-  os << "; " << seed_spps << " seed SPPs, " << seed_crossings << " seed crossings; " << warnings.size() << " warnings; "
+  os << "; " << seed_spps << " seed SPPs, " << seed_crossings << " seed crossings; ";
+  if (incomplete_seed_solves) os << incomplete_seed_solves << " incomplete seed solves, ";
+  if (stalled_branches) os << stalled_branches << " stalled branch ends, ";
+  if (unlisted_crossings) os << unlisted_crossings << " unlisted crossings, ";
+  os << warnings.size() << " warnings; "
      << corrector_solves << " corrector solves, " << seconds << " s";
   return os.str();
 }
@@ -507,6 +515,7 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
     System s = ps.at(seed_mu[k]);
     if (free_scale) s = System(s.M(), s.K(), s.w(), 1.0, s.name());
     SolveResult r = solve(s, so);
+    if (r.status != SolveStatus::Success) ++res.incomplete_seed_solves;
     if (r.status != SolveStatus::Success)
       res.warnings.push_back("solve at " + par.name + " = " + std::to_string(seed_mu[k]) + ": " + r.brief_report());
     res.seed_spps += static_cast<long>(r.solutions.size());
@@ -567,12 +576,17 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
     if (found) {
       ++res.seed_crossings;
     } else {
+      ++res.unlisted_crossings;
       std::ostringstream os;
       os << "a branch crosses " << par.name << " = " << seed_mu[c.seed] << " at (t1, t2) = (" << c.t1 << ", " << c.t2
          << "), which solve() there does not list";
       res.warnings.push_back(os.str());
     }
   }
+  for (const Branch& b : res.branches)
+    for (const BranchEvent& e : b.events) res.stalled_branches += e.kind == BranchEventKind::Stalled;
+  const bool complete = res.incomplete_seed_solves == 0 && res.stalled_branches == 0 && res.unlisted_crossings == 0;
+  res.status = complete ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
   res.corrector_solves = tr.corrector_solves;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return res;

@@ -165,9 +165,13 @@ std::string to_string(Verdict v) {
   return v == Verdict::Returns ? "returns" : "leaves";
 }
 
+const char* to_string(VerifyStatus s) {
+  return s == VerifyStatus::Success ? "success" : "inconsistent";
+}
+
 std::string VerifyResult::brief_report() const {
   std::ostringstream os;
-  os << "verify: " << checks.size() << " SPPs, " << returned << " return to their initial state, " << left
+  os << "verify: " << to_string(status) << ", " << checks.size() << " SPPs, " << returned << " return to their initial state, " << left
      << " leave the orbit; " << inconsistent << " disagree with the solver's admissibility";
   return os.str();
 }
@@ -241,6 +245,7 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
     if (!chk.consistent) ++res.inconsistent;
     res.checks.push_back(std::move(chk));
   }
+  res.status = res.inconsistent == 0 ? VerifyStatus::Success : VerifyStatus::Inconsistent;
   return res;
 }
 

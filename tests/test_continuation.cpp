@@ -72,6 +72,8 @@ TEST(Continuation, BranchesAgreeWithIndependentSolves) {
   const ContinuationResult r = continue_branches(ps, o);
   ASSERT_GT(r.branches.size(), 10u);
   EXPECT_EQ(r.seed_crossings, r.seed_spps);
+  EXPECT_EQ(r.status, ContinuationStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.incomplete_seed_solves + r.stalled_branches + r.unlisted_crossings, 0) << r.brief_report();
   int checked = 0;
   for (double mu : {2.3, 4.9, 7.7}) {  // not seed values
     SolveOptions so;
@@ -159,4 +161,21 @@ TEST(Continuation, FixedObstaclePointSymmetricPotentialSppsOfSection62) {
     EXPECT_LT(p.x0.norm(), 1e-8);
     EXPECT_FALSE(p.admissible);
   }
+}
+
+TEST(Continuation, BranchesCutShortMakeTheResultIncompleteWithTheirCount) {
+  const ParametricSystem ps = paper_61(1.0, 1.0, 10.0);
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  o.max_points = 10;  // the smallest allowed: branches stop after 10 points
+  const ContinuationResult r = continue_branches(ps, o);
+  ASSERT_FALSE(r.branches.empty());
+  EXPECT_EQ(r.status, ContinuationStatus::Incomplete);
+  long stalled = 0;
+  for (const Branch& b : r.branches)
+    for (const BranchEvent& e : b.events) stalled += e.kind == BranchEventKind::Stalled;
+  EXPECT_GT(stalled, 0);
+  EXPECT_EQ(r.stalled_branches, stalled);
+  EXPECT_NE(r.brief_report().find("incomplete"), std::string::npos) << r.brief_report();
 }

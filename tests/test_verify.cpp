@@ -2,6 +2,8 @@
 // and a reason; a perturbation starts at the requested distance from the orbit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "spp/io.hpp"
@@ -32,6 +34,7 @@ TEST(Verify, RodSppsAgreeWithTheSolver) {
   o.periods = 3;
   const VerifyResult r = verify(rod4(), spps, o);
   EXPECT_TRUE(r.all_consistent()) << r.brief_report();
+  EXPECT_EQ(r.status, VerifyStatus::Success);
   EXPECT_EQ(r.returned, 2);
   EXPECT_EQ(r.returned + r.left, static_cast<int>(spps.size()));
   for (const SppCheck& c : r.checks) {
@@ -95,4 +98,15 @@ TEST(Verify, RejectsCandidatesOfTheWrongSize) {
   VerifyOptions o;
   o.periods = 0;
   EXPECT_THROW(verify(chain5(), {}, o), std::invalid_argument);
+}
+
+TEST(Verify, AnSppMislabelledAdmissibleMakesTheResultInconsistent) {
+  auto spps = spps_of(rod4(), 8.0, 3.0);
+  const auto leaving = std::find_if(spps.begin(), spps.end(), [](const SppCandidate& c) { return !c.admissible; });
+  ASSERT_NE(leaving, spps.end());
+  leaving->admissible = true;  // the simulation will leave it: it disagrees with this label
+  const VerifyResult r = verify(rod4(), spps, VerifyOptions{});
+  EXPECT_EQ(r.status, VerifyStatus::Inconsistent) << r.brief_report();
+  EXPECT_EQ(r.inconsistent, 1);
+  EXPECT_FALSE(r.all_consistent());
 }

@@ -76,7 +76,16 @@ struct Branch {
   std::vector<BranchEvent> events;  ///< in the same order
 };
 
+/// Success: every seed solve succeeded, every branch was followed to an end (range end, closed loop, window edge,
+/// fold or admissibility events), and every crossing of a seed value is one of solve()'s SPPs there.
+enum class ContinuationStatus { Success, Incomplete };
+const char* to_string(ContinuationStatus s);
+
 struct ContinuationResult {
+  ContinuationStatus status = ContinuationStatus::Success;
+  long incomplete_seed_solves = 0;  ///< seed solves that ended Incomplete (branches through their misses are lost)
+  long stalled_branches = 0;        ///< branch ends that stalled (step below min_step, max_points, no progress)
+  long unlisted_crossings = 0;      ///< seed-value crossings at a point solve() there does not list
   Parameter parameter;
   Symmetry symmetry = Symmetry::Axial;
   double t1_min = 0.0, t1_max = 0.0, t2_min = 0.0, t2_max = 0.0;
@@ -86,7 +95,7 @@ struct ContinuationResult {
   long seed_crossings = 0;    ///< branch crossings of a seed value, each matched with one of those SPPs
   long corrector_solves = 0;  ///< Newton solves on the branch equations
   double seconds = 0.0;
-  /// One line: branches, points, events by kind, warnings, time.
+  /// One line: status, branches, points, events by kind, counted causes, warnings, time.
   std::string brief_report() const;
 };
 

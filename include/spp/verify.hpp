@@ -57,7 +57,13 @@ struct SppCheck {
   double growth_per_period = 0.0;
 };
 
+/// Success: every simulation agrees with the solver's admissibility (an admissible SPP returns, an inadmissible one
+/// leaves); Inconsistent: at least one disagrees (spp verify exits 3).
+enum class VerifyStatus { Success, Inconsistent };
+const char* to_string(VerifyStatus s);
+
 struct VerifyResult {
+  VerifyStatus status = VerifyStatus::Success;
   std::vector<SppCheck> checks;
   int returned = 0, left = 0, inconsistent = 0;
   bool all_consistent() const { return inconsistent == 0; }

@@ -30,7 +30,11 @@ json continuation_to_json(const ParametricSystem& s, const ContinuationResult& r
   j["symmetry"] = to_string(r.symmetry);
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["warnings"] = r.warnings;
+  j["status"] = to_string(r.status);
   j["stats"] = {{"seed_spps", r.seed_spps},
+                {"incomplete_seed_solves", r.incomplete_seed_solves},
+                {"stalled_branches", r.stalled_branches},
+                {"unlisted_crossings", r.unlisted_crossings},
                 {"seed_crossings", r.seed_crossings},
                 {"corrector_solves", r.corrector_solves},
                 {"seconds", r.seconds}};
@@ -57,7 +61,7 @@ json zero_gap_to_json(const ParametricSystem& s, const ContinuationResult& r) {
   json j;
   j["system"] = parametric_system_to_json(s);
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
-  j["status"] = r.warnings.empty() ? "success" : "incomplete";
+  j["status"] = to_string(r.status);
   j["symmetry"] = to_string(r.symmetry);
   j["warnings"] = r.warnings;
   j["normalization"] = "unit energy (g0 = 0: eq. 5.2 leaves the scale free); the sign that makes the force >= 0";
@@ -93,7 +97,8 @@ json verify_to_json(const VerifyResult& r) {
     }
     checks.push_back(o);
   }
-  return {{"checks", checks},
+  return {{"status", to_string(r.status)},
+          {"checks", checks},
           {"returned", r.returned},
           {"left", r.left},
           {"inconsistent", r.inconsistent},
