@@ -1,4 +1,5 @@
 #include "spp/solver.hpp"
+#include "spp/detail/invalid.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -100,6 +101,16 @@ void require_positive_guess(const char* who, double t1, double t2) {
 }
 
 // g0 = 0 is refused by every entry point with the same message.
+// The modal form given with a system must be that system's (computed by ModalForm(system)).
+void require_modal_of(const System& system, const ModalForm& modal, const char* where) {
+  if (modal.n() != system.n() || modal.g0() != system.g0()) {
+    std::ostringstream os;
+    os << where << ": the modal form given is not that of the system (n = " << modal.n() << ", g0 = " << modal.g0()
+       << " against n = " << system.n() << ", g0 = " << system.g0() << "): pass ModalForm(system)";
+    detail::invalid(os.str());
+  }
+}
+
 void require_nonzero_gap(const System& system) {
   if (system.g0() == 0.0)
     throw std::invalid_argument(
@@ -153,7 +164,13 @@ std::pair<double, double> axis_band(const ModalForm& md) {
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
   require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
-  const ModalForm md(system);
+  return solution_at(system, ModalForm(system), t1, t2, options);
+}
+
+Solution solution_at(const System& system, const ModalForm& md, double t1, double t2, const SolveOptions& options) {
+  require_positive_guess("solution_at", t1, t2);
+  require_nonzero_gap(system);
+  require_modal_of(system, md, "solution_at");
   const Polished p = polish(md, t1, t2, Vec(), options.symmetry);
   if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > search::kPolishReach * (t1 + t2)) {
     std::ostringstream os;
@@ -329,9 +346,15 @@ void finalize(const SolveOptions& options, SolveResult& res) {
 SolveResult solve(const System& system, const SolveOptions& options) {
   options.validate();
   require_nonzero_gap(system);
+  return solve(system, ModalForm(system), options);
+}
+
+SolveResult solve(const System& system, const ModalForm& md, const SolveOptions& options) {
+  options.validate();
+  require_nonzero_gap(system);
+  require_modal_of(system, md, "solve");
   const auto t0 = std::chrono::steady_clock::now();
   SolveResult res;
-  const ModalForm md(system);
   res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
   res.repeated_groups = md.repeated_groups();
   res.symmetry = options.symmetry;
@@ -366,6 +389,13 @@ SolveResult solve(const System& system, const SolveOptions& options) {
 
 NearestSpp nearest_spp(const System& system, double t1, double t2, double radius, const SolveOptions& options) {
   require_positive_guess("nearest_spp", t1, t2);
+  require_nonzero_gap(system);
+  return nearest_spp(system, ModalForm(system), t1, t2, radius, options);
+}
+
+NearestSpp nearest_spp(const System& system, const ModalForm& modal, double t1, double t2, double radius,
+                       const SolveOptions& options) {
+  require_positive_guess("nearest_spp", t1, t2);
   if (!(radius > 0 && radius < 1)) {
     std::ostringstream os;
     os << "nearest_spp: radius must be in (0, 1), got " << radius;
@@ -377,7 +407,7 @@ NearestSpp nearest_spp(const System& system, double t1, double t2, double radius
   o.t2_min = t2 * (1 - radius);
   o.t2_max = t2 * (1 + radius);
   o.admissible_only = false;
-  const SolveResult r = solve(system, o);
+  const SolveResult r = solve(system, modal, o);
   NearestSpp out;
   out.search_status = r.status;
   out.t1_lo = o.t1_min;

@@ -22,6 +22,7 @@ struct TrajectoryArgs {
 int run(TrajectoryArgs& a) {
   check_output(a.csv, "--csv", {a.system, a.result});
   const System sys = load_system(a.system);
+  const ModalForm md(sys);  // once, for the search and the samples
   if (!a.result.empty()) {
     if (a.solution < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
     const std::vector<SppCandidate> sols = load_result_candidates(a.result);
@@ -37,9 +38,9 @@ int run(TrajectoryArgs& a) {
   o.compute_return_error = false;
   Solution s;
   if (!a.result.empty()) {
-    s = solution_at(sys, a.t1, a.t2, o);  // an SPP of a result file: polish it where it is
+    s = solution_at(sys, md, a.t1, a.t2, o);  // an SPP of a result file: polish it where it is
   } else {  // a guess (e.g. read off the root map): the complete solver around it, then the nearest SPP
-    const NearestSpp near = nearest_spp(sys, a.t1, a.t2, a.radius, o);
+    const NearestSpp near = nearest_spp(sys, md, a.t1, a.t2, a.radius, o);
     if (!near.found) {
       std::ostringstream os;
       os << "trajectory: no SPP near (t1, t2) = (" << a.t1 << ", " << a.t2 << "): the window (" << near.t1_lo << ", "
@@ -51,7 +52,6 @@ int run(TrajectoryArgs& a) {
     if (near.search_status != SolveStatus::Success)
       std::cerr << "warning: the search around the guess ended " << to_string(near.search_status) << "\n";
   }
-  const ModalForm md(sys);
   write_file_atomic(a.csv, trajectory_csv(md, s.orbit, a.samples));
   std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period << ", "
             << (s.admissible ? "admissible" : "not admissible") << ") written to " << a.csv << "\n";
