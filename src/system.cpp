@@ -104,6 +104,25 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
   }
 }
 
+System System::normalized(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, double input_norm,
+                          std::string name) {
+  if (!(std::abs(w.stableNorm() - 1.0) <= 1e-12)) {
+    std::ostringstream os;
+    os << "system: a stored (normalised) w must have |w| = 1, got |w| = " << w.stableNorm();
+    detail::invalid(os.str());
+  }
+  if (!(input_norm > 0.0 && std::isfinite(input_norm))) {
+    std::ostringstream os;
+    os << "system: w_input_norm must be positive and finite, got " << input_norm;
+    detail::invalid(os.str());
+  }
+  System s(std::move(M), std::move(K), w, g0, std::move(name));  // validates (and normalises a copy)
+  s.w_ = std::move(w);
+  s.g0_ = g0;
+  s.w_input_norm_ = input_norm;
+  return s;
+}
+
 Eigen::MatrixXd System::contact_stiffness() const {
   // eq. (2.4): K~ = (I - w w^T M^{-1} / (w^T M^{-1} w)) K
   const Eigen::VectorXd Minv_w = M_.llt().solve(w_);

@@ -411,7 +411,16 @@ TEST(Cli, InputThatCannotFoolIt) {
   const std::string sys = write("same.json", kGood);
   const CliRun same = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + sys);
   EXPECT_EQ(same.code, 1);
-  EXPECT_NE(same.out.find("is the input file"), std::string::npos) << same.out;
+  EXPECT_NE(same.out.find("is also \"" + sys + "\" of this run"), std::string::npos) << same.out;
+  // two outputs of one run to the same path (the JSON was replaced by the CSV), and a list with an empty last item
+  const std::string out = (dir() / "both.out").string();
+  const CliRun both = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + out + " --csv " + out);
+  EXPECT_EQ(both.code, 1);
+  EXPECT_NE(both.out.find("--csv: \"" + out + "\" is also"), std::string::npos) << both.out;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun trailing = run("simulate " + sys + " --x0 0,0, --v0 0,0 --duration 1 --csv " + out);
+  EXPECT_EQ(trailing.code, 1);
+  EXPECT_NE(trailing.out.find("--x0: expected comma-separated numbers"), std::string::npos) << trailing.out;
   const CliRun nodir = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + (dir() / "no_such_dir" / "r.json").string());
   EXPECT_EQ(nodir.code, 1);
   EXPECT_NE(nodir.out.find("does not exist"), std::string::npos) << nodir.out;

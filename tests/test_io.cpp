@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include "spp/generators.hpp"
 #include "io/json.hpp"
@@ -221,6 +222,30 @@ TEST(Io, LoadResultNamesWhatItCannotRead) {
     EXPECT_NE(std::string(e.what()).find("field \"solutions\"[0]: field \"orbit\": field \"p0\"[1] must be a number"),
               std::string::npos)
         << e.what();
+  }
+  fs::remove(p);
+}
+
+TEST(Io, ResultFilesGiveBackTheirSystemBitForBit) {
+  // Regression: the embedded system's w and g0 (stored after dividing by |w|) were normalised again on load, moving
+  // them by an ulp, and the input's |w| was lost (w_input_norm read back as 1).
+  Eigen::MatrixXd M(2, 2), K(2, 2);
+  M << 1, 0, 0, 1;
+  K << 2, -1, -1, 1;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  const std::vector<System> systems = {System(M, K, Eigen::Vector2d(0.0, -2.0), 3.0),
+                                       System(M, K, Eigen::Vector2d(normal(rng), normal(rng)), 1.0 + normal(rng))};
+  const fs::path p = tmpdir() / "system_round_trip.json";
+  for (const System& s : systems) {
+    SolveOptions o;
+    o.t1_max = o.t2_max = 4.0;
+    write_file_atomic(p.string(), result_json(s, solve(s, o)));
+    const System back = load_result_system(p.string());
+    EXPECT_EQ(back.w(), s.w());
+    EXPECT_EQ(back.g0(), s.g0());
+    EXPECT_EQ(back.w_input_norm(), s.w_input_norm());
+    EXPECT_EQ(result_json(back, load_result(p.string())), read_file(p.string()));  // written again: the same text
   }
   fs::remove(p);
 }

@@ -10,10 +10,15 @@ void check_output(const std::string& out, const std::string& opt, std::initializ
   namespace fs = std::filesystem;
   if (out.empty()) return;
   std::error_code ec;
-  for (const std::string& in : inputs)
-    if (!in.empty() && fs::exists(out, ec) && fs::equivalent(out, in, ec))
-      throw std::invalid_argument(opt + ": \"" + out + "\" is the input file \"" + in +
-                                  "\": write the output to another file");
+  for (const std::string& in : inputs) {
+    if (in.empty()) continue;
+    // the same file (a link, ./x), or the same path not written yet (two outputs of one run)
+    const bool same = (fs::exists(out, ec) && fs::equivalent(out, in, ec)) ||
+                      fs::weakly_canonical(out, ec) == fs::weakly_canonical(in, ec);
+    if (same)
+      throw std::invalid_argument(opt + ": \"" + out + "\" is also \"" + in + "\" of this run: write the output to "
+                                  "another file");
+  }
   const fs::path dir = fs::path(out).parent_path();
   if (!dir.empty() && !fs::is_directory(dir, ec))
     throw std::invalid_argument(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
@@ -23,6 +28,8 @@ std::vector<double> parse_list(const std::string& s, const char* opt) {
   std::vector<double> v;
   std::stringstream ss(s);
   std::string item;
+  if (!s.empty() && s.back() == ',')  // getline drops an empty last item
+    throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + s + "\"");
   while (std::getline(ss, item, ',')) {
     try {
       size_t pos = 0;

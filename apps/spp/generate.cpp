@@ -74,7 +74,8 @@ Subcommand add_generate(CLI::App& app) {
   g->chain->add_option("--masses", g->masses, "one value or n comma-separated values");
   g->chain->add_option("--stiffnesses", g->stiffnesses,
                        "one value or n comma-separated values (k1 ties mass 1 to ground)");
-  g->chain->add_option("--contact-dof", g->contact_dof, "1-based dof that meets the obstacle (default: the last)");
+  g->chain->add_option("--contact-dof", g->contact_dof, "1-based dof that meets the obstacle (default: the last)")
+      ->check(CLI::Range(1, 100000));
   g->chain->add_option("--side", g->side, "obstacle above (upper: g = g0 - x) or below (lower: g = g0 + x)")
       ->check(CLI::IsMember({"upper", "lower"}));
   g->chain->add_option("--g0", g->chain_g0, "gap at rest");

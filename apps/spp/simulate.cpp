@@ -18,6 +18,7 @@ struct SimulateArgs {
 
 int run(SimulateArgs& a) {
   check_output(a.csv, "--csv", {a.system});
+  check_output(a.events, "--events", {a.system, a.csv});
   const System sys = load_system(a.system);
   const std::vector<double> x0 = parse_list(a.x0, "--x0"), v0 = parse_list(a.v0, "--v0");
   a.options.validate();

@@ -89,8 +89,7 @@ Subcommand add_solve(CLI::App& app) {
   s->add_flag("--quiet", a->quiet, "print only the one-line summary");
   s->add_option("--threads", o.threads, "worker threads (default 0: all hardware threads)");
   s->add_option("--max-cells", o.max_cells,
-                "refuse windows holding more cells between pole lines than this (default 1e7)")
-      ->check(CLI::PositiveNumber);
+                "refuse windows holding more cells between pole lines than this (default 1e7)");
   s->add_flag("--certify-steps", o.certify_steps,
               "prove every trace step (drift, curvature or onset-inertia bound; 5-10x the evaluations); Incomplete "
               "unless all are");

@@ -27,14 +27,14 @@ std::string verify_table(const VerifyResult& r) {
   const bool perturbed =
       std::any_of(r.checks.begin(), r.checks.end(), [](const SppCheck& c) { return !c.perturbed_distances.empty(); });
   const int periods = r.checks.empty() ? 0 : static_cast<int>(r.checks[0].return_errors.size());
-  os << std::setw(4) << "#" << std::setw(13) << "t1" << std::setw(13) << "t2" << std::setw(12) << "admissible"
+  os << std::setw(4) << "#" << " " << std::setw(13) << "t1" << " " << std::setw(13) << "t2" << std::setw(12) << "admissible"
      << std::setw(14) << "return_err" << std::setw(9) << "verdict";
   if (periods > 1) os << std::setw(10) << "followed" << std::setw(14) << "err_last";
   if (perturbed) os << std::setw(12) << "growth/T";
   os << "  note\n";
   int i = 0;
   for (const SppCheck& c : r.checks) {
-    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(13) << c.candidate.t1 << std::setw(13)
+    os << std::setw(4) << i++ << " " << std::setprecision(8) << std::setw(13) << c.candidate.t1 << " " << std::setw(13)
        << c.candidate.t2 << std::setw(12) << (c.candidate.admissible ? "yes" : "no") << std::setprecision(3)
        << std::setw(14) << (c.return_errors.empty() ? 0.0 : c.return_errors[0]) << std::setw(9) << to_string(c.verdict);
     if (periods > 1)

@@ -15,6 +15,11 @@ class System {
   /// Throws std::invalid_argument naming the field and the rule on any invalid input.
   System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, std::string name = "");
 
+  /// A system stored with w already unit-length (the system a result file embeds): w and g0 are kept bit for bit
+  /// (|w| must be 1 to 1e-12), and input_norm (> 0) is the |w| of the original input. Validated like the constructor.
+  static System normalized(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, double input_norm,
+                           std::string name = "");
+
   int n() const { return static_cast<int>(M_.rows()); }
   const Eigen::MatrixXd& M() const { return M_; }
   const Eigen::MatrixXd& K() const { return K_; }

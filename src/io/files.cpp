@@ -14,6 +14,8 @@ namespace fs = std::filesystem;
 using io::invalid;
 
 std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) invalid("\"" + path + "\" is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) invalid("cannot open \"" + path + "\" for reading");
   std::ostringstream os;

@@ -166,7 +166,16 @@ System result_system(const json& r, const std::string& where) {
     invalid(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
   if (!r.at("system").contains("M") || !r.at("system").contains("K"))
     invalid(where + ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): run spp solve again");
-  return system_from_json(r.at("system"), where + ": field \"system\"");
+  const std::string at = where + ": field \"system\"";
+  const System s = system_from_json(r.at("system"), at);
+  if (!r.at("system").contains("w_input_norm")) return s;
+  // w and g0 as stored (already divided by |w|: normalising them again moves them by an ulp), and the input's |w|.
+  const Reader js{r.at("system"), at};
+  try {
+    return System::normalized(s.M(), s.K(), js.vector("w"), js.number("g0"), js.number("w_input_norm"), s.name());
+  } catch (const std::invalid_argument& e) {
+    invalid(at + ": " + e.what());
+  }
 }
 
 std::vector<SppCandidate> result_candidates(const json& r, const std::string& where) {
