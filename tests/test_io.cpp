@@ -120,6 +120,7 @@ void expect_same_result(const SolveResult& a, const SolveResult& b) {
   EXPECT_EQ(s.unpaired_crossings, t.unpaired_crossings);
   EXPECT_EQ(s.unresolved_pieces, t.unresolved_pieces);
   EXPECT_EQ(s.unpolished_roots, t.unpolished_roots);
+  EXPECT_EQ(s.pole_line_artifacts, t.pole_line_artifacts);
   EXPECT_EQ(s.seconds, t.seconds);
   ASSERT_EQ(a.uncertified.size(), b.uncertified.size());
   for (size_t i = 0; i < a.uncertified.size(); ++i) {

@@ -241,3 +241,23 @@ TEST(Window, EdgeRootNextToAPoleLineConvergesWhereNewtonAlternates) {
   EXPECT_TRUE(r.warnings.empty());
   EXPECT_TRUE(r.solutions.empty());
 }
+
+TEST(Window, StalledRootsOnAContactPoleLineAreNotReportedAsSpps) {
+  // Regression (found by an independent search): Newton stalled (residual 1e-8) next to contact pole lines, on the
+  // artifact of the pole-free form N there (singular on every pole line), and the stalled points were reported as
+  // SPPs flagged ill_conditioned, with status success: two on a stiff random 5-dof system (6.5e-7 from the line; the
+  // brute force lists 14 roots in the window, not 16) and three on the 30-mass chain next to the axis (3e-9 from the
+  // line; the brute force finds no root there). They are dismissed and counted as pole-line artifacts.
+  const System stiff = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_contact_pole.json");
+  const SolveResult r = solve_window(stiff, 3.4588776939613416e-07, 0.02141448834366801, 3.6470949512588234e-07,
+                                     0.047003746905619016);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.solutions.size(), 14u);
+  EXPECT_GT(r.stats.pole_line_artifacts, 0);
+  for (const Solution& s : r.solutions) EXPECT_LT(s.residual, 1e-10) << s.t1 << " " << s.t2;
+  const System chain30 = spp::chain(30, {1.0}, {1.0}, 29, ContactSide::Upper, 1.0);
+  const SolveResult c = solve_window(chain30, 0.04, 0.046, 14.98, 14.99);
+  EXPECT_EQ(c.status, SolveStatus::Success) << c.brief_report();
+  EXPECT_TRUE(c.solutions.empty());
+  EXPECT_GT(c.stats.pole_line_artifacts, 0);
+}

@@ -74,7 +74,7 @@ struct Solution {
   double return_error = -1.0;  ///< relative periodicity error after one period (-1: not computed)
   Orbit orbit;
   Admissibility admissibility;
-  /// "point_symmetric" (Symmetry::Point), "ill_conditioned" (Newton stalled with residual in (1e-10, 1e-6)),
+  /// "point_symmetric" (Symmetry::Point),
   /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees
   /// the contact has the same period: any amount of it can be added), "gap_closure_degenerate".
   std::vector<std::string> flags;
@@ -89,13 +89,19 @@ struct SolveStats {
   /// Steps accepted by the midpoint turn check (all of them unless certify_steps; with it, those inside the axis
   /// bands and those no bound proved within the step budget): not a proof.
   long heuristic_steps = 0;
+  /// Sign changes whose Newton stalled (residual between 1e-10 and 1e-6) within 1e-6 (relative) of a pole line: the
+  /// pole-free form N is singular on every pole line (det N = det H times the cosines), and there its near-roots
+  /// are not SPPs (an independent brute force finds none; an SPP on a pole line needs a vanishing modal component).
+  /// Dismissed, not reported.
+  long pole_line_artifacts = 0;
   // Causes of an Incomplete status, counted:
   long uncertified_steps = 0;    ///< steps not proved: certify_steps ones left to the midpoint check outside the
                                  ///< axis bands, and steps at the minimum length where g touches zero (near-double roots)
   long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces that ran out of their step budget (nearly equal eigenvalues)
-  long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root
+  long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root (residual above 1e-10
+                                 ///< away from pole lines: not reported as SPPs)
   double seconds = 0.0;
 };
 

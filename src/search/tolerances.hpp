@@ -9,9 +9,11 @@ namespace spp::search {
 /// A root is converged when the relative residual of N a = 0 and z^T p0 = 0 (polish.cpp residual_of) falls below
 /// this: ~1e6 eps, the level Newton reaches on well-conditioned roots with a margin for m ~ 1000.
 inline constexpr double kConvergedResidual = 1e-10;
-/// Newton that stalls below this residual is still reported, flagged "ill_conditioned" (N nearly rank-deficient in
-/// two directions, e.g. next to the limit points on the axes); above it the sign change is a gap of the search.
+/// Newton that stalls below this residual within kOnPoleLine of a pole line stalled on the pole line's artifact of
+/// the pole-free form (dismissed); any other unconverged root is a gap of the search (never reported as an SPP).
 inline constexpr double kStalledResidual = 1e-6;
+/// A stalled root this close (relative) to a pole line is an artifact of the pole-free form there (solver.cpp).
+inline constexpr double kOnPoleLine = 1e-6;
 /// Newton steps stay within this fraction of t1 + t2 from the candidate (the limit points on the axes attract it).
 inline constexpr double kPolishReach = 1e-3;
 /// Two roots closer than this fraction of the window size (t1_max + t2_max) are one root (found from two cells or
