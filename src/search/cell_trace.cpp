@@ -221,13 +221,7 @@ class CellTracer::Impl {
       } else {
         pout = trace(r, k, pin, out, certified);
       }
-      // Hits next to a pole line carry g from the balanced eigenvector (pairing compares its sign across the strip,
-      // and there |H| ~ 1 / margin makes the sign of the traced g noise where |g| < ~1e-8).
-      auto hit = [&](const TracePoint& p, double pos) {
-        Vec b = ev_.balanced_eigenvector(p.t1, p.t2, k);
-        if (b.dot(p.b) < 0) b = -b;
-        return EdgeHit{pos, p.t1, p.t2, onset_g(b, p.t2).first, b, column};
-      };
+      auto hit = [column](const TracePoint& p, double pos) { return EdgeHit{pos, p.t1, p.t2, p.g, p.b, column}; };
       if (in_bottom ? r.bottom_pole : r.right_pole)
         (in_bottom ? bottom_entries : right_entries).push_back(hit(pin, in_bottom ? pin.t1 : pin.t2));
       if (out_left ? r.left_pole : r.top_pole)
@@ -531,8 +525,8 @@ class CellTracer::Impl {
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
   static constexpr int kRetraceParts = 8;  // parts of a step traced again where g jumped
   static constexpr int kRetraceDepth = 4;  // nested retraces at most
-  static constexpr int kApproach = 3;
-  static constexpr int kNewtonSteps = 12;  // plain Newton steps of a 1-D root before every other one bisects  // 4x falls of |g| and of the step towards a root before one step crosses it
+  static constexpr int kApproach = 3;  // 4x falls of |g| and of the step towards a root before one step crosses it
+  static constexpr int kNewtonSteps = 12;  // plain Newton steps of a 1-D root before every other one bisects
   Symmetry sym_;
   Vec zhat_;
 };

@@ -49,53 +49,36 @@ std::shared_ptr<const HPoint> DenseEvaluator::at(double t1, double t2) {
   return std::make_shared<DenseHPoint>(std::move(H));
 }
 
-DenseEvaluator::Balanced DenseEvaluator::balanced(double t1, double t2, bool bordered) const {
-  const Eigen::Index m = md_.m(), size = bordered ? m + 1 : m;
-  const Eigen::VectorXd f = md_.flight_part(t1, sym_);
-  const Eigen::VectorXd e = md_.contact_eigs(t2, sym_);
-  const Eigen::VectorXd zhat = md_.z().normalized();
-  Balanced out;
-  out.A.resize(size, size);
-  out.contact_basis = e.cwiseAbs().maxCoeff() > f.cwiseAbs().maxCoeff();
-  auto A = out.A.topLeftCorner(m, m);
-  if (!out.contact_basis) {  // modal basis
-    A = md_.G() * e.asDiagonal() * md_.G().transpose();
-    A.diagonal() += f;
-  } else {  // contact basis: G^T H G = G^T F G + D tan(D t2)
-    A = md_.G().transpose() * f.asDiagonal() * md_.G();
-    A.diagonal() += e;
-  }
-  // Non-pole scale of the diagonal: the frequencies (axial, w tan(w t) ~ w) or their inverses (point, tan(w t) / w).
-  const double ref = std::max(sym_ == Symmetry::Axial ? md_.omega().maxCoeff() : 1.0 / md_.omega().minCoeff(),
-                              std::numeric_limits<double>::min());
-  out.scale.resize(size);
-  for (Eigen::Index i = 0; i < m; ++i) out.scale(i) = 1.0 / std::sqrt(std::max(std::abs(A(i, i)), ref));
-  if (bordered) {
-    out.A.col(m).head(m) = out.contact_basis ? Eigen::VectorXd(md_.G().transpose() * zhat) : zhat;
-    out.A.row(m).head(m) = out.A.col(m).head(m).transpose();
-    out.A(m, m) = 0.0;
-    out.scale(m) = std::sqrt(ref);
-  }
-  out.A = out.scale.asDiagonal() * out.A * out.scale.asDiagonal();
-  return out;
-}
-
 int DenseEvaluator::onset_inertia(double t1, double t2) {
   ++evaluations_;
-  const detail::SymmetricTridiagonal T(balanced(t1, t2, true).A);
-  const double err = 8.0 * static_cast<double>(md_.m() + 1) * std::numeric_limits<double>::epsilon() * T.norm_bound();
+  const Eigen::Index m = md_.m();
+  const Eigen::VectorXd f = md_.flight_part(t1, Symmetry::Axial);
+  Eigen::VectorXd e(m);
+  for (Eigen::Index j = 0; j < m; ++j) e(j) = md_.d()(j) * std::tan(md_.d()(j) * t2);
+  const Eigen::VectorXd zhat = md_.z().normalized();
+  Eigen::MatrixXd A(m + 1, m + 1);
+  if (e.cwiseAbs().maxCoeff() <= f.cwiseAbs().maxCoeff()) {  // modal basis
+    A.topLeftCorner(m, m) = md_.G() * e.asDiagonal() * md_.G().transpose();
+    A.topLeftCorner(m, m).diagonal() += f;
+    A.col(m).head(m) = zhat;
+  } else {  // contact basis: G^T H G = G^T F G + D tan(D t2)
+    A.topLeftCorner(m, m) = md_.G().transpose() * f.asDiagonal() * md_.G();
+    A.topLeftCorner(m, m).diagonal() += e;
+    A.col(m).head(m) = md_.G().transpose() * zhat;
+  }
+  A.row(m).head(m) = A.col(m).head(m).transpose();
+  A(m, m) = 0.0;
+  // Diagonal congruence: rows with a large diagonal (a pole mode) scaled to O(1) against the non-pole scale.
+  const double ref = std::max(md_.omega().maxCoeff(), std::numeric_limits<double>::min());
+  Eigen::VectorXd s(m + 1);
+  for (Eigen::Index i = 0; i < m; ++i) s(i) = 1.0 / std::sqrt(std::max(std::abs(A(i, i)), ref));
+  s(m) = std::sqrt(ref);
+  A = s.asDiagonal() * A * s.asDiagonal();
+  const detail::SymmetricTridiagonal T(A);
+  const double err = 8.0 * static_cast<double>(m + 1) * std::numeric_limits<double>::epsilon() * T.norm_bound();
   const int below = T.count_below(-err);
   if (below != T.count_below(err)) return -1;
   return below - 1;
-}
-
-Eigen::VectorXd DenseEvaluator::balanced_eigenvector(double t1, double t2, int k) {
-  ++evaluations_;
-  const Balanced bal = balanced(t1, t2, false);
-  const detail::SymmetricTridiagonal T(bal.A);
-  Eigen::VectorXd b = bal.scale.cwiseProduct(T.eigenvector(T.eigenvalue(k)));
-  if (bal.contact_basis) b = md_.G() * b;
-  return b.normalized();
 }
 
 }  // namespace spp::search

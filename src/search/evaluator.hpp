@@ -36,11 +36,6 @@ class Evaluator {
   /// symmetry): its number of negative eigenvalues, or -1 when an eigenvalue lies within its error bound of 0.
   /// An SPP at (t1, t2) makes Hc singular (H b = 0 with z^T b = 0); Hc grows with t1 and t2 between pole lines.
   virtual int onset_inertia(double t1, double t2) = 0;
-  /// The k-th eigenvector of H at (t1, t2) computed on a balanced congruence of H (see DenseEvaluator): the same
-  /// inertia (Sylvester) and, where H is singular, the same null vector, but as accurate as an O(1) matrix allows
-  /// next to a pole line, where |H| ~ 1 / margin leaves the eigenvector of H itself only accurate to eps |H| / gap
-  /// (there g = c^T b is ~ 1e-9 on some curves and its computed sign is noise). Unit norm.
-  virtual Eigen::VectorXd balanced_eigenvector(double t1, double t2, int k) = 0;
   long evaluations() const { return evaluations_; }
 
  protected:
@@ -59,19 +54,8 @@ class DenseEvaluator final : public Evaluator {
   /// basis G, and scaled by the size of its diagonal (Sylvester: the inertia is unchanged) so that the error bound
   /// 8 (m + 1) eps |A| stays O(eps) next to a pole line.
   int onset_inertia(double t1, double t2) override;
-  /// Eigenvector k of S B^T H B S (B = I or G as for onset_inertia, S the same diagonal scaling), mapped back: B S y.
-  Eigen::VectorXd balanced_eigenvector(double t1, double t2, int k) override;
 
  private:
-  // B^T H B (bordered by B^T zhat when `bordered`) in the basis where the larger part is diagonal, scaled by the
-  // diagonal S (rows with a large diagonal, i.e. a pole mode, brought to O(1) against the non-pole scale).
-  struct Balanced {
-    Eigen::MatrixXd A;
-    Eigen::VectorXd scale;  // S
-    bool contact_basis = false;
-  };
-  Balanced balanced(double t1, double t2, bool bordered) const;
-
   const ModalForm& md_;
   Symmetry sym_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
