@@ -1,5 +1,5 @@
 #pragma once
-// The paper's models as Systems (same file format as any other system once written with system_to_json).
+// The paper's models as Systems (same file format as any other system once written with system_json).
 
 #include <functional>
 #include <vector>
