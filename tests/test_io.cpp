@@ -250,3 +250,34 @@ TEST(Io, ResultFilesGiveBackTheirSystemBitForBit) {
   }
   fs::remove(p);
 }
+
+TEST(Io, ResultSolutionsOfTheWrongSizeOrSignAreRefused) {
+  // Found by an independent attack: an x0 of 1 entry on a 3-dof system, or a negative t1, read without complaint.
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  ASSERT_FALSE(good["solutions"].empty());
+  const fs::path p = tmpdir() / "wrong_size.json";
+  auto expect_refused = [&](io::json j, const std::string& what) {
+    write_file_atomic(p.string(), j.dump());
+    for (int reader = 0; reader < 2; ++reader) {
+      try {
+        if (reader == 0)
+          load_result(p.string());
+        else
+          load_result_candidates(p.string());
+        ADD_FAILURE() << "expected a refusal: " << what;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      }
+    }
+  };
+  io::json short_x0 = good;
+  short_x0["solutions"][0]["x0"] = {0.5};
+  expect_refused(short_x0, "field \"solutions\"[0]: x0 and v0 must have 3 entries (the system's dofs), got 1 and 3");
+  io::json negative = good;
+  negative["solutions"][0]["t1"] = -1.0;
+  expect_refused(negative, "field \"solutions\"[0]: t1 and t2 must be positive and finite");
+  fs::remove(p);
+}

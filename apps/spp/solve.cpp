@@ -2,6 +2,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "command.hpp"
 #include "spp/continuation.hpp"
@@ -57,7 +58,15 @@ int run(SolveArgs& a) {
   if (!parametric && at_given)
     throw std::invalid_argument("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
   if (parametric && !at_given) return run_zero_gap(a);
-  const System sys = parametric ? load_parametric_system(a.system).at(a.at) : load_system(a.system);
+  std::optional<ParametricSystem> ps;
+  if (parametric) {
+    ps = load_parametric_system(a.system);
+    const Parameter& par = ps->parameter();
+    if (a.at < par.min || a.at > par.max)  // allowed (the system is affine in it), but likely a slip
+      std::cerr << "note: --at " << a.at << " lies outside the range [" << par.min << ", " << par.max << "] that "
+                << a.system << " declares for " << par.name << "\n";
+  }
+  const System sys = parametric ? ps->at(a.at) : load_system(a.system);
   const SolveResult res = solve(sys, a.options);
   // prepare every output before writing any
   const std::string json_text = a.json.empty() ? "" : result_json(sys, res);

@@ -1,10 +1,32 @@
 #include "spp/io/result_file.hpp"
 
+#include <cmath>
 #include <limits>
 
 #include "io/json.hpp"
 
 namespace spp::io {
+
+namespace {
+
+// Dofs of the system a result embeds (rows of its M), or -1 when it holds none.
+long embedded_dofs(const json& r) {
+  if (!r.contains("system") || !r.at("system").is_object() || !r.at("system").contains("M")) return -1;
+  const json& M = r.at("system").at("M");
+  return M.is_array() ? static_cast<long>(M.size()) : -1;
+}
+
+// What every SPP of a result must satisfy to be used: positive half-durations, and x0, v0 of the system's size.
+void check_solution(const Reader& o, double t1, double t2, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0,
+                    long n) {
+  if (!(t1 > 0.0 && t2 > 0.0 && std::isfinite(t1) && std::isfinite(t2)))
+    invalid(o.where + ": t1 and t2 must be positive and finite, got " + num(t1) + " and " + num(t2));
+  if (n >= 0 && (x0.size() != n || v0.size() != n))
+    invalid(o.where + ": x0 and v0 must have " + std::to_string(n) + " entries (the system's dofs), got " +
+            std::to_string(x0.size()) + " and " + std::to_string(v0.size()));
+}
+
+}  // namespace
 
 json result_to_json(const System& s, const SolveResult& r) {
   json j;
@@ -121,6 +143,7 @@ SolveResult result_from_json(const json& r, const std::string& where) {
     res.uncertified.push_back({u.number("t1_lo"), u.number("t1_hi"), u.number("t2_lo"), u.number("t2_hi"), u.text("cause")});
   }
   const json& sols = top.at("solutions");
+  const long n = embedded_dofs(r);
   if (!sols.is_array()) invalid(where + ": field \"solutions\" must be a list, got " + describe(sols));
   for (size_t i = 0; i < sols.size(); ++i) {
     const Reader o{sols[i], where + ": field \"solutions\"[" + std::to_string(i) + "]"};
@@ -150,6 +173,7 @@ SolveResult result_from_json(const json& r, const std::string& where) {
     b.symmetry = res.symmetry;
     b.x0 = o.vector("x0");
     b.v0 = o.vector("v0");
+    check_solution(o, x.t1, x.t2, b.x0, b.v0, n);
     const Reader ob{o.at("orbit"), o.where + ": field \"orbit\""};
     b.a = ob.vector("a");
     b.c = ob.vector("c");
@@ -185,33 +209,17 @@ std::vector<SppCandidate> result_candidates(const json& r, const std::string& wh
     invalid(where + ": missing field \"solutions\" (expected a result of spp solve)");
   std::vector<SppCandidate> out;
   const json& sols = r.at("solutions");
+  const long n = embedded_dofs(r);
   for (size_t i = 0; i < sols.size(); ++i) {
-    const std::string at = where + ": solutions[" + std::to_string(i) + "]";
-    const json& o = sols[i];
-    auto number = [&](const char* key) {
-      if (!o.is_object() || !o.contains(key) || !o.at(key).is_number())
-        invalid(at + ": field \"" + key + "\" must be a number");
-      return o.at(key).get<double>();
-    };
-    auto vector = [&](const char* key) {
-      if (!o.contains(key) || !o.at(key).is_array()) invalid(at + ": field \"" + key + "\" must be a list of numbers");
-      const json& a = o.at(key);
-      Eigen::VectorXd v(static_cast<Eigen::Index>(a.size()));
-      for (size_t k = 0; k < a.size(); ++k) {
-        if (!a[k].is_number()) invalid(at + ": field \"" + key + "\"[" + std::to_string(k) + "] must be a number");
-        v(static_cast<Eigen::Index>(k)) = a[k].get<double>();
-      }
-      return v;
-    };
+    const Reader o{sols[i], where + ": field \"solutions\"[" + std::to_string(i) + "]"};
     SppCandidate c;
-    c.t1 = number("t1");
-    c.t2 = number("t2");
-    c.x0 = vector("x0");
-    c.v0 = vector("v0");
-    if (!o.contains("admissible") || !o.at("admissible").is_boolean())
-      invalid(at + ": field \"admissible\" must be true or false");
-    c.admissible = o.at("admissible").get<bool>();
-    c.energy = o.contains("energy") ? number("energy") : std::numeric_limits<double>::quiet_NaN();
+    c.t1 = o.number("t1");
+    c.t2 = o.number("t2");
+    c.x0 = o.vector("x0");
+    c.v0 = o.vector("v0");
+    c.admissible = o.boolean("admissible");
+    c.energy = sols[i].contains("energy") ? o.number("energy") : std::numeric_limits<double>::quiet_NaN();
+    check_solution(o, c.t1, c.t2, c.x0, c.v0, n);
     out.push_back(std::move(c));
   }
   return out;
