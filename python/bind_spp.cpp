@@ -4,6 +4,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <sstream>
+
 #include "spp/continuation.hpp"
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
@@ -100,28 +102,76 @@ PYBIND11_MODULE(_spp, m) {
           "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_json(s, r, -1); },
           "system"_a, "The result JSON text, as spp solve --json writes it.");
 
+  py::enum_<spp::Symmetry>(m, "Symmetry", "Which equations: the SPPs (axial) or the point-symmetric potential SPPs "
+                                           "of det T2 = 0 (point, paper §6.2)")
+      .value("axial", spp::Symmetry::Axial)
+      .value("point", spp::Symmetry::Point);
+  // The symmetry from the enum or its name ("axial", "point").
+  auto symmetry_of = [](const py::object& v) {
+    if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
+    const std::string name = py::str(v);
+    if (name == "axial") return spp::Symmetry::Axial;
+    if (name == "point") return spp::Symmetry::Point;
+    throw std::invalid_argument("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" +
+                                name + "\"");
+  };
+  py::class_<spp::SolveOptions>(m, "SolveOptions",
+                                "Options of solve (the C++ SolveOptions, field by field; solve(system, options, "
+                                "**fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("t1_max", &spp::SolveOptions::t1_max, "upper end of the flight half-duration window (> 0)")
+      .def_readwrite("t2_max", &spp::SolveOptions::t2_max, "upper end of the contact half-duration window (> 0)")
+      .def_readwrite("t1_min", &spp::SolveOptions::t1_min, "lower end (0: from the axis)")
+      .def_readwrite("t2_min", &spp::SolveOptions::t2_min, "lower end (0: from the axis)")
+      .def_readwrite("max_cells", &spp::SolveOptions::max_cells, "refuse windows with more cells than this")
+      .def_readwrite("certify_steps", &spp::SolveOptions::certify_steps,
+                     "prove every trace step (incomplete unless all are; 2-50x the evaluations)")
+      .def_readwrite("pole_margin", &spp::SolveOptions::pole_margin)
+      .def_readwrite("max_turn", &spp::SolveOptions::max_turn)
+      .def_readwrite("min_step", &spp::SolveOptions::min_step)
+      .def_readwrite("admissibility_tol", &spp::SolveOptions::admissibility_tol)
+      .def_readwrite("admissible_only", &spp::SolveOptions::admissible_only)
+      .def_readwrite("compute_return_error", &spp::SolveOptions::compute_return_error)
+      .def_readwrite("threads", &spp::SolveOptions::threads, "worker threads (0: all)")
+      .def_property(
+          "symmetry", [](const spp::SolveOptions& o) { return o.symmetry; },
+          [symmetry_of](spp::SolveOptions& o, const py::object& v) { o.symmetry = symmetry_of(v); },
+          "Symmetry.axial (default) or Symmetry.point (or their names)")
+      .def("validate", &spp::SolveOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const spp::SolveOptions& o) {
+        std::ostringstream os;
+        os << "<spp.SolveOptions t1 in (" << o.t1_min << ", " << o.t1_max << "], t2 in (" << o.t2_min << ", "
+           << o.t2_max << "], symmetry " << spp::to_string(o.symmetry) << (o.certify_steps ? ", certify_steps" : "")
+           << ">";
+        return os.str();
+      });
+  // options (or defaults) with the keyword arguments set on it, field by field: one mechanism for every function that
+  // takes SolveOptions. An unknown keyword is refused with the list of fields.
+  auto solve_options = [](const py::object& options, const py::kwargs& fields, const char* where) {
+    py::object o = options.is_none() ? py::cast(spp::SolveOptions{}) : py::cast(options.cast<spp::SolveOptions>());
+    for (const auto& [key, value] : fields) {
+      const std::string name = py::str(key);
+      if (name.rfind("_", 0) == 0 || !py::hasattr(o, key) || name == "validate")
+        throw std::invalid_argument(std::string(where) + ": unknown option \"" + name +
+                                    "\" (SolveOptions fields: t1_max, t2_max, t1_min, t2_min, max_cells, "
+                                    "certify_steps, pole_margin, max_turn, min_step, admissibility_tol, "
+                                    "admissible_only, compute_return_error, threads, symmetry)");
+      py::setattr(o, key, value);
+    }
+    return o.cast<spp::SolveOptions>();
+  };
   m.def(
       "solve",
-      [](const spp::System& s, double t1_max, double t2_max, double t1_min, double t2_min, bool admissible_only,
-         int threads, const std::string& symmetry) {
-        spp::SolveOptions o;
-        if (symmetry != "axial" && symmetry != "point")
-          throw std::invalid_argument("symmetry must be \"axial\" or \"point\", got \"" + symmetry + "\"");
-        o.symmetry = symmetry == "point" ? spp::Symmetry::Point : spp::Symmetry::Axial;
-        o.t1_max = t1_max;
-        o.t2_max = t2_max;
-        o.t1_min = t1_min;
-        o.t2_min = t2_min;
-        o.admissible_only = admissible_only;
-        o.threads = threads;
+      [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
+        const spp::SolveOptions o = solve_options(options, fields, "solve");
         o.validate();
         py::gil_scoped_release release;
         return spp::solve(s, o);
       },
-      "system"_a, "t1_max"_a, "t2_max"_a, "t1_min"_a = 0.0, "t2_min"_a = 0.0, "admissible_only"_a = false,
-      "threads"_a = 0, "symmetry"_a = "axial",
-      "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max] (symmetry=\"point\": the point-symmetric "
-      "potential SPPs of paper §6.2). Raises ValueError.");
+      "system"_a, "options"_a = py::none(),
+      "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
+      "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
+      "potential SPPs of paper §6.2; certify_steps=True: every step proved). Raises ValueError.");
 
   py::class_<spp::NearestSpp>(m, "NearestSpp", "Result of nearest_spp: the SPP nearest to a guess")
       .def_readonly("found", &spp::NearestSpp::found)
@@ -134,11 +184,13 @@ PYBIND11_MODULE(_spp, m) {
       });
   m.def(
       "nearest_spp",
-      [](const spp::System& s, double t1, double t2, double radius) {
+      [solve_options](const spp::System& s, double t1, double t2, double radius, const py::object& options,
+                      const py::kwargs& fields) {
+        const spp::SolveOptions o = solve_options(options, fields, "nearest_spp");
         py::gil_scoped_release release;
-        return spp::nearest_spp(s, t1, t2, radius);
+        return spp::nearest_spp(s, t1, t2, radius, o);
       },
-      "system"_a, "t1"_a, "t2"_a, "radius"_a = 0.05,
+      "system"_a, "t1"_a, "t2"_a, "radius"_a = 0.05, "options"_a = py::none(),
       "The SPP nearest to a guess (t1, t2), e.g. read off the root map: the complete solver on the window "
       "(t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the nearest root. "
       "found is False when that window holds none. Raises ValueError.");

@@ -141,3 +141,28 @@ def test_nearest_spp_refines_a_guess_read_off_the_root_map():
     assert not none.found
     with pytest.raises(ValueError):
         spp.nearest_spp(s, -1.0, 0.5)
+
+
+def test_solve_options_as_an_object_or_as_keywords():
+    s = spp.chain(5)
+    o = spp.SolveOptions()
+    o.t1_max, o.t2_max = 12.0, 12.0
+    a = spp.solve(s, o)
+    b = spp.solve(s, t1_max=12, t2_max=12)
+    assert len(a.solutions) == len(b.solutions) == 64
+    # every field is reachable, e.g. the proof of every step and the symmetry as an enum or a name
+    c = spp.solve(s, o, certify_steps=True)
+    assert c.status == "success" and len(c.solutions) == 64
+    assert o.certify_steps is False  # the object passed is not changed
+    p = spp.solve(s, t1_max=6, t2_max=6, symmetry=spp.Symmetry.point)
+    assert len(p.solutions) == 18
+    o.symmetry = "point"
+    assert o.symmetry == spp.Symmetry.point
+    try:
+        spp.solve(s, o, t1_maxx=3)
+    except ValueError as e:
+        assert "unknown option \"t1_maxx\"" in str(e) and "certify_steps" in str(e)
+    else:
+        raise AssertionError("expected ValueError")
+    near = spp.nearest_spp(s, 3.2, 0.53, certify_steps=True)
+    assert near.found and abs(near.solution.t1 - 3.2160302) < 1e-6
