@@ -77,12 +77,10 @@ std::string SolveResult::brief_report() const {
 }
 
 namespace {
+
 // Unpolished sign changes named one by one in the warnings; beyond, one line counts them (a thin strip across a pole
 // line of a stiff system produced 1 856 of them).
 constexpr long kListedUnpolished = 5;
-}  // namespace
-
-namespace {
 
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
@@ -100,7 +98,6 @@ void require_positive_guess(const char* who, double t1, double t2) {
   }
 }
 
-// g0 = 0 is refused by every entry point with the same message.
 // The modal form given with a system must be that system's (computed by ModalForm(system)).
 void require_modal_of(const System& system, const ModalForm& modal, const char* where) {
   if (modal.n() != system.n() || modal.g0() != system.g0()) {
@@ -111,6 +108,7 @@ void require_modal_of(const System& system, const ModalForm& modal, const char* 
   }
 }
 
+// g0 = 0 is refused by every entry point with the same message.
 void require_nonzero_gap(const System& system) {
   if (system.g0() == 0.0)
     throw std::invalid_argument(
@@ -278,6 +276,10 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
     return t1 > std::max(opt.t1_min, band1) && t1 <= opt.t1_max && t2 > std::max(opt.t2_min, band2) &&
            t2 <= opt.t2_max;
   };
+  // The same place, at the rounding level of the roots: each root, unpolished sign change or artifact counts once.
+  auto same_place = [&](double a1, double a2, double b1, double b2) {
+    return std::hypot(a1 - b1, a2 - b2) <= search::kSameRoot * window_scale;
+  };
   std::vector<std::pair<double, double>> artifacts;  // places of the pole-line artifacts dismissed so far
   for (const Candidate& c : candidates) {
     const Polished p = polish(md, c.t1, c.t2, c.b, opt.symmetry);
@@ -288,7 +290,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
     if (!p.converged && p.residual < search::kStalledResidual && on_pole_line(md, p.t1, p.t2)) {
       // counted once per place (many sign changes of the noise along the line stall on the same artifact)
       const bool seen = std::any_of(artifacts.begin(), artifacts.end(), [&](const std::pair<double, double>& a) {
-        return std::hypot(a.first - p.t1, a.second - p.t2) <= search::kSameRoot * window_scale;
+        return same_place(a.first, a.second, p.t1, p.t2);
       });
       if (!seen) {
         artifacts.emplace_back(p.t1, p.t2);
@@ -298,10 +300,11 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
     }
     if (!p.converged) {
       if (!inside(c.t1, c.t2)) continue;
-      bool seen = false;  // the same sign change reached from several steps counts once
-      for (const UncertifiedRegion& u : res.uncertified)
-        if (u.cause == "polish" && std::hypot(u.t1_lo - c.t1, u.t2_lo - c.t2) <= search::kSameRoot * window_scale) seen = true;
-      if (seen) continue;
+      // the same sign change reached from several steps counts once
+      if (std::any_of(res.uncertified.begin(), res.uncertified.end(), [&](const UncertifiedRegion& u) {
+            return u.cause == "polish" && same_place(u.t1_lo, u.t2_lo, c.t1, c.t2);
+          }))
+        continue;
       ++res.stats.unpolished_roots;
       res.uncertified.push_back({c.t1, c.t1, c.t2, c.t2, "polish"});
       // The first kListedUnpolished are named; the rest are counted in one line (finalize), all are in uncertified.
@@ -314,10 +317,9 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
       continue;
     }
     if (!inside(p.t1, p.t2)) continue;
-    bool dup = false;
-    for (const Solution& s : res.solutions)
-      if (std::hypot(s.t1 - p.t1, s.t2 - p.t2) <= search::kSameRoot * window_scale) dup = true;
-    if (dup) continue;
+    if (std::any_of(res.solutions.begin(), res.solutions.end(),
+                    [&](const Solution& s) { return same_place(s.t1, s.t2, p.t1, p.t2); }))
+      continue;
     Solution s;
     try {
       s = build_solution(system, md, p, opt, with_return_error);

@@ -241,7 +241,6 @@ class CellTracer::Impl {
     double h = span, slope = 0.0;  // slope: dtau/ds estimate for the predictor
     int halvings = 0;
     examine_budget_ = kPieceBudget;
-    auto turn_of = [](const Vec& x, const Vec& y) { return std::acos(std::min(1.0, std::abs(x.dot(y)))); };
     // Stall watch: when certified steps have shrunk 4x since the last step that grew, the trace may approach a pole
     // line or a small gap (the zeroth-order and curvature bounds then shrink the step geometrically) while Hc stays
     // nonsingular on a much larger box: one long step (16x) is tried on the onset inertia first.
@@ -345,7 +344,7 @@ class CellTracer::Impl {
       TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
       TracePoint q =
           last ? point(out, &mid.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &mid.b);
-      const double turn1 = turn_of(cur.b, mid.b), turn2 = turn_of(mid.b, q.b), turn = turn1 + turn2;
+      const double turn1 = turn_between(cur.b, mid.b), turn2 = turn_between(mid.b, q.b), turn = turn1 + turn2;
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
       if (turn > opt_.max_turn && step > hmin_) {
@@ -387,7 +386,6 @@ class CellTracer::Impl {
   // past 90 degrees inside the step, found by retrace): the caller flips B.
   bool examine(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth) {
     const double h = B.s - A.s;
-    auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     // Hermite cubic in sigma in [0,1]
     auto herm = [&](double x) {
       const double h00 = (1 + 2 * x) * (1 - x) * (1 - x), h10 = x * (1 - x) * (1 - x);
@@ -425,7 +423,7 @@ class CellTracer::Impl {
       } else {
         --examine_budget_;
         const double s = A.s + (endpoints_differ ? 0.5 : xmin) * h;
-        TracePoint M = point(diagonal_root(r, s, guess(s), k), &A.b);
+        TracePoint M = point(root_between(r, k, A, B, s), &A.b);
         if (examine(r, k, A, M, depth + 1)) flip(M);
         return examine(r, k, M, B, depth + 1);
       }
@@ -441,15 +439,21 @@ class CellTracer::Impl {
     TracePoint prev = A;
     for (int i = 1; i <= kRetraceParts; ++i) {
       const double s = A.s + h * i / kRetraceParts;
-      TracePoint q = i == kRetraceParts ? B : point(diagonal_root(r, s, A.t1 + (B.t1 - A.t1) * (s - A.s) / h, k), &prev.b);
+      TracePoint q = i == kRetraceParts ? B : point(root_between(r, k, A, B, s), &prev.b);
       if (i == kRetraceParts && q.b.dot(prev.b) < 0) flip(q);  // B oriented from its neighbour, as every part
-      const double turn = std::acos(std::min(1.0, std::abs(prev.b.dot(q.b))));
-      const bool again = turn > opt_.max_turn && depth < kRetraceDepth && q.s - prev.s > hmin_;
+      const bool again = turn_between(prev.b, q.b) > opt_.max_turn && depth < kRetraceDepth && q.s - prev.s > hmin_;
       if (again ? retrace(r, k, prev, q, depth + 1) : examine(r, k, prev, q, 0)) flip(q);
       prev = q;
     }
     return prev.b.dot(B.b) < 0;
   }
+
+  // Root of lambda_k on the anti-diagonal s between the trace points A and B, from t1 interpolated linearly in s.
+  Pair root_between(const Rect& r, int k, const TracePoint& A, const TracePoint& B, double s) {
+    return diagonal_root(r, s, A.t1 + (B.t1 - A.t1) * (s - A.s) / (B.s - A.s), k);
+  }
+  // Angle (rad) between two unit null vectors, orientation ignored.
+  static double turn_between(const Vec& x, const Vec& y) { return std::acos(std::min(1.0, std::abs(x.dot(y)))); }
 
   static void flip(TracePoint& p) {
     p.b = -p.b;
@@ -488,16 +492,14 @@ class CellTracer::Impl {
   // The one sign change of g between A and B: Brent on g(s), each evaluation a 1-D solve on the anti-diagonal.
   // Returns true when B's orientation must be flipped (see retrace).
   bool locate_root(const Rect& r, int k, const TracePoint& A, const TracePoint& B, int depth = 0) {
-    const double h = B.s - A.s;
-    auto guess = [&](double s) { return A.t1 + (B.t1 - A.t1) * (s - A.s) / h; };  // t1 interpolated in s
     auto g_at = [&](double s) {
-      const Pair e = diagonal_root(r, s, guess(s), k);
+      const Pair e = root_between(r, k, A, B, s);
       Vec b = e.b;
       if (b.dot(A.b) < 0) b = -b;
       return onset_g(b, e.t2).first;
     };
     const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
-    const Pair e = diagonal_root(r, s, guess(s), k);
+    const Pair e = root_between(r, k, A, B, s);
     // A zero of g is continuous: where |g| stays large at the closed bracket, g jumped there (b swung past 90 degrees
     // from A's orientation inside the step, next to an eigenvalue that sweeps past lambda_k near a pole line): the
     // step is traced again finer instead.
