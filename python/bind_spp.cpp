@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "spp/continuation.hpp"
@@ -149,13 +150,20 @@ PYBIND11_MODULE(_spp, m) {
   // takes SolveOptions. An unknown keyword is refused with the list of fields.
   auto solve_options = [](const py::object& options, const py::kwargs& fields, const char* where) {
     py::object o = options.is_none() ? py::cast(spp::SolveOptions{}) : py::cast(options.cast<spp::SolveOptions>());
+    // the fields are the bound attributes (not the dunders nor validate): the list cannot drift from the binding
+    std::vector<std::string> known;
+    for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
+      const std::string n = py::str(a);
+      if (n.rfind("_", 0) != 0 && n != "validate") known.push_back(n);
+    }
     for (const auto& [key, value] : fields) {
       const std::string name = py::str(key);
-      if (name.rfind("_", 0) == 0 || !py::hasattr(o, key) || name == "validate")
-        throw std::invalid_argument(std::string(where) + ": unknown option \"" + name +
-                                    "\" (SolveOptions fields: t1_max, t2_max, t1_min, t2_min, max_cells, "
-                                    "certify_steps, pole_margin, max_turn, min_step, admissibility_tol, "
-                                    "admissible_only, compute_return_error, threads, symmetry)");
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        std::string list;
+        for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+        throw std::invalid_argument(std::string(where) + ": unknown option \"" + name + "\" (SolveOptions fields: " +
+                                    list + ")");
+      }
       py::setattr(o, key, value);
     }
     return o.cast<spp::SolveOptions>();
