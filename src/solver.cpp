@@ -225,7 +225,7 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
             out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, "step"});
         }
         out.candidates = std::move(tracer.candidates());
-        out.stats.evaluations = evaluator.evaluations();
+        out.stats.evaluations += evaluator.evaluations();  // plus those of the step certificates
       }
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failure_mutex);

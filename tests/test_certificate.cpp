@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "search/evaluator.hpp"
+#include "search/step_certificate.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
 #include "spp/solver.hpp"
@@ -17,7 +18,9 @@ using namespace spp;
 
 namespace {
 
-System chain5() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"); }
+System chain5() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+}
 
 // The pole-free interval of sorted poles holding x.
 std::pair<double, double> interval(const std::vector<double>& poles, double x) {
@@ -92,6 +95,141 @@ TEST(CertifiedSearch, ProvesTheWholeChainWindowWithTheSameRoots) {
   const SolveResult r = solve(s, o);
   EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
   EXPECT_GT(r.stats.certified_steps, 0);
+  ASSERT_EQ(r.solutions.size(), ref.solutions.size());
+  for (size_t i = 0; i < r.solutions.size(); ++i) {
+    EXPECT_NEAR(r.solutions[i].t1, ref.solutions[i].t1, 1e-9);
+    EXPECT_NEAR(r.solutions[i].t2, ref.solutions[i].t2, 1e-9);
+  }
+}
+
+namespace {
+
+// The true point of curve k on the anti-diagonal t2 - t1 = s inside cell [a1, b1] x [A, B] (lambda_k increases
+// along (1, 1)), by bisection on full eigenvalues: independent of the search's own root finder. False when the
+// curve does not cross that anti-diagonal.
+struct CurvePoint {
+  double t1, t2;
+  Eigen::VectorXd b;
+  Eigen::VectorXd lam;
+};
+bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, double s, int k, CurvePoint& p) {
+  double lo = std::max(a1, A - s), hi = std::min(b1, B - s);
+  if (!(lo < hi)) return false;
+  auto lam_k = [&](double t1) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(t1, t1 + s));
+    return es.eigenvalues()(k);
+  };
+  if (!(lam_k(lo) < 0 && lam_k(hi) > 0)) return false;
+  for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (lam_k(mid) < 0 ? lo : hi) = mid;
+  }
+  p.t1 = 0.5 * (lo + hi);
+  p.t2 = p.t1 + s;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2));
+  p.b = es.eigenvectors().col(k);
+  p.lam = es.eigenvalues();
+  return true;
+}
+
+}  // namespace
+
+TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
+  // Property: on random steps of random curves in random cells (the paper's chain and a stiff 5-dof system with
+  // stiffness spread 1e5), g = zhat^T b and dg/ds sampled on the true curve (an independent bisection) lie within the
+  // ranges spectral_bounds gives from either end, and the bounds are not vacuous (many valid, some sign-deciding).
+  const std::vector<std::string> files = {std::string(SPP_SOURCE_DIR) + "/examples/chain5.json",
+                                          std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_spread1e5.json"};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const std::string& f : files) {
+    const ModalForm md(load_system(f));
+    const Eigen::VectorXd zhat = md.z().normalized();
+    const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
+    const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
+    int valid = 0, deciding = 0;
+    for (int trial = 0; trial < 3000 && valid < 150; ++trial) {
+      const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
+      const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
+      const double c1 = a1 + 1e-6 * (b1 - a1), d1 = std::min(b1, T1) - 1e-6 * (b1 - a1);
+      const double c2 = A + 1e-6 * (B - A), d2 = std::min(B, T2) - 1e-6 * (B - A);
+      const int k = static_cast<int>(u(rng) * md.m());
+      const double sa = (c2 - d1) + (d2 - c1 - (c2 - d1)) * u(rng);
+      const double h = (d2 - c1 - (c2 - d1)) * std::pow(10.0, -5.0 + 4.0 * u(rng));
+      CurvePoint pa, pb;
+      if (!curve_point(md, c1, d1, c2, d2, sa, k, pa) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb)) continue;
+      // samples of the true curve on [sa, sa + h], b oriented continuously from pa
+      const int ns = 40;
+      std::vector<double> gs, dgs;
+      Eigen::VectorXd prev = pa.b;
+      bool ok = true;
+      for (int i = 0; i <= ns && ok; ++i) {
+        const double s = sa + h * i / ns;
+        CurvePoint q;
+        ok = curve_point(md, c1, d1, c2, d2, s, k, q);
+        if (!ok) break;
+        const Eigen::VectorXd b = q.b.dot(prev) < 0 ? Eigen::VectorXd(-q.b) : q.b;
+        prev = b;
+        gs.push_back(zhat.dot(b));
+        // dg/ds = -(H^+ zhat)^T H' b, H' = tau' F' + (1 + tau') C', tau' = -l2 / (l1 + l2) (first-order perturbation
+        // of the null vector along the curve), with the pseudo-inverse from the full eigenpairs
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(q.t1, q.t2));
+        Eigen::VectorXd inv = es.eigenvalues().cwiseInverse();
+        inv(k) = 0.0;
+        const Eigen::VectorXd v = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose() * zhat;
+        const Eigen::VectorXd Fb = md.dflight_dt1(q.t1).cwiseProduct(b), Cb = md.dcontact_dt2(q.t2) * b;
+        const double l1 = b.dot(Fb), l2 = b.dot(Cb), tp = -l2 / (l1 + l2);
+        dgs.push_back(-v.dot(tp * Fb + (1.0 + tp) * Cb));
+      }
+      if (!ok) continue;
+      if (pb.b.dot(prev) < 0) pb.b = -pb.b;
+      auto end = [&](const CurvePoint& p, double s) {
+        search::StepEnd x;
+        x.s = s;
+        x.t1 = p.t1;
+        x.t2 = p.t2;
+        x.b = &p.b;
+        x.g = zhat.dot(p.b);
+        return x;
+      };
+      const search::StepEnd ea = end(pa, sa), eb = end(pb, sa + h);
+      for (const search::StepEnd* x : {&ea, &eb}) {
+        const search::SpectralBounds sb =
+            search::spectral_bounds(md, Symmetry::Axial, *x, sa, sa + h, std::min(pa.t1, pb.t1), std::max(pa.t1, pb.t1),
+                                    std::min(pa.t2, pb.t2), std::max(pa.t2, pb.t2));
+        if (!sb.valid) continue;
+        ++valid;
+        if (sb.g_lo > 0 || sb.g_hi < 0 || sb.dg_lo > 0 || sb.dg_hi < 0) ++deciding;
+        const double gtol = 1e-10, dtol = 1e-8 * (1.0 + std::abs(sb.dg_lo) + std::abs(sb.dg_hi));
+        for (size_t i = 0; i < gs.size(); ++i) {
+          EXPECT_GE(gs[i], sb.g_lo - gtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
+          EXPECT_LE(gs[i], sb.g_hi + gtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
+          EXPECT_GE(dgs[i], sb.dg_lo - dtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
+          EXPECT_LE(dgs[i], sb.dg_hi + dtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
+        }
+      }
+    }
+    EXPECT_GE(valid, 100) << f;
+    EXPECT_GE(deciding, 30) << f;
+  }
+}
+
+TEST(CertifiedSearch, ProvesAStiffWindowWithTheSameRoots) {
+  // A random 5-dof system with stiffness spread 1e5, 8 x 8 quarter periods: before the spectral bounds, 1 497 of its
+  // steps could not be proved (Davis-Kahan divides the stiff modes' part by the small gap); now every step is proved
+  // and the 13 SPPs are the default trace's.
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_spread1e5.json");
+  SolveOptions o;
+  o.t1_min = 0.00021340705120636612;
+  o.t1_max = 0.03414512819301857;
+  o.t2_min = 0.00028454598878099256;
+  o.t2_max = 0.045527358205029;
+  const SolveResult ref = solve(s, o);
+  o.certify_steps = true;
+  const SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.stats.uncertified_steps, 0);
+  ASSERT_EQ(r.solutions.size(), 13u);
   ASSERT_EQ(r.solutions.size(), ref.solutions.size());
   for (size_t i = 0; i < r.solutions.size(); ++i) {
     EXPECT_NEAR(r.solutions[i].t1, ref.solutions[i].t1, 1e-9);

@@ -21,12 +21,13 @@ struct TracePoint {
   // for the step certificate (residual, neighbouring eigenvalues and error bound filled with certify_steps only)
   double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
   double residual = 0, eig_error = 0, slope_sum = 0;
-  double pos_err = 0;  // distance along (1, 1) to the true curve point on the same anti-diagonal (|lambda_k| + error) / (l1 + l2)
+  // distance along (1, 1) to the true curve point on the same anti-diagonal: (|lambda_k| + error) / (l1 + l2)
+  double pos_err = 0;
   Vec b;
 };
 
 StepEnd step_end(const TracePoint& p) {
-  return {p.s, p.t1, p.t2, p.g, p.dg, p.lam_below, p.lam_above, p.residual, p.eig_error, p.slope_sum, &p.b};
+  return {p.s, p.t1, p.t2, p.g, p.dg, p.lam_below, p.lam_above, p.residual, p.eig_error, p.slope_sum, p.pos_err, &p.b};
 }
 
 }  // namespace
@@ -160,7 +161,7 @@ class CellTracer::Impl {
   // One cell: count the curves at its corners, find each curve's entry and exit, trace it. Returns false when a
   // part of the cell could not be certified (the caller records the cell).
   bool trace_cell(Rect r, size_t column, std::vector<EdgeHit>& left_exits, std::vector<EdgeHit>& top_exits,
-                 std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
+                  std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
     ++st_.rectangles;
     bool certified = true;
     // Corner counts are exact only when no eigenvalue lies within its error bound of 0: otherwise the corner is
@@ -238,7 +239,7 @@ class CellTracer::Impl {
     const double s_out = out.t2 - out.t1, span = s_out - pin.s;
     TracePoint cur = pin;
     if (!(span > 0)) return point(out, &cur.b);  // the curve only touches the cell at a corner
-    double h = span, slope = 0.0;  // slope: dtau/ds estimate for the predictor
+    double h = span, slope = 0.0;                // slope: dtau/ds estimate for the predictor
     int halvings = 0;
     examine_budget_ = kPieceBudget;
     // Stall watch: when certified steps have shrunk 4x since the last step that grew, the trace may approach a pole
@@ -294,12 +295,13 @@ class CellTracer::Impl {
                             std::min(r.b1, std::max(p.t1, cur.t1) + e), std::min(r.B, std::max(p.t2, cur.t2) + e));
         };
         const bool onset_proved = onset_first && box_free();
-        const StepCertificate cert =
-            onset_proved ? StepCertificate{} : certify_step(md_, sym_, step_end(cur), step_end(p));
+        const StepCertificate cert = onset_proved
+                                         ? StepCertificate{}
+                                         : certify_step(md_, sym_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B});
+        st_.evaluations += cert.evaluations;
         // Where the curvature bound is too weak (next to pole lines, mostly), the step's box may still be proved
         // root-free by the onset inertia at its two Loewner corners; g keeps its sign then, which orients p.
-        const bool by_onset =
-            onset_proved || (cert.verdict == StepVerdict::Uncertified && !onset_first && box_free());
+        const bool by_onset = onset_proved || (cert.verdict == StepVerdict::Uncertified && !onset_first && box_free());
         if (by_onset) orient_like(p, cur);
         if (cert.verdict != StepVerdict::Uncertified || by_onset) {
           ++st_.certified_steps;
@@ -307,7 +309,9 @@ class CellTracer::Impl {
           if ((cur.g > 0) != (p.g > 0) && locate_root(r, k, cur, p)) flip(p);
           if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
           if (last) return p;
-          const double next = by_onset ? 2.0 * step : std::clamp(0.9 * cert.safe_length, 0.5 * step, 4.0 * step);
+          // At least 1.5x: the Weyl bound's safe length can stay at the step's (next to pole lines) where a longer
+          // step is proved by the spectral bounds; a failed try costs one halving.
+          const double next = by_onset ? 2.0 * step : std::clamp(0.9 * cert.safe_length, 1.5 * step, 4.0 * step);
           if (std::abs(p.g) > root_g || next > root_h) {
             root_g = std::abs(p.g);
             root_h = next;
@@ -518,17 +522,17 @@ class CellTracer::Impl {
   Evaluator& ev_;
   const SolveOptions& opt_;
   SolveStats& st_;
-  const double hmin_;                         // smallest trace step in s
+  const double hmin_;                                      // smallest trace step in s
   const std::pair<double, double> band_ = axis_band(md_);  // roots are not reported within these of the axes
-  static constexpr int kPieceBudget = 20000;  // trace steps (tried or taken) per curve piece
+  static constexpr int kPieceBudget = 20000;               // trace steps (tried or taken) per curve piece
   static constexpr int kProofBudget = 200000;  // the same with certify_steps, before the midpoint check takes over
   int examine_budget_ = kPieceBudget;
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
-  static constexpr int kRetraceParts = 8;  // parts of a step traced again where g jumped
-  static constexpr int kRetraceDepth = 4;  // nested retraces at most
-  static constexpr int kApproach = 3;  // 4x falls of |g| and of the step towards a root before one step crosses it
-  static constexpr int kNewtonSteps = 12;  // plain Newton steps of a 1-D root before every other one bisects
+  static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped
+  static constexpr int kRetraceDepth = 4;   // nested retraces at most
+  static constexpr int kApproach = 3;       // 4x falls of |g| and of the step towards a root before one step crosses it
+  static constexpr int kNewtonSteps = 12;   // plain Newton steps of a 1-D root before every other one bisects
   Symmetry sym_;
   Vec zhat_;
 };
@@ -543,6 +547,8 @@ bool CellTracer::trace_cell(const Cell& cell, size_t column, std::vector<EdgeHit
   return impl_->trace_cell(cell, column, left_exits, top_exits, right_entries, bottom_entries);
 }
 
-std::vector<Candidate>& CellTracer::candidates() { return impl_->candidates_; }
+std::vector<Candidate>& CellTracer::candidates() {
+  return impl_->candidates_;
+}
 
 }  // namespace spp::search

@@ -32,9 +32,144 @@ double weighted_norm(const Eigen::VectorXd& weights, const Eigen::VectorXd& v) {
 
 }  // namespace
 
+// The derivation is in the header (spectral_bounds).
+SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
+                               double lo1, double hi1, double lo2, double hi2) {
+  using Vec = Eigen::VectorXd;
+  using Mat = Eigen::MatrixXd;
+  SpectralBounds sb;
+  const Eigen::SelfAdjointEigenSolver<Mat> es(md.H(x.t1, x.t2, sym));
+  if (es.info() != Eigen::Success) return sb;
+  const Vec& lam = es.eigenvalues();
+  const Mat& U = es.eigenvectors();
+  const Eigen::Index m = lam.size();
+  Eigen::Index k = 0;
+  lam.cwiseAbs().minCoeff(&k);
+  Vec bx = U.col(k);
+  if (bx.dot(*x.b) < 0) bx = -bx;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double err = 16.0 * static_cast<double>(m) * eps * lam.cwiseAbs().maxCoeff();  // |H_x - U lam U^T|
+  double gap = std::numeric_limits<double>::infinity();
+  Vec inv = Vec::Zero(m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    if (j == k) continue;
+    gap = std::min(gap, std::abs(lam(j)));
+    inv(j) = 1.0 / lam(j);
+  }
+  if (!(gap > 0) || !std::isfinite(gap)) return sb;
+  const Mat& G = md.G();
+  const Mat Hp = U * inv.asDiagonal() * U.transpose();
+  const Mat HpG = Hp * G, GHpG = G.transpose() * HpG;
+  const Mat aHp = Hp.cwiseAbs(), aHpG = HpG.cwiseAbs(), aGHpG = GHpG.cwiseAbs();
+  const PhaseBounds F = phase_bounds(md.omega(), sym, lo1, hi1);
+  const PhaseBounds C = phase_bounds(md.d(), sym, lo2, hi2);
+  const Vec& dF = F.increment;
+  const Vec& dC = C.increment;
+  const Vec yb = G.transpose() * bx;
+  const Vec abx = bx.cwiseAbs(), ayb = yb.cwiseAbs();
+
+  // angle of b(s) to b_x
+  const double e_gap = err / gap;
+  const double k1 = (aHp * dF.cwiseProduct(abx) + aHpG * dC.cwiseProduct(ayb)).norm() + e_gap;
+  const double k2 = (Hp * dF.asDiagonal()).norm() + (HpG * dC.asDiagonal()).norm() + e_gap;
+  if (!(k2 < 0.5)) return sb;
+  const double t = k1 / (1.0 - k2), sin = t / std::sqrt(1.0 + t * t), cos = 1.0 / std::sqrt(1.0 + t * t);
+  const double db_norm = std::sqrt(2.0 * (1.0 - cos));
+  // componentwise |b(s) - b_x| (flight basis dbF, contact basis dbC)
+  const Vec eF = dF.cwiseProduct((abx.array() + sin).matrix()), eC = dC.cwiseProduct((ayb.array() + sin).matrix());
+  const Vec dbF = (aHp * eF + aHpG * eC + ((1.0 - cos) * abx.array() + e_gap).matrix()).cwiseMin(db_norm);
+  const Vec dbC = (aHpG.transpose() * eF + aGHpG * eC + ((1.0 - cos) * ayb.array() + e_gap).matrix()).cwiseMin(db_norm);
+
+  // g over the step
+  const Vec c = md.z().normalized();
+  const Vec vx = Hp * c, yv = G.transpose() * vx;
+  const Vec avx = vx.cwiseAbs(), ayv = yv.cwiseAbs();
+  const double reach = dF.cwiseProduct(avx).dot(abx) + dF.cwiseProduct(vx).norm() * sin +
+                       dC.cwiseProduct(ayv).dot(ayb) + dC.cwiseProduct(yv).norm() * sin + err * vx.norm();
+  const double gx = c.dot(bx);
+  sb.g_err = e_gap + 4.0 * eps;
+  sb.g_lo = std::min(cos * gx, gx) - reach - sb.g_err;
+  sb.g_hi = std::max(cos * gx, gx) + reach + sb.g_err;
+  const double gmax = std::max(std::abs(sb.g_lo), std::abs(sb.g_hi));
+
+  // v(s) = H(s)^+ c over the step
+  const double den = 1.0 - k2 - sin / cos;
+  if (!(den > 0.1)) return sb;
+  const double vmax = (vx.norm() + gmax * sin / gap) / den;
+  const double dv_norm = k2 * vmax + gmax * sin / gap + sin * vmax / cos;
+  const Vec fF = dF.cwiseProduct((avx.array() + dv_norm).matrix()),
+            fC = dC.cwiseProduct((ayv.array() + dv_norm).matrix());
+  const double dv_iso = err * vmax / gap + gmax * sin / gap;
+  const Vec dvF = (aHp * fF + aHpG * fC + (dv_iso + abx.array() * (sin * vmax / cos)).matrix()).cwiseMin(dv_norm);
+  const Vec dvC =
+      (aHpG.transpose() * fF + aGHpG * fC + (dv_iso + ayb.array() * (sin * vmax / cos)).matrix()).cwiseMin(dv_norm);
+
+  // P = -v^T F' b (flight basis), Q = -v^T C' b (contact basis): value at x and the variation over the step
+  auto part = [](const Vec& d1x, const PhaseBounds& B, const Vec& v, const Vec& b, const Vec& dv, const Vec& db,
+                 double& val, double& var) {
+    const Vec dd = (B.d1 - d1x).cwiseMax(d1x - B.d1_min);
+    val = -(v.cwiseProduct(d1x)).dot(b);
+    var = v.cwiseAbs().cwiseProduct(b.cwiseAbs()).dot(dd) +
+          B.d1.dot((dv.cwiseProduct(b.cwiseAbs() + db) + v.cwiseAbs().cwiseProduct(db)));
+  };
+  double P = 0, dP = 0, Q = 0, dQ = 0;
+  part(md.dflight_dt1(x.t1, sym), F, vx, bx, dvF, dbF, P, dP);
+  part(md.dcontact_eigs(x.t2, sym), C, yv, yb, dvC, dbC, Q, dQ);
+  // g' = (l1 Q - l2 P) / (l1 + l2) with l1 = b^T F' b, l2 = b^T C' b > 0 (tau' = -l2 / (l1 + l2)): the sign of g' is
+  // that of N = l1 Q - l2 P, bounded by its value at x and the variations (keeping the cancellation between the
+  // two terms exact at x, which bounding tau', P and Q separately would lose).
+  auto form = [](const Vec& w, const Vec& ab, const Vec& db, bool upper) {
+    const Vec r = upper ? Vec(ab + db) : Vec((ab - db).cwiseMax(0.0));
+    return w.dot(r.cwiseProduct(r));
+  };
+  const double l1x = md.dflight_dt1(x.t1, sym).dot(bx.cwiseProduct(bx));
+  const double l2x = md.dcontact_eigs(x.t2, sym).dot(yb.cwiseProduct(yb));
+  const double l1lo = form(F.d1_min, abx, dbF, false), l1hi = form(F.d1, abx, dbF, true);
+  const double l2lo = form(C.d1_min, ayb, dbC, false), l2hi = form(C.d1, ayb, dbC, true);
+  const double dl1 = std::max(l1hi - l1x, l1x - l1lo), dl2 = std::max(l2hi - l2x, l2x - l2lo);
+  const double N = l1x * Q - l2x * P;
+  const double dN =
+      dl1 * (std::abs(Q) + dQ) + std::max(l1hi, l1x) * dQ + dl2 * (std::abs(P) + dP) + std::max(l2hi, l2x) * dP;
+  // and through the range of tau' = -l2 / (l1 + l2) in [-1, 0], g' = tau' P + (1 + tau') Q being bilinear: both
+  // bounds hold, so the tighter one is kept (neither is always better).
+  double tlo = -1.0, thi = 0.0;
+  if (l1lo + l2hi > 0) tlo = -l2hi / (l1lo + l2hi);
+  if (l1hi + l2lo > 0) thi = -l2lo / (l1hi + l2lo);
+  auto lower = [&](double tp) { return tp * (P + dP) + (1.0 + tp) * (Q - dQ); };
+  auto upper = [&](double tp) { return tp * (P - dP) + (1.0 + tp) * (Q + dQ); };
+  sb.dg_lo = std::min(lower(tlo), lower(thi));
+  sb.dg_hi = std::max(upper(tlo), upper(thi));
+  const double Dlo = l1lo + l2lo, Dhi = l1hi + l2hi;
+  if (Dlo > 0) {
+    const double nlo = N - dN, nhi = N + dN;
+    sb.dg_lo = std::max(sb.dg_lo, std::min(nlo / Dlo, nlo / Dhi));
+    sb.dg_hi = std::min(sb.dg_hi, std::max(nhi / Dlo, nhi / Dhi));
+  }
+  // rounding in the bounds themselves
+  const double slack = 1e-9 * (std::abs(sb.dg_lo) + std::abs(sb.dg_hi));
+  sb.dg_lo -= slack;
+  sb.dg_hi += slack;
+  // Mean value theorem: g(s) = g_x + g'(xi) (s - s_x) on the step of length h from x (forward from a, backward
+  // from b), which keeps the exact cancellation of g' at x; tighter than the direct range where g itself is small
+  // (curves along which c^T b stays near 0).
+  const double h = hi_s - lo_s;
+  double mlo, mhi;
+  if (x.s <= lo_s) {
+    mlo = gx + std::min(0.0, h * sb.dg_lo);
+    mhi = gx + std::max(0.0, h * sb.dg_hi);
+  } else {
+    mlo = gx - std::max(0.0, h * sb.dg_hi);
+    mhi = gx - std::min(0.0, h * sb.dg_lo);
+  }
+  sb.g_lo = std::max(sb.g_lo, mlo - sb.g_err);
+  sb.g_hi = std::min(sb.g_hi, mhi + sb.g_err);
+  sb.valid = std::isfinite(sb.g_lo) && std::isfinite(sb.g_hi) && std::isfinite(sb.dg_lo) && std::isfinite(sb.dg_hi);
+  return sb;
+}
+
 PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi) {
   const Eigen::Index m = freqs.size();
-  PhaseBounds pb{Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m)};
+  PhaseBounds pb{Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m)};
   for (Eigen::Index i = 0; i < m; ++i) {
     const Phase a = phase(freqs(i), sym, lo), b = phase(freqs(i), sym, hi);
     // f is increasing, f' convex and f'' increasing between poles: their extremes are at the ends.
@@ -42,11 +177,16 @@ PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, 
     pb.d1(i) = std::max(a.d1, b.d1);
     pb.d2(i) = std::max(std::abs(a.d2), std::abs(b.d2));
     pb.value(i) = std::max(std::abs(a.v), std::abs(b.v));
+    // f' = w^2 sec^2 (axial) or sec^2 (point) is smallest where tan = 0 if the interval holds such a point
+    const double floor = freqs(i) == 0.0 ? 1.0 : (sym == Symmetry::Point ? 1.0 : freqs(i) * freqs(i));
+    pb.d1_min(i) = (a.v <= 0.0 && b.v >= 0.0) ? floor : std::min(a.d1, b.d1);
+    if (freqs(i) == 0.0 && sym == Symmetry::Axial) pb.d1_min(i) = 0.0;
   }
   return pb;
 }
 
-StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b) {
+namespace {
+StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b) {
   StepCertificate cert;
   const double h = b.s - a.s;
   const PhaseBounds F = phase_bounds(md.omega(), sym, std::min(a.t1, b.t1), std::max(a.t1, b.t1));
@@ -76,8 +216,8 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     return e;
   };
   const End ea_ = make_end(a), eb_ = make_end(b);
-  // Zeroth order: |g(s) - g_x| <= |c(s) - c_x| + |c_x| |b(s) - b_x| <= dc + |c_x| drift_x on the whole step (c = z / |z|
-  // constant for axial symmetry, dc = 0; c(t2) = -G tan(D t2) D^-1 G^T z for point symmetry, dc from the increments
+  // Zeroth order: |g(s) - g_x| <= |c(s) - c_x| + |c_x| |b(s) - b_x| <= dc + |c_x| drift_x on the whole step (c = z /
+  // |z| constant for axial symmetry, dc = 0; c(t2) = -G tan(D t2) D^-1 G^T z for point symmetry, dc from the increments
   // of tan(d t2) / d weighted by |G^T z|), so |g_x| beyond that and its error keeps the sign. Linear in |g|, and no
   // derivative of H enters: this holds next to pole lines too. Its safe length from b: as long as the bound (linear
   // in the step, to first order) stays below |g_b|.
@@ -156,6 +296,45 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
   const double free_b = zero_free_radius(std::abs(b.g) - eb, sb * b.dg, L2);
   const double cross_b = 0.9 * std::abs(b.dg) / L2;
   cert.safe_length = std::max(zeroth_length, std::min(std::max(free_b, cross_b), 0.5 / std::max(L1, 1e-300)));
+  return cert;
+}
+
+}  // namespace
+
+StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
+                             const StepBox& cell) {
+  StepCertificate cert = certify_step_weyl(md, sym, a, b);
+  if (cert.verdict != StepVerdict::Uncertified || sym != Symmetry::Axial) return cert;
+  // The true curve points of the step: within pos_err (twice, for safety) of the computed ends along (1, 1), t1
+  // non-increasing and t2 non-decreasing in s, and inside the cell (which keeps every phase function monotone).
+  const double e = 2.0 * std::max(a.pos_err, b.pos_err);
+  const double lo1 = std::max(cell.lo1, std::min(a.t1, b.t1) - e), hi1 = std::min(cell.hi1, std::max(a.t1, b.t1) + e);
+  const double lo2 = std::max(cell.lo2, std::min(a.t2, b.t2) - e), hi2 = std::min(cell.hi2, std::max(a.t2, b.t2) + e);
+  if (!(lo1 <= hi1 && lo2 <= hi2)) return cert;
+  // The sign of the true g at an end, from its computed value and Davis-Kahan at that point (0: not certain).
+  auto sign_at = [](const StepEnd& y) {
+    const double gap = std::min(y.lam_above, -y.lam_below) - y.eig_error;
+    if (!(gap > 0)) return 0;
+    const double err = (y.residual + y.eig_error) / gap + 4.0 * std::numeric_limits<double>::epsilon();
+    return std::abs(y.g) > err ? (y.g > 0 ? 1 : -1) : 0;
+  };
+  for (const StepEnd* x : {&b, &a}) {
+    ++cert.evaluations;
+    const SpectralBounds sb = spectral_bounds(md, sym, *x, a.s, b.s, lo1, hi1, lo2, hi2);
+    if (!sb.valid) continue;
+    const bool same_sign = (a.g > 0) == (b.g > 0);
+    if ((sb.g_lo > 0 || sb.g_hi < 0) && same_sign && (sb.g_lo > 0) == (a.g > 0)) {
+      cert.verdict = StepVerdict::NoRoot;       // g keeps the sign the computed ends show
+    } else if (sb.dg_lo > 0 || sb.dg_hi < 0) {  // g monotone: the true end signs decide
+      const int sa = sign_at(a), sbb = sign_at(b);
+      if (sa != 0 && sbb != 0 && (sa > 0) == (a.g > 0) && (sbb > 0) == (b.g > 0))
+        cert.verdict = sa == sbb ? StepVerdict::NoRoot : StepVerdict::OneRoot;
+    }
+    if (cert.verdict != StepVerdict::Uncertified) {
+      cert.safe_length = std::max(cert.safe_length, 2.0 * (b.s - a.s));
+      return cert;
+    }
+  }
   return cert;
 }
 

@@ -25,6 +25,8 @@
 //  - no sign change: the Taylor lower bounds |g_a| + sigma g'_a x - L2 x^2 / 2 (from a) and the same from b
 //    cover [s_a, s_b] between them;
 //  - exactly one sign change: sigma g' >= sigma g'_a - L2 x > 0 or sigma g'_b - L2 (h - x) > 0 on the step.
+// Where these fail (stiff systems: the gap gamma is small next to the derivative of the stiff modes' entries), the
+// spectrally weighted bounds of spectral_bounds (below) divide each mode's part by its own eigenvalue instead.
 // A third proof, of root-free boxes, is the onset inertia (Evaluator::onset_inertia, used by cell_trace).
 // Written here because no library bounds eigenvector curvature of a structured matrix family.
 
@@ -37,12 +39,13 @@ namespace spp::search {
 /// One end of a step: a traced point of curve k.
 struct StepEnd {
   double s = 0, t1 = 0, t2 = 0;
-  double g = 0, dg = 0;        ///< onset function and its derivative in s (oriented)
-  double lam_below = 0;        ///< lambda_{k-1} (-inf when k = 0)
-  double lam_above = 0;        ///< lambda_{k+1} (+inf when k = m - 1)
-  double residual = 0;         ///< |H b| at the point (includes the computed eigenvalue and rounding)
-  double eig_error = 0;        ///< absolute error bound of the computed eigenvalues
-  double slope_sum = 0;        ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
+  double g = 0, dg = 0;                ///< onset function and its derivative in s (oriented)
+  double lam_below = 0;                ///< lambda_{k-1} (-inf when k = 0)
+  double lam_above = 0;                ///< lambda_{k+1} (+inf when k = m - 1)
+  double residual = 0;                 ///< |H b| at the point (includes the computed eigenvalue and rounding)
+  double eig_error = 0;                ///< absolute error bound of the computed eigenvalues
+  double slope_sum = 0;                ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
+  double pos_err = 0;                  ///< distance along (1, 1) to the true curve point on the same anti-diagonal
   const Eigen::VectorXd* b = nullptr;  ///< unit null vector (oriented)
 };
 
@@ -54,20 +57,58 @@ enum class StepVerdict {
 
 struct StepCertificate {
   StepVerdict verdict = StepVerdict::Uncertified;
-  double gap = 0;         ///< lower bound of min_{j != k} |lambda_j| over the step (<= 0: no separation)
-  double rotation = 0;    ///< bound of the total turn of b over the step (rad)
-  double curvature = 0;   ///< L2, bound of |g''| over the step
-  double safe_length = 0; ///< a step length that the same bounds would certify from a (for the next step)
+  double gap = 0;          ///< lower bound of min_{j != k} |lambda_j| over the step (<= 0: no separation)
+  double rotation = 0;     ///< bound of the total turn of b over the step (rad)
+  double curvature = 0;    ///< L2, bound of |g''| over the step
+  double safe_length = 0;  ///< a step length that the same bounds would certify from a (for the next step)
+  int evaluations = 0;     ///< evaluations of H (with its full eigenpairs) the certificate made
 };
 
-/// The bound of the header comment, for the step a -> b of curve k (s_b > s_a).
-StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b);
+/// The cell the step lies in (no pole line inside): the true curve points of the step stay in it.
+struct StepBox {
+  double lo1, hi1, lo2, hi2;
+};
+
+/// The bounds of the header comment, for the step a -> b of curve k (s_b > s_a) inside `cell`: the Weyl /
+/// Davis-Kahan bounds first (no evaluation of H), then, where they fail (axial symmetry), the spectral bounds from the
+/// full eigenpairs at b, then at a.
+StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
+                             const StepBox& cell);
+
+// Spectrally weighted bounds of g and g' over a step, from the full eigenpairs at one end x (axial symmetry,
+// c = z / |z|). Notation: H_x = U diag(lam) U^T (lam_k ~ 0, b_x = u_k), Hp = U diag(1 / lam_j, j != k) U^T its
+// pseudo-inverse, E = H(s) - H_x on the step, bounded entrywise in the flight basis (|dF_i|, diagonal) and in the
+// contact basis (|dPhi_j|, G diagonal G^T). For the null vector b(s) = alpha b_x + U_perp beta of the curve point:
+//   beta = -diag(1/lam) U_perp^T E b(s)    (rows j != k of U^T H(s) b(s) = 0),
+//   tan angle(b(s), b_x) <= kappa1 / (1 - kappa2), kappa1 = sup |Hp E b_x|, kappa2 = sup |Hp E|;
+//   g(s) = c^T b(s) = alpha g_x - v_x^T E b(s),  v_x = Hp c;
+//   g'(s) = -v(s)^T H'(s) b(s) = tau' P + (1 + tau') Q,  P = -v^T F' b,  Q = -v^T C' b,  v(s) = H(s)^+ c,
+// with v(s) = v_x - Hp E v - g U_perp diag(1/lam) beta - b_x (beta^T U_perp^T v) / alpha (from H(s) v = c - g b,
+// v orthogonal to b), and componentwise bounds of b - b_x and v - v_x through |Hp| and |Hp G|. Each stiff mode's part
+// of E is divided by its own eigenvalue, not by the gap to the nearest eigenvalue (Davis-Kahan, certify_step_weyl),
+// which is what lets stiff systems (frequency spread ~300) be certified in steps of ~1 / omega_max instead of ~gap.
+// The range of g' is also bounded through g' = (l1 Q - l2 P) / (l1 + l2) (l1 = b^T F' b, l2 = b^T C' b), which keeps
+// the cancellation between P and Q exact at x, and the range of g through the mean value theorem with that range
+// (tighter where g stays small along a whole curve). No root on the step when the range of g excludes 0, or when g
+// is monotone and the ends' true signs agree; exactly one when g is monotone and they differ.
+// Written here because no library bounds eigenvector derivatives of a structured matrix family.
+struct SpectralBounds {
+  bool valid = false;           ///< false when the perturbation is too large for the bounds (shorten the step)
+  double g_lo = 0, g_hi = 0;    ///< range of g over the step
+  double dg_lo = 0, dg_hi = 0;  ///< range of g' = dg/ds over the step
+  double g_err = 0;             ///< error bound of g at x (computed b_x against the true null vector there)
+};
+/// The bounds above from end x of the step [lo_s, hi_s] of a curve whose true points lie in the box
+/// [lo1, hi1] x [lo2, hi2] (inside one cell). Costs one H and its full eigenpairs (O(m^3)). Axial symmetry only.
+SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
+                               double lo1, double hi1, double lo2, double hi2);
 
 /// Extreme values over t in [lo, hi] (inside one pole interval) of the phase functions of the flight (omega) or
 /// contact (d) frequencies: f = w tan(w t) (axial) or tan(w t)/w (point); increments |f(hi) - f(lo)| per mode,
-/// max f', max |f''| per mode, and max |f| per mode.
+/// max f', max |f''| per mode, max |f| per mode and min f' per mode.
 struct PhaseBounds {
   Eigen::VectorXd increment, d1, d2, value;
+  Eigen::VectorXd d1_min;  ///< min f' per mode over [lo, hi]
 };
 PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi);
 
