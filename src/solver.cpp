@@ -1,5 +1,4 @@
 #include "spp/solver.hpp"
-#include "spp/detail/invalid.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,13 +11,14 @@
 #include <stdexcept>
 #include <thread>
 
-#include "spp/modal.hpp"
 #include "search/cell_trace.hpp"
 #include "search/evaluator.hpp"
 #include "search/pole_pairing.hpp"
 #include "search/polish.hpp"
 #include "search/tolerances.hpp"
 #include "search/window_plan.hpp"
+#include "spp/detail/invalid.hpp"
+#include "spp/modal.hpp"
 
 namespace spp {
 
@@ -63,8 +63,7 @@ void SolveOptions::validate() const {
   in_open(admissibility_tol, 0.0, 1e-2, "admissibility_tol");
   if (threads < 0)
     throw std::invalid_argument("options: threads must be >= 0 (0 = all), got " + std::to_string(threads));
-  if (max_cells < 1)
-    throw std::invalid_argument("options: max_cells must be >= 1, got " + std::to_string(max_cells));
+  if (max_cells < 1) throw std::invalid_argument("options: max_cells must be >= 1, got " + std::to_string(max_cells));
 }
 
 std::string SolveResult::brief_report() const {
@@ -86,8 +85,8 @@ using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 
 using search::Candidate;
-using search::Polished;
 using search::polish;
+using search::Polished;
 
 // A point (t1, t2) given by a caller (a guess, or an SPP to polish) must be positive and finite.
 void require_positive_guess(const char* who, double t1, double t2) {
@@ -139,7 +138,8 @@ Solution build_solution(const System& system, const ModalForm& md, const Polishe
   s.energy = s.orbit.energy;
   for (Eigen::Index k = 0; k < md.omega_decoupled().size(); ++k) {
     const double r = md.omega_decoupled()(k) * (p.t1 + p.t2) / std::numbers::pi;
-    if (std::abs(r - std::round(r)) < search::kResonance * std::max(1.0, r)) s.flags.push_back("decoupled_mode_resonant");
+    if (std::abs(r - std::round(r)) < search::kResonance * std::max(1.0, r))
+      s.flags.push_back("decoupled_mode_resonant");
   }
   if (with_return_error) s.return_error = return_error(system, s.orbit);
   return s;
@@ -156,7 +156,8 @@ std::pair<double, double> default_lower_ends(const ModalForm& md, double t1_max,
 
 std::pair<double, double> axis_band(const ModalForm& md) {
   const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
-  return {search::kAxisBand * pi / (2.0 * md.omega().maxCoeff()), dmax > 0 ? search::kAxisBand * pi / (2.0 * dmax) : 0.0};
+  return {search::kAxisBand * pi / (2.0 * md.omega().maxCoeff()),
+          dmax > 0 ? search::kAxisBand * pi / (2.0 * dmax) : 0.0};
 }
 
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
@@ -214,8 +215,13 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
         search::DenseEvaluator evaluator(md, opt.symmetry);
         search::CellTracer tracer(md, opt, out.stats, evaluator);
         for (size_t i = 0; i < I; ++i) {
-          const search::Cell cell{a1.bp[i] + a1.margin[i], a1.bp[i + 1] - a1.margin[i + 1], a2.bp[j] + a2.margin[j],
-                                  a2.bp[j + 1] - a2.margin[j + 1], a1.pole[i], a1.pole[i + 1], a2.pole[j],
+          const search::Cell cell{a1.bp[i] + a1.margin[i],
+                                  a1.bp[i + 1] - a1.margin[i + 1],
+                                  a2.bp[j] + a2.margin[j],
+                                  a2.bp[j + 1] - a2.margin[j + 1],
+                                  a1.pole[i],
+                                  a1.pole[i + 1],
+                                  a2.pole[j],
                                   a2.pole[j + 1]};
           if (!(cell.a1 < cell.b1 && cell.A < cell.B)) continue;
           // curves leave through the left edge (pole line i) into the right edge of cell i - 1, and through the
@@ -273,8 +279,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
   // not reported, whatever the window, so that tilings stay consistent (axis_band). Likewise for t2 -> 0.
   const auto [band1, band2] = axis_band(md);
   auto inside = [&](double t1, double t2) {
-    return t1 > std::max(opt.t1_min, band1) && t1 <= opt.t1_max && t2 > std::max(opt.t2_min, band2) &&
-           t2 <= opt.t2_max;
+    return t1 > std::max(opt.t1_min, band1) && t1 <= opt.t1_max && t2 > std::max(opt.t2_min, band2) && t2 <= opt.t2_max;
   };
   // The same place, at the rounding level of the roots: each root, unpolished sign change or artifact counts once.
   auto same_place = [&](double a1, double a2, double b1, double b2) {
@@ -346,16 +351,21 @@ void finalize(const SolveOptions& options, SolveResult& res) {
   auto cause = [&](long count, const char* what) {
     if (count > 0) res.warnings.push_back(std::to_string(count) + " " + what);
   };
-  cause(st.uncertified_steps, "trace step(s) were not proved: with certify_steps, steps no bound proved within the "
-                              "step budget (taken by the midpoint check); or g touches zero within the bounds' "
-                              "resolution at the minimum step length (a near-double root, or nearly equal eigenvalues)");
-  cause(st.unresolved_pieces, "curve piece(s) ran out of their step budget (nearly equal eigenvalues): a root there "
-                              "is not excluded");
+  cause(st.uncertified_steps,
+        "trace step(s) were not proved: with certify_steps, steps no bound proved within the "
+        "step budget (taken by the midpoint check); or g touches zero within the bounds' "
+        "resolution at the minimum step length (a near-double root, or nearly equal eigenvalues)");
+  cause(st.unresolved_pieces,
+        "curve piece(s) whose null vector could not be followed (step budget spent, or a turn "
+        "beyond max_turn within the minimum step: eigenvalues within rounding of each other, "
+        "e.g. next to a pole line): a root there is not excluded (cell in 'uncertified')");
   cause(st.uncertified_corners, "cell corner(s) kept an eigenvalue within its error bound of zero");
-  cause(st.unpaired_crossings, "curve crossing(s) of a pole line could not be paired: a root in that thin strip is "
-                               "not excluded");
-  cause(st.unpolished_roots - kListedUnpolished, "more sign change(s) of g did not polish to a root (each in "
-                                                 "'uncertified')");
+  cause(st.unpaired_crossings,
+        "curve crossing(s) of a pole line could not be paired: a root in that thin strip is "
+        "not excluded");
+  cause(st.unpolished_roots - kListedUnpolished,
+        "more sign change(s) of g did not polish to a root (each in "
+        "'uncertified')");
   for (const Solution& s : res.solutions)
     if (!s.admissibility.certified) res.warnings.push_back("admissibility of an SPP not certified to tolerance");
   res.status = res.warnings.empty() && res.uncertified.empty() ? SolveStatus::Success : SolveStatus::Incomplete;

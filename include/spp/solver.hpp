@@ -44,7 +44,8 @@ struct SolveOptions {
   /// generic random systems pieces still run out of their step budget (Incomplete). Off: every step by the midpoint
   /// check (heuristic_steps), a careful heuristic, not a proof.
   bool certify_steps = false;
-  double pole_margin = 1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)
+  double pole_margin =
+      1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)
   double max_turn = 0.2;             ///< largest angle (rad) of the null vector b between two trace points
   double min_step = 1e-13;           ///< smallest trace step in s = t2 - t1, relative to t1_max + t2_max
   double admissibility_tol = 1e-9;   ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
@@ -75,15 +76,16 @@ struct Solution {
   Orbit orbit;
   Admissibility admissibility;
   /// "point_symmetric" (Symmetry::Point),
-  /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip), "decoupled_mode_resonant" (a mode that never sees
-  /// the contact has the same period: any amount of it can be added), "gap_closure_degenerate".
+  /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip),
+  /// "decoupled_mode_resonant" (a mode that never sees the contact has the same period: any amount of it can be added),
+  /// "gap_closure_degenerate".
   std::vector<std::string> flags;
 };
 
 struct SolveStats {
   int flight_pole_lines = 0, contact_pole_lines = 0;
   long rectangles = 0, curve_pieces = 0, roots = 0;
-  long evaluations = 0;  ///< symmetric eigen-decompositions of H
+  long evaluations = 0;      ///< symmetric eigen-decompositions of H
   long strip_pairs = 0;      ///< curves paired across pole lines (diagonal passes through a pole-line crossing too)
   long certified_steps = 0;  ///< trace steps with a proof that g keeps its sign, or changes it once (step_certificate)
   /// Steps accepted by the midpoint turn check (all of them unless certify_steps; with it, those inside the axis
@@ -95,11 +97,11 @@ struct SolveStats {
   /// Dismissed, not reported.
   long pole_line_artifacts = 0;
   // Causes of an Incomplete status, counted:
-  long uncertified_steps = 0;    ///< steps not proved: certify_steps ones left to the midpoint check outside the
-                                 ///< axis bands, and steps at the minimum length where g touches zero (near-double roots)
+  long uncertified_steps = 0;  ///< steps not proved: certify_steps ones left to the midpoint check outside the
+                               ///< axis bands, and steps at the minimum length where g touches zero (near-double roots)
   long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
-  long unresolved_pieces = 0;    ///< curve pieces that ran out of their step budget (nearly equal eigenvalues)
+  long unresolved_pieces = 0;    ///< curve pieces whose null vector could not be followed (budget, or turn at min step)
   long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root (residual above 1e-10
                                  ///< away from pole lines: not reported as SPPs)
   double seconds = 0.0;
@@ -155,10 +157,10 @@ Solution solution_at(const System& system, const ModalForm& modal, double t1, do
 /// Result of nearest_spp.
 struct NearestSpp {
   bool found = false;
-  Solution solution;                 ///< the nearest SPP of the searched window (when found)
-  SolveStatus search_status = SolveStatus::NotRun;  ///< status of the complete search around the guess
+  Solution solution;                                  ///< the nearest SPP of the searched window (when found)
+  SolveStatus search_status = SolveStatus::NotRun;    ///< status of the complete search around the guess
   double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;  ///< the window searched
-  long candidates = 0;                ///< SPPs in that window
+  long candidates = 0;                                ///< SPPs in that window
 };
 
 /// Refines a guess read off the root map (within a few percent): the complete solver on the window

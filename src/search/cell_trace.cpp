@@ -23,11 +23,13 @@ struct TracePoint {
   double residual = 0, eig_error = 0, slope_sum = 0;
   // distance along (1, 1) to the true curve point on the same anti-diagonal: (|lambda_k| + error) / (l1 + l2)
   double pos_err = 0;
+  int proved_sign = 0;  // sign of the true g, proved by the certified step that reached this point (0: not proved)
   Vec b;
 };
 
 StepEnd step_end(const TracePoint& p) {
-  return {p.s, p.t1, p.t2, p.g, p.dg, p.lam_below, p.lam_above, p.residual, p.eig_error, p.slope_sum, p.pos_err, &p.b};
+  return {p.s,        p.t1,        p.t2,        p.g,       p.dg,          p.lam_below, p.lam_above,
+          p.residual, p.eig_error, p.slope_sum, p.pos_err, p.proved_sign, &p.b};
 }
 
 }  // namespace
@@ -96,14 +98,17 @@ class CellTracer::Impl {
     const Vec e2 = md_.dcontact_eigs(q.t2, sym_);
     const Vec dHb = tp * md_.dflight_dt1(q.t1, sym_).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
     const Vec dbh = q.at->solve_bordered(q.lam, b0, -(dHb - b0.dot(dHb) * b0));
-    if (opt_.certify_steps) {  // residual, neighbouring eigenvalues and error bound only feed the certificate
-      p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam);
-      if (q.k > 0) p.lam_below = q.at->eigenvalue(q.k - 1);
-      if (q.k + 1 < q.at->size()) p.lam_above = q.at->eigenvalue(q.k + 1);
-      p.eig_error = q.at->eigen_error();
-    }
     p.slope_sum = l1 + l2;
     p.pos_err = (std::abs(q.lam) + q.at->eigen_error()) / (l1 + l2);
+    if (opt_.certify_steps) {  // residual, neighbouring eigenvalues and error bound only feed the certificate
+      // at the true curve point of this anti-diagonal (pos_err away, twice for safety; t rounded in tan)
+      const double e = 2.0 * p.pos_err + 4.0 * std::numeric_limits<double>::epsilon() * std::max(q.t1, q.t2);
+      const Offset off = offset_bound(md_, sym_, q.t1, q.t2, e, b0);
+      p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam) + off.residual;
+      if (q.k > 0) p.lam_below = q.at->eigenvalue(q.k - 1);
+      if (q.k + 1 < q.at->size()) p.lam_above = q.at->eigenvalue(q.k + 1);
+      p.eig_error = q.at->eigen_error() + off.norm;
+    }
     p.b = sign * b0;
     const auto [g, dg] = onset_g(b0, q.t2, &dbh, tp + 1.0);
     p.g = sign * g;
@@ -240,7 +245,7 @@ class CellTracer::Impl {
     TracePoint cur = pin;
     if (!(span > 0)) return point(out, &cur.b);  // the curve only touches the cell at a corner
     double h = span, slope = 0.0;                // slope: dtau/ds estimate for the predictor
-    int halvings = 0;
+    int halvings = 0, lengthenings = 0;
     examine_budget_ = kPieceBudget;
     // Stall watch: when certified steps have shrunk 4x since the last step that grew, the trace may approach a pole
     // line or a small gap (the zeroth-order and curvature bounds then shrink the step geometrically) while Hc stays
@@ -270,13 +275,7 @@ class CellTracer::Impl {
         certified = false;
         h = std::max(h, 1e-3 * span);
       }
-      if (budget <= 0 || examine_budget_ <= 0) {  // b turns faster than the step control can follow
-        ++st_.unresolved_pieces;
-        certified = false;
-        TracePoint p = point(out, &cur.b);
-        if (examine(r, k, cur, p, 0)) flip(p);
-        return p;
-      }
+      if (budget <= 0 || examine_budget_ <= 0) return give_up(r, k, cur, out, certified);
       // Inside an axis band nothing is reported (axis_band): steps there need no proof, only the midpoint check that
       // keeps b's orientation.
       const bool in_band = cur.t1 <= band_.first || cur.t2 + step <= band_.second;
@@ -306,7 +305,12 @@ class CellTracer::Impl {
         if (cert.verdict != StepVerdict::Uncertified || by_onset) {
           ++st_.certified_steps;
           halvings = 0;
-          if ((cur.g > 0) != (p.g > 0) && locate_root(r, k, cur, p)) flip(p);
+          lengthenings = 0;
+          p.proved_sign = by_onset ? cur.proved_sign : cert.end_sign;
+          if ((cur.g > 0) != (p.g > 0) && locate_root(r, k, cur, p)) {
+            flip(p);
+            p.proved_sign = 0;
+          }
           if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
           if (last) return p;
           // At least 1.5x: the Weyl bound's safe length can stay at the step's (next to pole lines) where a longer
@@ -334,6 +338,11 @@ class CellTracer::Impl {
           h = std::min(span, next);
           continue;
         }
+        // A monotone step that ends within its error bound of the root: a longer one ends farther from it.
+        if (cert.end_unresolved && !last && ++lengthenings <= kLengthenings) {
+          h = std::min(span, 2.0 * step);
+          continue;
+        }
         // Shorten, towards the length the curvature bound says it could prove (at most 50x at once); after
         // kCertifyTries failures in a row or at the minimum step, the step goes to the midpoint check below.
         const bool bounded = cert.gap > 0 && cert.curvature > 0;  // the bound was computed (not cut short)
@@ -351,9 +360,16 @@ class CellTracer::Impl {
       const double turn1 = turn_between(cur.b, mid.b), turn2 = turn_between(mid.b, q.b), turn = turn1 + turn2;
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
-      if (turn > opt_.max_turn && step > hmin_) {
-        h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
-        continue;
+      if (turn > opt_.max_turn) {
+        if (step > hmin_) {
+          h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
+          continue;
+        }
+        // b turns more than max_turn within the minimum step: the eigenvalues next to lambda_k are within rounding of
+        // it (at n = 300, curves within 1e-9 of a pole line, where |H| ~ 1e10 makes the error bound larger than the
+        // gap), and b is noise. Accepting such steps (as before) let the step fall below the minimum and the piece
+        // crawl for its whole budget (hours at n = 300); the piece is given up instead, and counted.
+        return give_up(r, k, cur, out, certified);
       }
       // b reaches the hyperplane c^T b = 0 and comes back only along a path at least asin|g_A| + asin|g_B| long
       // (angles of the ends to that hyperplane): where g keeps its sign over a half, its turn (a lower bound of the
@@ -380,8 +396,18 @@ class CellTracer::Impl {
       if (q.s > cur.s) slope = (q.t1 - cur.t1) / (q.s - cur.s);
       if (last) return q;
       cur = q;
-      h = std::min(span, step * std::clamp(factor, 0.3, 4.0));
+      h = std::min(span, std::max(hmin_, step * std::clamp(factor, 0.3, 4.0)));
     }
+  }
+
+  // A piece whose null vector cannot be followed (its step budget ran out, or b turned more than max_turn within the
+  // minimum step): counted as unresolved, and its exit point oriented by examining g from the last traced point.
+  TracePoint give_up(const Rect& r, int k, const TracePoint& cur, const Pair& out, bool& certified) {
+    ++st_.unresolved_pieces;
+    certified = false;
+    TracePoint p = point(out, &cur.b);
+    if (examine(r, k, cur, p, 0)) flip(p);
+    return p;
   }
 
   // The midpoint check's examination of g on [A, B] of curve k (every step by default; with certify_steps, the steps
@@ -528,6 +554,7 @@ class CellTracer::Impl {
   static constexpr int kProofBudget = 200000;  // the same with certify_steps, before the midpoint check takes over
   int examine_budget_ = kPieceBudget;
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
+  static constexpr int kLengthenings = 8;   // doublings of a step that ended next to a root of g, in a row
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
   static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped
   static constexpr int kRetraceDepth = 4;   // nested retraces at most

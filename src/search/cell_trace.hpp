@@ -33,7 +33,6 @@ struct Candidate {
   Eigen::VectorXd b;  // null vector of H from the trace (empty: take the SVD of N)
 };
 
-
 /// One cell: its bounds (kept off the pole lines by their margins) and which of its edges lie next to a pole line.
 struct Cell {
   double a1, b1, A, B;  ///< t1 in [a1, b1], t2 in [A, B]

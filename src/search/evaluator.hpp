@@ -16,10 +16,10 @@ class HPoint {
  public:
   virtual ~HPoint() = default;
   virtual int size() const = 0;
-  virtual int count_below(double x) const = 0;   ///< number of eigenvalues < x (Sylvester inertia)
-  virtual double eigenvalue(int k) const = 0;    ///< k-th smallest, 0-based, to ~ eps |H|
-  virtual Eigen::VectorXd eigenvector(double lambda) const = 0;  ///< unit vector for eigenvalue(k)
-  virtual double norm_bound() const = 0;         ///< a bound of |H|_2
+  virtual int count_below(double x) const = 0;                        ///< number of eigenvalues < x (Sylvester inertia)
+  virtual double eigenvalue(int k) const = 0;                         ///< k-th smallest, 0-based, to ~ eps |H|
+  virtual Eigen::VectorXd eigenvector(double lambda) const = 0;       ///< unit vector for eigenvalue(k)
+  virtual double norm_bound() const = 0;                              ///< a bound of |H|_2
   virtual Eigen::VectorXd apply(const Eigen::VectorXd& v) const = 0;  ///< H v
   /// x with [[H - lambda I, b], [b^T, 0]] [x; mu] = [rhs; 0] (first-order eigenvector perturbation).
   virtual Eigen::VectorXd solve_bordered(double lambda, const Eigen::VectorXd& b, const Eigen::VectorXd& rhs) const = 0;

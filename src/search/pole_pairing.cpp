@@ -11,9 +11,8 @@ namespace spp::search {
 // and straight up inside the vertical strip). It shows as one extra exit at an end of one segment next to the
 // crossing and one extra entry at an end of another: those are paired, per crossing. Anything else that does not
 // pair is counted as unpaired.
-void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& a2,
-                            SolveStats& stats, std::vector<UncertifiedRegion>& uncertified,
-                            std::vector<Candidate>& candidates) {
+void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& a2, SolveStats& stats,
+                            std::vector<UncertifiedRegion>& uncertified, std::vector<Candidate>& candidates) {
   auto pair = [&](const EdgeHit& from, const EdgeHit& to) {
     ++stats.strip_pairs;
     double g2 = to.g;
@@ -86,6 +85,5 @@ void pair_across_pole_lines(PoleHits& hits, const AxisPlan& a1, const AxisPlan& 
       unpaired(static_cast<long>(std::max(p.first.size(), p.second.size())), a1.bp[key.first], a2.bp[key.second]);
   }
 }
-
 
 }  // namespace spp::search

@@ -51,9 +51,9 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b, Symmetr
     Vec dx = J.fullPivLu().solve(-F);
     // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0
     double alpha = 1.0;
-    while (alpha > 1e-6 &&
-           (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
-            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) > kPolishReach * (t1_start + t2_start)))
+    while (alpha > 1e-6 && (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
+                            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) >
+                                kPolishReach * (t1_start + t2_start)))
       alpha *= 0.5;
     dx *= alpha;
     t1 += dx(0);

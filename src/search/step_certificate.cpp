@@ -68,28 +68,47 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   const Vec yb = G.transpose() * bx;
   const Vec abx = bx.cwiseAbs(), ayb = yb.cwiseAbs();
 
-  // angle of b(s) to b_x
+  // angle of b(s) to b_x, and the reach of g = c^T b, over a box with increments (iF, iC)
   const double e_gap = err / gap;
-  const double k1 = (aHp * dF.cwiseProduct(abx) + aHpG * dC.cwiseProduct(ayb)).norm() + e_gap;
-  const double k2 = (Hp * dF.asDiagonal()).norm() + (HpG * dC.asDiagonal()).norm() + e_gap;
+  const Vec c = md.z().normalized();
+  const Vec vx = Hp * c, yv = G.transpose() * vx;
+  const Vec avx = vx.cwiseAbs(), ayv = yv.cwiseAbs();
+  const double gx = c.dot(bx);
+  struct Reach {
+    double k1, k2, sin, cos, g;
+  };
+  auto reach_over = [&](const Vec& iF, const Vec& iC) {
+    Reach r;
+    r.k1 = (aHp * iF.cwiseProduct(abx) + aHpG * iC.cwiseProduct(ayb)).norm() + e_gap;
+    r.k2 = (Hp * iF.asDiagonal()).norm() + (HpG * iC.asDiagonal()).norm() + e_gap;
+    const double t = r.k1 / (1.0 - r.k2);
+    r.sin = t / std::sqrt(1.0 + t * t);
+    r.cos = 1.0 / std::sqrt(1.0 + t * t);
+    r.g = iF.cwiseProduct(avx).dot(abx) + iF.cwiseProduct(vx).norm() * r.sin + iC.cwiseProduct(ayv).dot(ayb) +
+          iC.cwiseProduct(yv).norm() * r.sin + err * vx.norm();
+    return r;
+  };
+  const Reach R = reach_over(dF, dC);
+  const double k2 = R.k2, sin = R.sin, cos = R.cos;
   if (!(k2 < 0.5)) return sb;
-  const double t = k1 / (1.0 - k2), sin = t / std::sqrt(1.0 + t * t), cos = 1.0 / std::sqrt(1.0 + t * t);
+  // g of the true curve point at s_x (within pos_err of x along (1, 1); tan evaluated at a rounded t): the mean value
+  // range below starts from it, not from g_x
+  const double ex = 2.0 * x.pos_err + 4.0 * eps * std::max(std::abs(x.t1), std::abs(x.t2));
+  const double xlo1 = std::max(lo1, x.t1 - ex), xhi1 = std::min(hi1, x.t1 + ex);
+  const double xlo2 = std::max(lo2, x.t2 - ex), xhi2 = std::min(hi2, x.t2 + ex);
+  const Reach Rx =
+      reach_over(phase_bounds(md.omega(), sym, xlo1, xhi1).increment, phase_bounds(md.d(), sym, xlo2, xhi2).increment);
+  if (!(Rx.k2 < 0.5)) return sb;
+  sb.g_err = Rx.g + (1.0 - Rx.cos) * std::abs(gx) + e_gap + 4.0 * eps;
   const double db_norm = std::sqrt(2.0 * (1.0 - cos));
   // componentwise |b(s) - b_x| (flight basis dbF, contact basis dbC)
   const Vec eF = dF.cwiseProduct((abx.array() + sin).matrix()), eC = dC.cwiseProduct((ayb.array() + sin).matrix());
   const Vec dbF = (aHp * eF + aHpG * eC + ((1.0 - cos) * abx.array() + e_gap).matrix()).cwiseMin(db_norm);
   const Vec dbC = (aHpG.transpose() * eF + aGHpG * eC + ((1.0 - cos) * ayb.array() + e_gap).matrix()).cwiseMin(db_norm);
 
-  // g over the step
-  const Vec c = md.z().normalized();
-  const Vec vx = Hp * c, yv = G.transpose() * vx;
-  const Vec avx = vx.cwiseAbs(), ayv = yv.cwiseAbs();
-  const double reach = dF.cwiseProduct(avx).dot(abx) + dF.cwiseProduct(vx).norm() * sin +
-                       dC.cwiseProduct(ayv).dot(ayb) + dC.cwiseProduct(yv).norm() * sin + err * vx.norm();
-  const double gx = c.dot(bx);
-  sb.g_err = e_gap + 4.0 * eps;
-  sb.g_lo = std::min(cos * gx, gx) - reach - sb.g_err;
-  sb.g_hi = std::max(cos * gx, gx) + reach + sb.g_err;
+  // g over the step (g = alpha g_x - v_x^T E b(s) from the computed x itself: no end error)
+  sb.g_lo = std::min(cos * gx, gx) - R.g;
+  sb.g_hi = std::max(cos * gx, gx) + R.g;
   const double gmax = std::max(std::abs(sb.g_lo), std::abs(sb.g_hi));
 
   // v(s) = H(s)^+ c over the step
@@ -301,10 +320,27 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
 
 }  // namespace
 
+Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e, const Eigen::VectorXd& b) {
+  auto pole_free = [](const Eigen::VectorXd& freqs, double lo, double hi) {
+    for (Eigen::Index i = 0; i < freqs.size(); ++i)
+      if (std::floor(freqs(i) * lo / M_PI + 0.5) != std::floor(freqs(i) * hi / M_PI + 0.5)) return false;
+    return true;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  if (!(pole_free(md.omega(), t1 - e, t1 + e) && pole_free(md.d(), t2 - e, t2 + e))) return {inf, inf};
+  const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e, t1 + e), C = phase_bounds(md.d(), sym, t2 - e, t2 + e);
+  return {weighted_norm(F.increment, b) + weighted_norm(C.increment, md.G().transpose() * b),
+          F.increment.maxCoeff() + C.increment.maxCoeff()};
+}
+
 StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
                              const StepBox& cell) {
   StepCertificate cert = certify_step_weyl(md, sym, a, b);
-  if (cert.verdict != StepVerdict::Uncertified || sym != Symmetry::Axial) return cert;
+  if (cert.verdict != StepVerdict::Uncertified) {  // each of its proofs needs |g_b| beyond its error
+    cert.end_sign = b.g > 0 ? 1 : -1;
+    return cert;
+  }
+  if (sym != Symmetry::Axial) return cert;
   // The true curve points of the step: within pos_err (twice, for safety) of the computed ends along (1, 1), t1
   // non-increasing and t2 non-decreasing in s, and inside the cell (which keeps every phase function monotone).
   const double e = 2.0 * std::max(a.pos_err, b.pos_err);
@@ -324,11 +360,16 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     if (!sb.valid) continue;
     const bool same_sign = (a.g > 0) == (b.g > 0);
     if ((sb.g_lo > 0 || sb.g_hi < 0) && same_sign && (sb.g_lo > 0) == (a.g > 0)) {
-      cert.verdict = StepVerdict::NoRoot;       // g keeps the sign the computed ends show
+      cert.verdict = StepVerdict::NoRoot;  // g keeps the sign the computed ends show
+      cert.end_sign = sb.g_lo > 0 ? 1 : -1;
     } else if (sb.dg_lo > 0 || sb.dg_hi < 0) {  // g monotone: the true end signs decide
-      const int sa = sign_at(a), sbb = sign_at(b);
-      if (sa != 0 && sbb != 0 && (sa > 0) == (a.g > 0) && (sbb > 0) == (b.g > 0))
+      const int sa = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sbb = sign_at(b);
+      if (sa != 0 && sbb != 0 && (sa > 0) == (a.g > 0) && (sbb > 0) == (b.g > 0)) {
         cert.verdict = sa == sbb ? StepVerdict::NoRoot : StepVerdict::OneRoot;
+        cert.end_sign = sbb;
+      } else if (sa != 0 && (sa > 0) == (a.g > 0) && sbb == 0) {
+        cert.end_unresolved = true;
+      }
     }
     if (cert.verdict != StepVerdict::Uncertified) {
       cert.safe_length = std::max(cert.safe_length, 2.0 * (b.s - a.s));

@@ -39,13 +39,14 @@ namespace spp::search {
 /// One end of a step: a traced point of curve k.
 struct StepEnd {
   double s = 0, t1 = 0, t2 = 0;
-  double g = 0, dg = 0;                ///< onset function and its derivative in s (oriented)
-  double lam_below = 0;                ///< lambda_{k-1} (-inf when k = 0)
-  double lam_above = 0;                ///< lambda_{k+1} (+inf when k = m - 1)
-  double residual = 0;                 ///< |H b| at the point (includes the computed eigenvalue and rounding)
-  double eig_error = 0;                ///< absolute error bound of the computed eigenvalues
-  double slope_sum = 0;                ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
-  double pos_err = 0;                  ///< distance along (1, 1) to the true curve point on the same anti-diagonal
+  double g = 0, dg = 0;  ///< onset function and its derivative in s (oriented)
+  double lam_below = 0;  ///< lambda_{k-1} (-inf when k = 0)
+  double lam_above = 0;  ///< lambda_{k+1} (+inf when k = m - 1)
+  double residual = 0;   ///< bound of |H b| at the true curve point of the same s (offset_bound)
+  double eig_error = 0;  ///< error bound of the computed eigenvalues against the true point's
+  double slope_sum = 0;  ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
+  double pos_err = 0;    ///< distance along (1, 1) to the true curve point on the same anti-diagonal
+  int proved_sign = 0;   ///< sign of the true g here, proved by the step that reached this point (0: not proved)
   const Eigen::VectorXd* b = nullptr;  ///< unit null vector (oriented)
 };
 
@@ -62,6 +63,10 @@ struct StepCertificate {
   double curvature = 0;    ///< L2, bound of |g''| over the step
   double safe_length = 0;  ///< a step length that the same bounds would certify from a (for the next step)
   int evaluations = 0;     ///< evaluations of H (with its full eigenpairs) the certificate made
+  int end_sign = 0;        ///< certified: the sign of the true g at b (0: not proved)
+  /// Not certified only because b lies within its error bound of a root of g (g monotone on the step): a longer
+  /// step, ending farther from the root, can be.
+  bool end_unresolved = false;
 };
 
 /// The cell the step lies in (no pole line inside): the true curve points of the step stay in it.
@@ -102,6 +107,14 @@ struct SpectralBounds {
 /// [lo1, hi1] x [lo2, hi2] (inside one cell). Costs one H and its full eigenpairs (O(m^3)). Axial symmetry only.
 SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
                                double lo1, double hi1, double lo2, double hi2);
+
+/// Bounds of |(H(t1', t2') - H(t1, t2)) b| and of |H(t1', t2') - H(t1, t2)|_2 over |t1' - t1|, |t2' - t2| <= e (+inf
+/// when a pole line lies within e): added to a traced point's residual and eigenvalue error so that they hold at the
+/// true curve point (within pos_err along (1, 1), and tan evaluated at a rounded t), not only at the computed one.
+struct Offset {
+  double residual, norm;
+};
+Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e, const Eigen::VectorXd& b);
 
 /// Extreme values over t in [lo, hi] (inside one pole interval) of the phase functions of the flight (omega) or
 /// contact (d) frequencies: f = w tan(w t) (axial) or tan(w t)/w (point); increments |f(hi) - f(lo)| per mode,

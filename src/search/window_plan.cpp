@@ -48,8 +48,8 @@ AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool wide
   a.margin.assign(a.bp.size(), 0.0);
   for (size_t i = 1; i + 1 < a.bp.size(); ++i) {
     const double left = a.bp[i] - a.bp[i - 1], right = a.bp[i + 1] - a.bp[i];
-    a.margin[i] = std::max(std::min(pole_margin * std::max(left, right), 0.25 * std::min(left, right)),
-                           4e-16 * a.bp[i]);
+    a.margin[i] =
+        std::max(std::min(pole_margin * std::max(left, right), 0.25 * std::min(left, right)), 4e-16 * a.bp[i]);
   }
   return a;
 }
@@ -85,8 +85,7 @@ WindowPlan plan_window(const ModalForm& md, const SolveOptions& options) {
   const bool cut2 = opt.t2_min < 0.5 * band2 && 0.5 * band2 < opt.t2_max;
   w.t1 = plan_axis(md.omega(), cut1 ? 0.5 * band1 : opt.t1_min, opt.t1_max, !(w.axis1 || cut1), opt.pole_margin,
                    max_lines);
-  w.t2 = plan_axis(md.d(), cut2 ? 0.5 * band2 : opt.t2_min, opt.t2_max, !(w.axis2 || cut2), opt.pole_margin,
-                   max_lines);
+  w.t2 = plan_axis(md.d(), cut2 ? 0.5 * band2 : opt.t2_min, opt.t2_max, !(w.axis2 || cut2), opt.pole_margin, max_lines);
   return w;
 }
 

@@ -31,7 +31,7 @@ AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool wide
 void check_window_size(const ModalForm& md, const SolveOptions& opt);
 
 struct WindowPlan {
-  SolveOptions options;     ///< the caller's, with the automatic lower ends filled in
+  SolveOptions options;               ///< the caller's, with the automatic lower ends filled in
   bool axis1 = false, axis2 = false;  ///< lower ends automatic ("from the axis")
   AxisPlan t1, t2;
 };
