@@ -36,6 +36,7 @@ Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample
 
 PYBIND11_MODULE(_spp, m) {
   m.doc() = "spp: periodic orbits with one lasting contact phase (SPPs) of vibro-impact systems";
+  m.attr("__version__") = SPP_VERSION;
 
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
       .def(py::init<Eigen::MatrixXd, Eigen::MatrixXd, Eigen::VectorXd, double, std::string>(), "M"_a, "K"_a, "w"_a,

@@ -4,7 +4,7 @@ set -euo pipefail
 PACKAGES=(g++ cmake ninja-build pkg-config
           libeigen3-dev nlohmann-json3-dev libcli11-dev
           libgtest-dev googletest libbenchmark-dev
-          python3 python3-dev pybind11-dev python3-numpy python3-pytest
+          python3 python3-dev python3-pip python3-venv pybind11-dev python3-numpy python3-pytest
           python3-matplotlib python3-pil python3-siconos)
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -4,6 +4,7 @@ Same concepts and names as the C++ library: System (or System.from_json, chain, 
 solve (SolveOptions, or its fields as keywords), nearest_spp, simulate, verify, root_map, load_result, ParametricSystem and continue_branches. Arrays are numpy;
 invalid input raises ValueError with the C++ message.
 """
+from ._spp import __version__
 from ._spp import (Branch, BranchEvent, BranchPoint, ContinuationResult, Event, NearestSpp, ParametricSystem, RootMap,
                    RootMapCell, SimulationResult, Solution, SolveOptions, SolveResult, SppCandidate, SppCheck,
                    Symmetry, System,

@@ -1,0 +1,102 @@
+"""PEP 517 / PEP 660 build backend of the spp Python package: `pip install .` and `pip install -e .`.
+
+Standard library only, so that pip's build isolation has nothing to fetch: on the machines spp targets PyPI is not
+reachable, and the backends that build a CMake + pybind11 extension (scikit-build-core, setuptools with an extension
+builder) would be fetched from it into the isolated environment. Written here for that reason; it only drives CMake
+(the same build as scripts/build.sh, for the interpreter pip runs under) and packs the result as a wheel.
+
+config_settings (pip: -C key=value):
+  build-dir  CMake build directory (default: a temporary one for wheels, <source>/build-python for editable installs;
+             give a persistent one to make repeated installs incremental)
+"""
+import base64
+import hashlib
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import sysconfig
+import tempfile
+import zipfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+NAME = "spp"
+
+
+def _version():
+    m = re.search(r"project\(spp VERSION ([0-9.]+)", (ROOT / "CMakeLists.txt").read_text())
+    if not m:
+        raise RuntimeError("spp build backend: no 'project(spp VERSION x.y.z' in CMakeLists.txt")
+    return m.group(1)
+
+
+def _tag():
+    impl = f"cp{sys.version_info.major}{sys.version_info.minor}"
+    plat = sysconfig.get_platform().replace("-", "_").replace(".", "_")
+    return f"{impl}-{impl}-{plat}"
+
+
+def _metadata():
+    return (f"Metadata-Version: 2.1\nName: {NAME}\nVersion: {_version()}\n"
+            "Summary: Periodic orbits with one lasting contact phase (SPPs) of vibro-impact oscillators\n"
+            "License: BSD-3-Clause\nRequires-Python: >=3.9\nRequires-Dist: numpy\n")
+
+
+def _cmake_build(build_dir):
+    """Configures and builds the _spp extension for this interpreter; returns the package directory it fills."""
+    build_dir = pathlib.Path(build_dir)
+    configure = ["cmake", "-S", str(ROOT), "-B", str(build_dir), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+                 "-DSPP_BUILD_TESTS=OFF", "-DSPP_BUILD_BENCH=OFF", f"-DPython_EXECUTABLE={sys.executable}"]
+    for cmd in (configure, ["cmake", "--build", str(build_dir), "--target", "_spp"]):
+        print("spp build backend:", " ".join(cmd), file=sys.stderr, flush=True)
+        subprocess.run(cmd, check=True, stdout=sys.stderr)
+    return build_dir / "python" / NAME
+
+
+def _write_wheel(wheel_directory, files):
+    """files: {archive name: bytes}; adds the dist-info and RECORD, returns the wheel's file name."""
+    dist_info = f"{NAME}-{_version()}.dist-info"
+    files = dict(files)
+    files[f"{dist_info}/METADATA"] = _metadata().encode()
+    files[f"{dist_info}/WHEEL"] = (f"Wheel-Version: 1.0\nGenerator: spp_build\nRoot-Is-Purelib: false\n"
+                                   f"Tag: {_tag()}\n").encode()
+    files[f"{dist_info}/top_level.txt"] = f"{NAME}\n".encode()
+    record = []
+    for name, data in files.items():
+        digest = base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode()
+        record.append(f"{name},sha256={digest},{len(data)}")
+    record.append(f"{dist_info}/RECORD,,")
+    files[f"{dist_info}/RECORD"] = ("\n".join(record) + "\n").encode()
+    wheel_name = f"{NAME}-{_version()}-{_tag()}.whl"
+    with zipfile.ZipFile(os.path.join(wheel_directory, wheel_name), "w", zipfile.ZIP_DEFLATED) as zf:
+        for name, data in files.items():
+            zf.writestr(name, data)
+    return wheel_name
+
+
+def get_requires_for_build_wheel(config_settings=None):
+    return []
+
+
+def get_requires_for_build_editable(config_settings=None):
+    return []
+
+
+def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
+    build_dir = (config_settings or {}).get("build-dir")
+    with tempfile.TemporaryDirectory(prefix="spp-wheel-") as tmp:
+        pkg = _cmake_build(build_dir or tmp)
+        files = {f"{NAME}/{p.name}": p.read_bytes() for p in sorted(pkg.iterdir())
+                 if p.is_file() and (p.suffix in (".py", ".so") or p.name.startswith("_spp"))}
+        if not any(n.startswith(f"{NAME}/_spp") for n in files):
+            raise RuntimeError(f"spp build backend: the _spp extension was not built in {pkg}")
+        return _write_wheel(wheel_directory, files)
+
+
+def build_editable(wheel_directory, config_settings=None, metadata_directory=None):
+    """A wheel holding one .pth that puts the CMake build's python/ directory on sys.path: the package then runs
+    from the build tree (after editing a .py file or the C++ sources, `cmake --build build-python --target _spp`)."""
+    build_dir = pathlib.Path((config_settings or {}).get("build-dir") or ROOT / "build-python").resolve()
+    pkg = _cmake_build(build_dir)
+    return _write_wheel(wheel_directory, {f"__editable__.{NAME}.pth": f"{pkg.parent}\n".encode()})

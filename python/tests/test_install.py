@@ -1,0 +1,39 @@
+"""`pip install .` into a fresh venv (python3 -m venv --system-site-packages), offline (--no-index: the in-tree build
+backend needs nothing from PyPI), then `import spp` from elsewhere: the venv's copy is the one imported, it solves, its
+version is CMake's, and `pip uninstall` removes it. SPP_PIP_BUILD_DIR (set by CTest) keeps the CMake build between
+runs so that only the first one compiles."""
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+def run(cmd, **kw):
+    cp = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    assert cp.returncode == 0, f"{' '.join(map(str, cmd))}\n{cp.stdout[-3000:]}\n{cp.stderr[-3000:]}"
+    return cp.stdout
+
+
+@pytest.mark.skipif(subprocess.run(["/usr/bin/python3", "-c", "import venv, ensurepip"]).returncode != 0,
+                    reason="python3-venv is not installed (scripts/install-deps.sh installs it)")
+def test_pip_install_into_a_venv(tmp_path):
+    venv = tmp_path / "venv"
+    run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(venv)])
+    pip, py = venv / "bin" / "pip", venv / "bin" / "python"
+    cmd = [str(pip), "install", "--no-index", str(ROOT)]
+    if os.environ.get("SPP_PIP_BUILD_DIR"):
+        cmd[2:2] = ["--config-settings", "build-dir=" + os.environ["SPP_PIP_BUILD_DIR"]]
+    run(cmd)
+    out = run([str(py), "-c", "import spp; print(spp.__version__); print(spp.__file__); "
+               "r = spp.solve(spp.chain(2), t1_max=10, t2_max=10); print(r.status)"], cwd=tmp_path)
+    version, path, status = out.split()
+    assert version == re.search(r"project\(spp VERSION ([0-9.]+)", (ROOT / "CMakeLists.txt").read_text()).group(1)
+    assert pathlib.Path(path).resolve().is_relative_to(venv.resolve()), path
+    assert status.lower().endswith("success")
+    run([str(pip), "uninstall", "-y", "spp"])
+    assert not list((venv / "lib").glob("python3*/site-packages/spp"))
