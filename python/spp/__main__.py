@@ -8,6 +8,10 @@ import argparse
 import os
 import sys
 
+import matplotlib
+
+matplotlib.use("Agg")  # headless: files only (the library modules leave the backend alone)
+
 from ._spp import load_result
 
 

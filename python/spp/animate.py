@@ -15,14 +15,11 @@ import shutil
 
 import numpy as np
 
-import matplotlib
+import matplotlib.pyplot as plt
+from matplotlib import animation
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import animation  # noqa: E402
-
-from ._files import atomic_path  # noqa: E402
-from ._spp import simulate  # noqa: E402
+from ._files import atomic_path
+from ._spp import simulate
 
 LAYOUTS = ("auto", "chain", "plane", "dofs")
 

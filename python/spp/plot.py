@@ -1,17 +1,15 @@
-"""Figures like the paper's (matplotlib, Agg): the root map of a window (Fig. 4), an SPP over one period (Figs. 5
-and 7) and the frequency-energy plot of the SPPs found. Each function returns the matplotlib Figure and, given a path, saves it (the suffix
-picks PNG, SVG or PDF)."""
+"""Figures like the paper's: the root map of a window (Fig. 4), an SPP over one period (Figs. 5 and 7) and the
+frequency-energy plot of the SPPs found. Each function draws into the axes it is given (ax=, or axes= for the two
+panels of spp_figure) or into a new figure, returns the Figure and, given a path, saves it (the suffix picks PNG, SVG
+or PDF). Importing this module leaves matplotlib's backend alone, so figures show inline in Jupyter and with
+plt.show(); `python3 -m spp plot` (headless) selects Agg itself."""
 import numpy as np
 
-import matplotlib
+import matplotlib.pyplot as plt
+from matplotlib.lines import Line2D
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from matplotlib.lines import Line2D  # noqa: E402
-
-from ._files import atomic_path  # noqa: E402
-from ._spp import root_map, simulate  # noqa: E402
+from ._files import atomic_path
+from ._spp import root_map, simulate
 
 COLUMN_WIDTH_IN = 3.5  # one journal column
 
@@ -22,43 +20,88 @@ def save_atomic(fig, path, dpi=200):
         fig.savefig(tmp, dpi=dpi, bbox_inches="tight")
 
 
+def _axes(ax, figsize):
+    """The axes to draw into, their figure, and whether the figure is this call's own (then laid out here)."""
+    if ax is not None:
+        return ax.figure, ax, False
+    fig, ax = plt.subplots(figsize=figsize)
+    return fig, ax, True
+
+
 def _save(fig, path, dpi=200):
     if path is not None:
         save_atomic(fig, path, dpi)
     return fig
 
 
-def spp_figure(system, solution, samples=2000, path=None):
-    """Top: gap and normal contact force over one period, contact phase shaded, symmetry axes at -t1 (mid-flight)
-    and t2 (mid-contact); bottom: every position. Time origin at contact onset: flight on [-2 t1, 0], contact on
-    [0, 2 t2]. The curves come from spp.simulate (exact flows) started at the solution's x0, v0."""
+def _align_zeros(left, right):
+    """Sets both y ranges so that their zeros are at the same height (gap and force share the zero line)."""
+    (a0, a1), (b0, b1) = left.get_ylim(), right.get_ylim()
+    # fraction of the height below zero, the larger of the two, applied to both
+    f = max(-a0 / (a1 - a0) if a0 < 0 else 0.0, -b0 / (b1 - b0) if b0 < 0 else 0.0)
+    f = min(max(f, 0.05), 0.9)  # a margin under a curve that touches zero
+    for ax, lo, hi in ((left, a0, a1), (right, b0, b1)):
+        top = max(hi, 0.0)
+        bottom = max(-lo, 0.0)
+        top = max(top, bottom * (1 - f) / f) if f > 0 else top
+        ax.set_ylim(-f * top / (1 - f), top)
+
+
+def _dof_colors(n):
+    """Matplotlib's cycle up to 10 dofs; past it, a sequential colour map (dof 1 to n), which does not repeat."""
+    if n <= 10:
+        return [f"C{i}" for i in range(n)]
+    return [plt.get_cmap("viridis")(i / (n - 1)) for i in range(n)]
+
+
+def spp_figure(system, solution, samples=2000, path=None, axes=None):
+    """Top: gap (left axis) and normal contact force (right axis, its own scale) over one period, contact phase
+    shaded, symmetry axes at -t1 (mid-flight) and t2 (mid-contact); bottom: every position (coloured by dof index
+    past 10 dofs, with a colour bar instead of a legend). Time origin at contact onset: flight on [-2 t1, 0], contact
+    on [0, 2 t2]. The curves come from spp.simulate (exact flows) started at the solution's x0, v0.
+    axes: (top, bottom) to draw into; default a new figure."""
     T, t1, t2 = solution.period, solution.t1, solution.t2
     sim = simulate(system, solution.x0, solution.v0, T, 0.0, samples / T)
     t = np.where(sim.t > 2 * t2, sim.t - T, sim.t)  # flight after the contact is the flight before it
     order = np.argsort(t, kind="stable")
     t, x, gap, force = t[order], sim.x[order], sim.gap[order], sim.force[order]
-    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(COLUMN_WIDTH_IN * 2, 4.6),
-                                      gridspec_kw={"height_ratios": [1, 1.3]})
+    if axes is None:
+        fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(COLUMN_WIDTH_IN * 2, 4.6),
+                                          gridspec_kw={"height_ratios": [1, 1.3]})
+    else:
+        top, bottom = axes
+        fig = top.figure
     for ax in (top, bottom):
         ax.axvspan(0.0, 2 * t2, color="0.88", lw=0, label="contact phase" if ax is top else None)
         ax.axvline(-t1, color="0.4", ls=":", lw=1)
         ax.axvline(t2, color="0.4", ls=":", lw=1)
     top.plot(t, gap, color="C0", lw=1.4, label="gap $g$ (-)")
-    top.plot(t, force, color="C3", lw=1.4, label=r"contact force $\lambda$ (-)")
     top.axhline(0.0, color="k", lw=0.6)
-    top.set_ylabel("gap, force (-)")
-    top.legend(loc="best", fontsize=8, frameon=False)
+    top.set_ylabel("gap $g$ (-)", color="C0")
+    right = top.twinx()  # the force has its own scale (at n = 20 the gap reaches 500 and the force 40)
+    right.plot(t, force, color="C3", lw=1.4, label=r"contact force $\lambda$ (-)")
+    right.set_ylabel(r"contact force $\lambda$ (-)", color="C3")
+    _align_zeros(top, right)
+    handles = top.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
+    top.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
     state = "admissible" if solution.admissible else "not admissible"
     top.set_title(f"SPP $t_1$ = {t1:.6g}, $t_2$ = {t2:.6g}, $T$ = {T:.6g} ({state})", fontsize=9, pad=14)
-    for i in range(x.shape[1]):
-        bottom.plot(t, x[:, i], lw=1.1, label=f"$x_{{{i + 1}}}$")
+    n = x.shape[1]
+    for i, color in enumerate(_dof_colors(n)):
+        bottom.plot(t, x[:, i], lw=1.1 if n <= 10 else 0.8, color=color, label=f"$x_{{{i + 1}}}$")
     bottom.set_xlabel("time $t$ (-)")
     bottom.set_ylabel("positions (-)")
-    bottom.legend(loc="best", fontsize=7, ncol=min(5, x.shape[1]), frameon=False)
+    if n <= 10:
+        bottom.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=False)
     bottom.set_xlim(-2 * t1, 2 * t2)
     for ax, tick, name in ((top, -t1, "$-t_1$"), (top, t2, "$t_2$")):
         ax.annotate(name, (tick, 1.0), xycoords=("data", "axes fraction"), ha="center", va="bottom", fontsize=8)
-    fig.tight_layout()
+    if axes is None:
+        fig.tight_layout()
+    if n > 10:  # after the layout, under the positions (their width, so the time axes stay aligned)
+        sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(1, n))
+        fig.colorbar(sm, ax=bottom, orientation="horizontal", location="bottom", label="dof index", pad=0.3,
+                     fraction=0.06, aspect=40)
     return _save(fig, path)
 
 
@@ -72,14 +115,15 @@ def _scatter_spps(ax, solutions, x, y):
             ax.scatter(a, b, s=16, lw=0.8, zorder=3, gid="admissible" if admissible else "potential", **style)
 
 
-def root_map_figure(system, solutions, window, points=400, path=None):
+def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
     anything with t1, t2, admissible) marked, potential open, admissible filled. An SPP is where a dashed curve
-    touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max; points: grid points per axis."""
+    touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max; points: grid points per axis; ax: axes
+    to draw into (default a new figure)."""
     w = window
     rm = root_map(system, w["t1_max"], w["t2_max"], w["t1_min"], w["t2_min"], points, points)
-    fig, ax = plt.subplots(figsize=(COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
+    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
     for p in rm.flight_poles:
         ax.axvline(p, color="0.8", lw=0.5, zorder=0)
     for p in rm.contact_poles:
@@ -99,19 +143,21 @@ def root_map_figure(system, solutions, window, points=400, path=None):
                Line2D([], [], color="0.8", lw=0.5, label="pole lines")]
     handles += ax.get_legend_handles_labels()[0]
     ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
-    fig.tight_layout()
+    if own:
+        fig.tight_layout()
     return _save(fig, path)
 
 
-def frequency_energy_figure(solutions, path=None):
+def frequency_energy_figure(solutions, path=None, ax=None):
     """Frequency 2 pi / T against energy of SPPs (solutions of a result: anything with period, energy,
-    admissible); admissible ones filled."""
+    admissible); admissible ones filled. ax: axes to draw into (default a new figure)."""
     sols = list(solutions)
-    fig, ax = plt.subplots(figsize=(COLUMN_WIDTH_IN, 2.8))
+    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN, 2.8))
     _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
     ax.set_xscale("log")
     ax.set_xlabel("energy $E$ (-)")
     ax.set_ylabel(r"frequency $2\pi/T$ (-)")
     ax.legend(fontsize=7, frameon=False)
-    fig.tight_layout()
+    if own:
+        fig.tight_layout()
     return _save(fig, path)

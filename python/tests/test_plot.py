@@ -75,3 +75,42 @@ def test_root_map_cells_match_the_solver_window():
         assert "t1_max" in str(e)
     else:
         raise AssertionError("expected ValueError")
+
+
+def test_importing_the_figure_modules_keeps_the_backend():
+    # A notebook's inline backend (here: svg, chosen first) must survive `import spp.plot` / `spp.animate`.
+    import subprocess
+    import sys
+    code = ("import matplotlib; matplotlib.use('svg'); import spp.plot, spp.animate; "
+            "print(matplotlib.get_backend())")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "svg"
+
+
+def test_figures_draw_into_given_axes():
+    import matplotlib.pyplot as plt
+    s, r = result()
+    fig, ax = plt.subplots()
+    assert plot.frequency_energy_figure(r.solutions, ax=ax) is fig
+    assert {c.get_gid() for c in ax.collections} == {"admissible", "potential"}
+    fig2, (top, bottom) = plt.subplots(2, 1)
+    sol = [x for x in r.solutions if x.admissible][0]
+    assert plot.spp_figure(s, sol, axes=(top, bottom)) is fig2
+    # the force on its own (twin) axis, the gap on the top one
+    twins = [a for a in fig2.axes if a not in (top, bottom)]
+    assert len(twins) == 1 and twins[0].lines[0].get_label().startswith("contact force")
+    assert top.lines[2].get_label().startswith("gap")
+    plt.close("all")
+
+
+def test_positions_past_ten_dofs_use_a_colour_map():
+    import matplotlib.pyplot as plt
+    s = spp.chain(12)
+    r = spp.solve(s, t1_max=3, t2_max=3)
+    assert r.solutions
+    fig = plot.spp_figure(s, r.solutions[0])
+    bottom = fig.axes[1]
+    colors = [tuple(line.get_color()) for line in bottom.lines[2:]]  # after the two symmetry axes
+    assert len(colors) == 12 and len(set(colors)) == 12
+    assert bottom.get_legend() is None and any(a.get_label() == "<colorbar>" for a in fig.axes)
+    plt.close("all")
