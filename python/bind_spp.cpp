@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <iomanip>
 #include <sstream>
 
 #include "spp/continuation.hpp"
@@ -91,7 +92,9 @@ PYBIND11_MODULE(_spp, m) {
                (s.admissible ? " admissible>" : " not admissible>");
       });
 
-  py::class_<spp::SolveResult>(m, "SolveResult")
+  // Results of solve() carry their system (attribute `system`), so that they pickle (as their result file's text,
+  // the one format that holds every field) and can be plotted, verified or written without it being passed again.
+  py::class_<spp::SolveResult>(m, "SolveResult", py::dynamic_attr())
       .def_property_readonly("status", [](const spp::SolveResult& r) { return std::string(spp::to_string(r.status)); })
       .def_readonly("solutions", &spp::SolveResult::solutions)
       .def_readonly("warnings", &spp::SolveResult::warnings)
@@ -99,10 +102,114 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("t1_max", &spp::SolveResult::t1_max)
       .def_readonly("t2_min", &spp::SolveResult::t2_min)
       .def_readonly("t2_max", &spp::SolveResult::t2_max)
+      .def_property_readonly("symmetry", [](const spp::SolveResult& r) { return r.symmetry; })
+      .def_property_readonly(
+          "stats",
+          [](const spp::SolveResult& r) {
+            const spp::SolveStats& st = r.stats;
+            py::dict d;  // the result file's "stats", key for key (tested against it)
+            d["flight_pole_lines"] = st.flight_pole_lines;
+            d["contact_pole_lines"] = st.contact_pole_lines;
+            d["rectangles"] = st.rectangles;
+            d["curve_pieces"] = st.curve_pieces;
+            d["roots"] = st.roots;
+            d["evaluations"] = st.evaluations;
+            d["strip_pairs"] = st.strip_pairs;
+            d["certified_steps"] = st.certified_steps;
+            d["heuristic_steps"] = st.heuristic_steps;
+            d["uncertified_steps"] = st.uncertified_steps;
+            d["uncertified_corners"] = st.uncertified_corners;
+            d["unpaired_crossings"] = st.unpaired_crossings;
+            d["unresolved_pieces"] = st.unresolved_pieces;
+            d["unpolished_roots"] = st.unpolished_roots;
+            d["pole_line_artifacts"] = st.pole_line_artifacts;
+            d["decoupled_modes"] = r.decoupled_modes;
+            d["repeated_frequency_groups"] = r.repeated_groups;
+            d["seconds"] = st.seconds;
+            return d;
+          },
+          "counters of the search (dict, the result file's \"stats\")")
+      .def_property_readonly(
+          "uncertified",
+          [](const spp::SolveResult& r) {
+            py::list l;
+            for (const spp::UncertifiedRegion& u : r.uncertified)
+              l.append(py::dict("t1_lo"_a = u.t1_lo, "t1_hi"_a = u.t1_hi, "t2_lo"_a = u.t2_lo, "t2_hi"_a = u.t2_hi,
+                                "cause"_a = u.cause));
+            return l;
+          },
+          "parts of the window not certified, with their cause (empty exactly when status is success)")
       .def("brief_report", &spp::SolveResult::brief_report)
       .def(
           "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_json(s, r, -1); },
-          "system"_a, "The result JSON text, as spp solve --json writes it.");
+          "system"_a, "The result JSON text, as spp solve --json writes it.")
+      .def(
+          "to_dataframe",
+          [](const spp::SolveResult& r) {
+            py::module_ pd;
+            try {
+              pd = py::module_::import("pandas");
+            } catch (const py::error_already_set&) {
+              throw py::import_error("to_dataframe needs pandas (Debian: apt-get install python3-pandas)");
+            }
+            py::list t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags;
+            for (const spp::Solution& x : r.solutions) {
+              t1.append(x.t1);
+              t2.append(x.t2);
+              period.append(x.period);
+              admissible.append(x.admissible);
+              min_gap.append(x.min_gap);
+              min_force.append(x.min_force);
+              energy.append(x.energy);
+              residual.append(x.residual);
+              return_error.append(x.return_error);
+              std::string f;
+              for (const std::string& s : x.flags) f += (f.empty() ? "" : ",") + s;
+              flags.append(f);
+            }
+            return pd.attr("DataFrame")(py::dict("t1"_a = t1, "t2"_a = t2, "period"_a = period,
+                                                 "admissible"_a = admissible, "min_gap"_a = min_gap,
+                                                 "min_force"_a = min_force, "energy"_a = energy,
+                                                 "residual"_a = residual, "return_error"_a = return_error,
+                                                 "flags"_a = flags));
+          },
+          "One row per SPP (t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags), in "
+          "the result's order (by period); needs pandas.")
+      .def("__repr__",
+           [](const spp::SolveResult& r) { return "<spp.SolveResult " + r.brief_report().substr(5) + ">"; })
+      .def(
+          "_repr_html_",
+          [](const spp::SolveResult& r) {
+            std::ostringstream h;
+            h << "<p><b>spp.SolveResult</b>: " << r.brief_report().substr(5) << "</p>";
+            h << "<table><tr><th>#</th><th>t1</th><th>t2</th><th>period</th><th>admissible</th><th>min gap</th>"
+                 "<th>min force</th><th>energy</th></tr>";
+            const size_t shown = std::min<size_t>(r.solutions.size(), 20);
+            h << std::setprecision(8);
+            for (size_t i = 0; i < shown; ++i) {
+              const spp::Solution& x = r.solutions[i];
+              h << "<tr><td>" << i << "</td><td>" << x.t1 << "</td><td>" << x.t2 << "</td><td>" << x.period
+                << "</td><td>" << (x.admissible ? "yes" : "no") << "</td><td>" << x.min_gap << "</td><td>"
+                << x.min_force << "</td><td>" << x.energy << "</td></tr>";
+            }
+            h << "</table>";
+            if (shown < r.solutions.size()) h << "<p>(" << r.solutions.size() - shown << " more: to_dataframe())</p>";
+            return h.str();
+          })
+      .def(py::pickle(
+          [](const py::object& self) {
+            if (!py::hasattr(self, "system"))
+              throw std::invalid_argument("this SolveResult has no system attribute: only results of solve() pickle");
+            const spp::System sys = self.attr("system").cast<spp::System>();
+            return py::make_tuple(spp::result_json(sys, self.cast<const spp::SolveResult&>(), -1));
+          },
+          [](const py::tuple& state) {
+            if (state.size() != 1) throw std::invalid_argument("SolveResult pickle: expected one field");
+            const std::string text = state[0].cast<std::string>();
+            py::dict attrs;
+            attrs["system"] = spp::parse_result_system(text, "pickled SolveResult");
+            return std::make_pair(spp::parse_result(text, "pickled SolveResult"), attrs);
+          }));
 
   py::enum_<spp::Symmetry>(m, "Symmetry", "Which equations: the SPPs (axial) or the point-symmetric potential SPPs "
                                            "of det T2 = 0 (point, paper §6.2)")
@@ -174,8 +281,14 @@ PYBIND11_MODULE(_spp, m) {
       [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
         const spp::SolveOptions o = solve_options(options, fields, "solve");
         o.validate();
-        py::gil_scoped_release release;
-        return spp::solve(s, o);
+        spp::SolveResult r;
+        {
+          py::gil_scoped_release release;
+          r = spp::solve(s, o);
+        }
+        py::object result = py::cast(std::move(r));
+        result.attr("system") = s;
+        return result;
       },
       "system"_a, "options"_a = py::none(),
       "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "

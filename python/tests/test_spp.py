@@ -166,3 +166,52 @@ def test_solve_options_as_an_object_or_as_keywords():
         raise AssertionError("expected ValueError")
     near = spp.nearest_spp(s, 3.2, 0.53, certify_steps=True)
     assert near.found and abs(near.solution.t1 - 3.2160302) < 1e-6
+
+
+def _chain5_result():
+    import os
+    src = os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+    s = spp.System.from_json(os.path.join(src, "examples", "chain5.json"))
+    return s, spp.solve(s, t1_max=12, t2_max=12)
+
+
+def test_solve_result_shows_itself_and_its_stats():
+    import json
+    s, r = _chain5_result()
+    assert repr(r).startswith("<spp.SolveResult success, 64 SPPs (7 admissible)")
+    html = r._repr_html_()
+    assert html.count("<tr>") == 21 and "44 more" in html  # header + 20 rows
+    assert r.system.n == 5 and r.uncertified == [] and r.symmetry == spp.Symmetry.axial
+    # the same counters, key for key, as the result file
+    assert r.stats == json.loads(r.to_json(s))["stats"]
+    assert r.stats["roots"] == 64
+
+
+def test_solve_result_pickles_with_every_field():
+    import pickle
+    _, r = _chain5_result()
+    q = pickle.loads(pickle.dumps(r))
+    assert repr(q) == repr(r) and q.stats == r.stats and q.system.n == r.system.n
+    for a, b in zip(r.solutions, q.solutions):
+        assert (a.t1, a.t2, a.admissible, a.energy, a.flags) == (b.t1, b.t2, b.admissible, b.energy, b.flags)
+        assert np.array_equal(a.x0, b.x0) and np.array_equal(a.v0, b.v0)
+
+
+def _solve_chain(n):
+    return spp.solve(spp.chain(n), t1_max=6, t2_max=6)
+
+
+def test_solve_results_come_back_from_worker_processes():
+    import concurrent.futures
+    with concurrent.futures.ProcessPoolExecutor(2) as ex:
+        results = list(ex.map(_solve_chain, [2, 3]))
+    for n, r in zip([2, 3], results):
+        assert r.system.n == n and [x.t1 for x in r.solutions] == [x.t1 for x in _solve_chain(n).solutions]
+
+
+def test_solve_result_to_dataframe():
+    pd = pytest.importorskip("pandas")
+    _, r = _chain5_result()
+    df = r.to_dataframe()
+    assert isinstance(df, pd.DataFrame) and len(df) == 64 and int(df["admissible"].sum()) == 7
+    assert np.allclose(df["t1"], [x.t1 for x in r.solutions])

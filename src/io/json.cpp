@@ -35,8 +35,9 @@ void check_fields(const json& j, std::initializer_list<const char*> known, const
   }
 }
 
-json read_json_file(const std::string& path) {
-  const std::string text = read_file(path);
+json read_json_file(const std::string& path) { return parse_json_text(read_file(path), path); }
+
+json parse_json_text(const std::string& text, const std::string& path) {
   // Duplicate keys are refused (nlohmann keeps the last one silently): one set of keys per open object.
   std::vector<std::unordered_set<std::string>> keys;
   std::string duplicate;

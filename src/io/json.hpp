@@ -26,6 +26,8 @@ void check_fields(const json& j, std::initializer_list<const char*> known, const
                   std::initializer_list<const char*> also = {});
 /// Parses a JSON file; malformed JSON and a key given twice in one object are refused, naming the file.
 json read_json_file(const std::string& path);
+/// The same from text; `path` names it in errors.
+json parse_json_text(const std::string& text, const std::string& path);
 
 json matrix_json(const Eigen::MatrixXd& A);
 json vector_json(const Eigen::VectorXd& v);

@@ -237,6 +237,14 @@ SolveResult load_result(const std::string& path) {
   return io::result_from_json(io::read_json_file(path), path);
 }
 
+SolveResult parse_result(const std::string& text, const std::string& where) {
+  return io::result_from_json(io::parse_json_text(text, where), where);
+}
+
+System parse_result_system(const std::string& text, const std::string& where) {
+  return io::result_system(io::parse_json_text(text, where), where);
+}
+
 System load_result_system(const std::string& path) {
   return io::result_system(io::read_json_file(path), path);
 }

@@ -18,6 +18,9 @@ std::string result_json(const System& system, const SolveResult& result, int ind
 /// The SolveResult that result_json wrote, every field (tested: write, read, compare). Throws std::invalid_argument
 /// naming the file and the field it cannot read.
 SolveResult load_result(const std::string& path);
+/// The same from the file's text (`where` names it in errors): what Python's pickling reads back.
+SolveResult parse_result(const std::string& text, const std::string& where);
+System parse_result_system(const std::string& text, const std::string& where);
 /// The system embedded in a result file.
 System load_result_system(const std::string& path);
 /// Only what verify, trajectory and the plots need of each SPP (t1, t2, x0, v0, admissible, energy).
