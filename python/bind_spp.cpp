@@ -11,6 +11,7 @@
 #include "spp/continuation.hpp"
 #include "spp/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/modal.hpp"
 #include "spp/root_map.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"
@@ -294,6 +295,22 @@ PYBIND11_MODULE(_spp, m) {
       "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
       "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
       "potential SPPs of paper §6.2; certify_steps=True: every step proved). Raises ValueError.");
+
+  m.def(
+      "fundamental_box", [](const spp::System& s) { return spp::fundamental_box(spp::ModalForm(s)); }, "system"_a,
+      "(t1_max, t2_max) of the fundamental box: t1 <= pi / omega_1 (slowest free-flight mode that sees the contact), "
+      "t2 <= pi / d_1 (slowest contact-phase oscillation): t1, t2 = fundamental_box(s); solve(s, t1_max=t1, "
+      "t2_max=t2).");
+  m.def(
+      "modal_frequencies",
+      [](const spp::System& s) {
+        const spp::ModalForm md(s);
+        return py::dict("flight"_a = md.omega(), "contact"_a = md.d(), "decoupled"_a = md.omega_decoupled());
+      },
+      "system"_a,
+      "The frequencies that place the pole lines of every window: flight (free-flight modes that see the contact, "
+      "ascending; poles of tan at t1 = (k + 1/2) pi / omega), contact (contact-phase frequencies, the first 0: the "
+      "constrained direction; poles at t2 = (k + 1/2) pi / d) and decoupled (modes that never see the contact).");
 
   py::class_<spp::NearestSpp>(m, "NearestSpp", "Result of nearest_spp: the SPP nearest to a guess")
       .def_readonly("found", &spp::NearestSpp::found)

@@ -154,6 +154,17 @@ std::pair<double, double> default_lower_ends(const ModalForm& md, double t1_max,
           std::min(dmax > 0 ? kDefaultLower * pi / (2.0 * dmax) : kDefaultLower * t2_max, kDefaultLowerCap * t2_max)};
 }
 
+std::pair<double, double> fundamental_box(const ModalForm& md) {
+  const double pi = std::numbers::pi;
+  double dmin = 0.0;
+  for (Eigen::Index j = 0; j < md.d().size(); ++j)
+    if (md.d()(j) > 0 && (dmin == 0.0 || md.d()(j) < dmin)) dmin = md.d()(j);
+  if (md.m() == 0 || dmin == 0.0)
+    detail::invalid("fundamental box: the system has no contact-phase oscillation (one coupled mode or none), so "
+                    "no box: give the window's upper ends t1_max, t2_max");
+  return {pi / md.omega().minCoeff(), pi / dmin};
+}
+
 std::pair<double, double> axis_band(const ModalForm& md) {
   const double pi = std::numbers::pi, dmax = md.d().maxCoeff();
   return {search::kAxisBand * pi / (2.0 * md.omega().maxCoeff()),

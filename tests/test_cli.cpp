@@ -448,3 +448,22 @@ TEST(Cli, ThinStripAcrossAPoleLineNamesEachGapOnce) {
   EXPECT_NE(r.out.find("incomplete, 0 SPPs"), std::string::npos) << r.out;
   EXPECT_LT(std::count(r.out.begin(), r.out.end(), '\n'), 12) << r.out;
 }
+
+TEST(Cli, BoxSolvesTheFundamentalBox) {
+  // --box: t1 <= pi / omega_1, t2 <= pi / d_1; for the paper's fixed-free 5-dof chain, 28 potential SPPs (the count
+  // two independent codes agree on in the design note, docs/modal-form.md §3b).
+  const fs::path js = dir() / "box.json";
+  const CliRun r = run("solve " + kChain + " --box --json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("fundamental box: t1 <= pi / omega_1 = 11.03"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(js));
+  EXPECT_EQ(j["solutions"].size(), 28u);
+  EXPECT_NEAR(j["window"]["t1_max"].get<double>(), 11.037473996762854, 1e-9);
+  EXPECT_NEAR(j["window"]["t2_max"].get<double>(), 5.083203692315259, 1e-9);
+  const CliRun both = run("solve " + kChain + " --box --t1-max 3");
+  EXPECT_EQ(both.code, 1);
+  EXPECT_NE(both.out.find("--box sets the window's upper ends"), std::string::npos) << both.out;
+  const CliRun none = run("solve " + kChain + " --t2-max 3");
+  EXPECT_EQ(none.code, 1);
+  EXPECT_NE(none.out.find("--t1-max and --t2-max are required (or --box"), std::string::npos) << none.out;
+}

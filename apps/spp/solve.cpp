@@ -3,10 +3,12 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "command.hpp"
 #include "spp/continuation.hpp"
 #include "spp/io.hpp"
+#include "spp/modal.hpp"
 #include "spp/solver.hpp"
 #include "tables.hpp"
 
@@ -17,13 +19,16 @@ namespace {
 struct SolveArgs {
   std::string system, json, csv, symmetry = "axial";
   SolveOptions options;
-  bool quiet = false;
+  bool quiet = false, box = false;
   double at = 0.0;
   CLI::Option* at_given = nullptr;
+  CLI::Option* t1_max_given = nullptr;
+  CLI::Option* t2_max_given = nullptr;
 };
 
 // A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
 int run_zero_gap(const SolveArgs& a) {
+  if (a.box) throw std::invalid_argument("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
   const ParametricSystem ps = load_parametric_system(a.system);
   if (ps.g0() != 0.0)
     throw std::invalid_argument(a.system + ": a parametric system with g0 != 0: give --at VALUE of \"" +
@@ -50,6 +55,11 @@ int run_zero_gap(const SolveArgs& a) {
 
 int run(SolveArgs& a) {
   a.options.symmetry = a.symmetry == "point" ? Symmetry::Point : Symmetry::Axial;
+  const bool maxes = a.t1_max_given->count() > 0 || a.t2_max_given->count() > 0;
+  if (a.box && maxes) throw std::invalid_argument("--box sets the window's upper ends: give it or --t1-max/--t2-max");
+  if (!a.box && !(a.t1_max_given->count() > 0 && a.t2_max_given->count() > 0))
+    throw std::invalid_argument("--t1-max and --t2-max are required (or --box: the fundamental box)");
+  if (a.box) a.options.t1_max = a.options.t2_max = 1.0;  // placeholders: set from the system below
   a.options.validate();
   check_output(a.json, "--json", {a.system});
   check_output(a.csv, "--csv", {a.system, a.json});
@@ -67,7 +77,17 @@ int run(SolveArgs& a) {
                 << a.system << " declares for " << par.name << "\n";
   }
   const System sys = parametric ? ps->at(a.at) : load_system(a.system);
-  const SolveResult res = solve(sys, a.options);
+  const ModalForm modal(sys);
+  if (a.box) {
+    std::tie(a.options.t1_max, a.options.t2_max) = fundamental_box(modal);
+    if (a.options.t1_min >= a.options.t1_max || a.options.t2_min >= a.options.t2_max)
+      throw std::invalid_argument("--box: the fundamental box (" + std::to_string(a.options.t1_max) + ", " +
+                                  std::to_string(a.options.t2_max) + ") does not reach beyond --t1-min/--t2-min");
+    if (!a.quiet)
+      std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max << ", t2 <= pi / d_1 = "
+                << a.options.t2_max << "\n";
+  }
+  const SolveResult res = solve(sys, modal, a.options);
   // prepare every output before writing any
   const std::string json_text = a.json.empty() ? "" : result_json(sys, res);
   const std::string csv_text = a.csv.empty() ? "" : result_to_csv(res);
@@ -89,8 +109,11 @@ Subcommand add_solve(CLI::App& app) {
   auto* s = app.add_subcommand("solve", "find every SPP whose half-durations lie in a window");
   SolveOptions& o = a->options;
   s->add_option("system", a->system, "system JSON file")->required();
-  s->add_option("--t1-max", o.t1_max, "largest flight half-duration t1")->required();
-  s->add_option("--t2-max", o.t2_max, "largest contact half-duration t2")->required();
+  a->t1_max_given = s->add_option("--t1-max", o.t1_max, "largest flight half-duration t1 (required, or --box)");
+  a->t2_max_given = s->add_option("--t2-max", o.t2_max, "largest contact half-duration t2 (required, or --box)");
+  s->add_flag("--box", a->box,
+              "the fundamental box as window: t1 <= pi / omega_1, t2 <= pi / d_1 (slowest flight mode, slowest "
+              "contact oscillation)");
   s->add_option("--t1-min", o.t1_min, "smallest t1 (default: 1e-4 pi / (2 omega_max))");
   s->add_option("--t2-min", o.t2_min, "smallest t2 (default: 1e-4 pi / (2 d_max))");
   s->add_option("--json", a->json, "write the result as JSON");

@@ -131,6 +131,12 @@ struct SolveResult {
 /// phase (flight: pi / (2 omega_max), contact: pi / (2 d_max)), at most 1e-3 of t1_max / t2_max.
 std::pair<double, double> default_lower_ends(const ModalForm& modal, double t1_max, double t2_max);
 
+/// The fundamental box: t1 <= pi / omega_1 (half the period of the slowest free-flight mode that sees the contact)
+/// and t2 <= pi / d_1 (half the period of the slowest contact-phase oscillation, d_1 the smallest positive contact
+/// frequency). It holds the SPPs whose two phases are each at most one half-oscillation long: the paper's Fig. 4
+/// window and the benchmarks' "chain box". Throws std::invalid_argument when there is no contact oscillation.
+std::pair<double, double> fundamental_box(const ModalForm& modal);
+
 /// The bands next to the axes where roots are not reported: t1 <= 0.05 * pi / (2 omega_max) and
 /// t2 <= 0.05 * pi / (2 d_max) (5% of the fastest quarter period of each phase). There g vanishes like the square of
 /// the distance to the axis while its rounding error grows like its inverse: sign changes found there were rounding

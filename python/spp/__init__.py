@@ -9,9 +9,10 @@ from ._spp import (Branch, BranchEvent, BranchPoint, ContinuationResult, Event, 
                    RootMapCell, SimulationResult, Solution, SolveOptions, SolveResult, SppCandidate, SppCheck,
                    Symmetry, System,
                    VerifyResult, chain, continue_branches, load_result, rod_with_slip, root_map, simulate, solve,
-                   two_dof, verify, nearest_spp)
+                   two_dof, verify, nearest_spp, fundamental_box, modal_frequencies)
 
 __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Event", "SimulationResult", "SppCheck", "VerifyResult",
            "SppCandidate", "RootMap", "RootMapCell", "chain", "rod_with_slip", "two_dof", "solve", "simulate",
            "verify", "load_result", "root_map", "ParametricSystem", "continue_branches", "Branch", "BranchEvent",
-           "BranchPoint", "ContinuationResult", "nearest_spp", "NearestSpp"]
+           "BranchPoint", "ContinuationResult", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
+           "__version__"]

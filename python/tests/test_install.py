@@ -14,7 +14,9 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def run(cmd, **kw):
-    cp = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    # without the test runner's PYTHONPATH (CTest points it at the build tree): only the venv's own spp may be found
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    cp = subprocess.run(cmd, capture_output=True, text=True, env=env, **kw)
     assert cp.returncode == 0, f"{' '.join(map(str, cmd))}\n{cp.stdout[-3000:]}\n{cp.stderr[-3000:]}"
     return cp.stdout
 

@@ -215,3 +215,14 @@ def test_solve_result_to_dataframe():
     df = r.to_dataframe()
     assert isinstance(df, pd.DataFrame) and len(df) == 64 and int(df["admissible"].sum()) == 7
     assert np.allclose(df["t1"], [x.t1 for x in r.solutions])
+
+
+def test_fundamental_box_and_modal_frequencies():
+    s = spp.chain(5)
+    f = spp.modal_frequencies(s)
+    t1, t2 = spp.fundamental_box(s)
+    assert np.isclose(t1, np.pi / f["flight"][0]) and np.isclose(t2, np.pi / f["contact"][1])
+    assert f["contact"][0] == 0.0 and len(f["decoupled"]) == 0
+    assert len(spp.solve(s, t1_max=t1, t2_max=t2).solutions) == 28  # design note §3b: 28 at n = 5
+    with pytest.raises(ValueError, match="no contact-phase oscillation"):
+        spp.fundamental_box(spp.chain(1))
