@@ -20,7 +20,7 @@ struct TracePoint {
   double s = 0, t1 = 0, t2 = 0, g = 0, dg = 0;
   // for the step certificate (residual, neighbouring eigenvalues and error bound filled with certify_steps only)
   double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
-  double residual = 0, eig_error = 0, slope_sum = 0;
+  double residual = 0, eig_error = 0, offset_norm = 0, slope_sum = 0;
   // distance along (1, 1) to the true curve point on the same anti-diagonal: (|lambda_k| + error) / (l1 + l2)
   double pos_err = 0;
   int proved_sign = 0;  // sign of the true g, proved by the certified step that reached this point (0: not proved)
@@ -28,8 +28,8 @@ struct TracePoint {
 };
 
 StepEnd step_end(const TracePoint& p) {
-  return {p.s,        p.t1,        p.t2,        p.g,       p.dg,          p.lam_below, p.lam_above,
-          p.residual, p.eig_error, p.slope_sum, p.pos_err, p.proved_sign, &p.b};
+  return {p.s,        p.t1,        p.t2,          p.g,         p.dg,      p.lam_below,   p.lam_above,
+          p.residual, p.eig_error, p.offset_norm, p.slope_sum, p.pos_err, p.proved_sign, &p.b};
 }
 
 }  // namespace
@@ -107,7 +107,8 @@ class CellTracer::Impl {
       p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam) + off.residual;
       if (q.k > 0) p.lam_below = q.at->eigenvalue(q.k - 1);
       if (q.k + 1 < q.at->size()) p.lam_above = q.at->eigenvalue(q.k + 1);
-      p.eig_error = q.at->eigen_error() + off.norm;
+      p.eig_error = q.at->eigen_error();
+      p.offset_norm = off.norm;
     }
     p.b = sign * b0;
     const auto [g, dg] = onset_g(b0, q.t2, &dbh, tp + 1.0);

@@ -212,10 +212,11 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
   const PhaseBounds C = phase_bounds(md.d(), sym, std::min(a.t2, b.t2), std::max(a.t2, b.t2));
   const double dF = F.increment.maxCoeff(), dC = C.increment.maxCoeff();
   const double eig_err = std::max(a.eig_error, b.eig_error);
+  const double gap_err = eig_err + std::max(a.offset_norm, b.offset_norm);  // eigenvalues at the true curve points
 
   // Gap: Loewner bounds of the neighbouring eigenvalues over the step's box (Weyl).
-  const double above = std::max(a.lam_above - dF, b.lam_above - dC) - eig_err;
-  const double below = std::min(a.lam_below + dC, b.lam_below + dF) + eig_err;
+  const double above = std::max(a.lam_above - dF, b.lam_above - dC) - gap_err;
+  const double below = std::min(a.lam_below + dC, b.lam_below + dF) + gap_err;
   const double gamma = std::min(above, -below);
   cert.gap = gamma;
   if (!(gamma > 0) || !std::isfinite(gamma)) return cert;
@@ -349,7 +350,7 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
   if (!(lo1 <= hi1 && lo2 <= hi2)) return cert;
   // The sign of the true g at an end, from its computed value and Davis-Kahan at that point (0: not certain).
   auto sign_at = [](const StepEnd& y) {
-    const double gap = std::min(y.lam_above, -y.lam_below) - y.eig_error;
+    const double gap = std::min(y.lam_above, -y.lam_below) - y.eig_error - y.offset_norm;
     if (!(gap > 0)) return 0;
     const double err = (y.residual + y.eig_error) / gap + 4.0 * std::numeric_limits<double>::epsilon();
     return std::abs(y.g) > err ? (y.g > 0 ? 1 : -1) : 0;

@@ -39,14 +39,15 @@ namespace spp::search {
 /// One end of a step: a traced point of curve k.
 struct StepEnd {
   double s = 0, t1 = 0, t2 = 0;
-  double g = 0, dg = 0;  ///< onset function and its derivative in s (oriented)
-  double lam_below = 0;  ///< lambda_{k-1} (-inf when k = 0)
-  double lam_above = 0;  ///< lambda_{k+1} (+inf when k = m - 1)
-  double residual = 0;   ///< bound of |H b| at the true curve point of the same s (offset_bound)
-  double eig_error = 0;  ///< error bound of the computed eigenvalues against the true point's
-  double slope_sum = 0;  ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
-  double pos_err = 0;    ///< distance along (1, 1) to the true curve point on the same anti-diagonal
-  int proved_sign = 0;   ///< sign of the true g here, proved by the step that reached this point (0: not proved)
+  double g = 0, dg = 0;    ///< onset function and its derivative in s (oriented)
+  double lam_below = 0;    ///< lambda_{k-1} (-inf when k = 0)
+  double lam_above = 0;    ///< lambda_{k+1} (+inf when k = m - 1)
+  double residual = 0;     ///< bound of |H b| at the true curve point of the same s (offset_bound)
+  double eig_error = 0;    ///< error bound of the computed eigenvalues (of H at the point)
+  double offset_norm = 0;  ///< bound of |H(true curve point) - H(point)| (offset_bound)
+  double slope_sum = 0;    ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
+  double pos_err = 0;      ///< distance along (1, 1) to the true curve point on the same anti-diagonal
+  int proved_sign = 0;     ///< sign of the true g here, proved by the step that reached this point (0: not proved)
   const Eigen::VectorXd* b = nullptr;  ///< unit null vector (oriented)
 };
 
