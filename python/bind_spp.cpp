@@ -199,10 +199,16 @@ PYBIND11_MODULE(_spp, m) {
           })
       .def(py::pickle(
           [](const py::object& self) {
-            if (!py::hasattr(self, "system"))
-              throw std::invalid_argument("this SolveResult has no system attribute: only results of solve() pickle");
+            if (!py::hasattr(self, "system") || !py::isinstance<spp::System>(self.attr("system")))
+              throw std::invalid_argument("SolveResult pickle: its attribute system must be the spp.System it was "
+                                          "solved for (results of solve() have it)");
             const spp::System sys = self.attr("system").cast<spp::System>();
-            return py::make_tuple(spp::result_json(sys, self.cast<const spp::SolveResult&>(), -1));
+            const spp::SolveResult& r = self.cast<const spp::SolveResult&>();
+            for (const spp::Solution& x : r.solutions)
+              if (x.orbit.x0.size() != sys.n())
+                throw std::invalid_argument("SolveResult pickle: its system has n = " + std::to_string(sys.n()) +
+                                            " dofs, its solutions " + std::to_string(x.orbit.x0.size()));
+            return py::make_tuple(spp::result_json(sys, r, -1));
           },
           [](const py::tuple& state) {
             if (state.size() != 1) throw std::invalid_argument("SolveResult pickle: expected one field");

@@ -1,8 +1,10 @@
 // spp solve: every SPP of a window (or, for a parametric system with g0 = 0, of (t1, t2, parameter), paper §6.1).
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <tuple>
 
 #include "command.hpp"
@@ -59,8 +61,7 @@ int run(SolveArgs& a) {
   if (a.box && maxes) throw std::invalid_argument("--box sets the window's upper ends: give it or --t1-max/--t2-max");
   if (!a.box && !(a.t1_max_given->count() > 0 && a.t2_max_given->count() > 0))
     throw std::invalid_argument("--t1-max and --t2-max are required (or --box: the fundamental box)");
-  if (a.box) a.options.t1_max = a.options.t2_max = 1.0;  // placeholders: set from the system below
-  a.options.validate();
+  if (!a.box) a.options.validate();  // with --box, once the box is known (below)
   check_output(a.json, "--json", {a.system});
   check_output(a.csv, "--csv", {a.system, a.json});
   const bool parametric = file_declares_parameter(a.system);
@@ -80,9 +81,14 @@ int run(SolveArgs& a) {
   const ModalForm modal(sys);
   if (a.box) {
     std::tie(a.options.t1_max, a.options.t2_max) = fundamental_box(modal);
-    if (a.options.t1_min >= a.options.t1_max || a.options.t2_min >= a.options.t2_max)
-      throw std::invalid_argument("--box: the fundamental box (" + std::to_string(a.options.t1_max) + ", " +
-                                  std::to_string(a.options.t2_max) + ") does not reach beyond --t1-min/--t2-min");
+    if (a.options.t1_min >= a.options.t1_max || a.options.t2_min >= a.options.t2_max) {
+      std::ostringstream m;
+      m << std::setprecision(10) << "--box: the fundamental box t1 <= " << a.options.t1_max
+        << ", t2 <= " << a.options.t2_max << " does not reach beyond --t1-min " << a.options.t1_min
+        << " / --t2-min " << a.options.t2_min;
+      throw std::invalid_argument(m.str());
+    }
+    a.options.validate();
     if (!a.quiet)
       std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max << ", t2 <= pi / d_1 = "
                 << a.options.t2_max << "\n";

@@ -79,6 +79,44 @@ def get_requires_for_build_wheel(config_settings=None):
     return []
 
 
+def get_requires_for_build_sdist(config_settings=None):
+    return []
+
+
+def _write_metadata(metadata_directory):
+    dist_info = pathlib.Path(metadata_directory) / f"{NAME}-{_version()}.dist-info"
+    dist_info.mkdir(parents=True, exist_ok=True)
+    (dist_info / "METADATA").write_text(_metadata())
+    return dist_info.name
+
+
+def prepare_metadata_for_build_wheel(metadata_directory, config_settings=None):
+    """Metadata without building: pip resolves the dependencies (numpy) before the CMake build starts, so a venv
+    that lacks them fails at once."""
+    return _write_metadata(metadata_directory)
+
+
+def prepare_metadata_for_build_editable(metadata_directory, config_settings=None):
+    return _write_metadata(metadata_directory)
+
+
+def build_sdist(sdist_directory, config_settings=None):
+    """The tracked source files (git ls-files) as NAME-VERSION.tar.gz with PKG-INFO."""
+    import io
+    import tarfile
+    base = f"{NAME}-{_version()}"
+    files = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-z"], check=True, capture_output=True).stdout
+    path = os.path.join(sdist_directory, base + ".tar.gz")
+    with tarfile.open(path, "w:gz") as tar:
+        for rel in filter(None, files.decode().split("\0")):
+            tar.add(ROOT / rel, arcname=f"{base}/{rel}", recursive=False)
+        info = tarfile.TarInfo(f"{base}/PKG-INFO")
+        data = _metadata().encode()
+        info.size = len(data)
+        tar.addfile(info, io.BytesIO(data))
+    return os.path.basename(path)
+
+
 def get_requires_for_build_editable(config_settings=None):
     return []
 

@@ -20,6 +20,27 @@ def save_atomic(fig, path, dpi=200):
         fig.savefig(tmp, dpi=dpi, bbox_inches="tight")
 
 
+def _window(window):
+    """A window as a dict t1_min, t1_max, t2_min, t2_max, from such a dict, a SolveResult (its window) or a tuple
+    (t1_min, t1_max, t2_min, t2_max)."""
+    keys = ("t1_min", "t1_max", "t2_min", "t2_max")
+    if isinstance(window, dict):
+        missing = [k for k in keys if k not in window]
+        if missing:
+            raise ValueError(f"window: missing {', '.join(missing)} (expected a dict with {', '.join(keys)})")
+        return window
+    if all(hasattr(window, k) for k in keys):
+        return {k: getattr(window, k) for k in keys}
+    try:
+        values = [float(v) for v in window]
+    except TypeError:
+        values = []
+    if len(values) != 4:
+        raise ValueError(f"window: expected a dict with {', '.join(keys)}, a SolveResult or a 4-tuple in that order, "
+                         f"got {window!r}")
+    return dict(zip(keys, values))
+
+
 def _axes(ax, figsize):
     """The axes to draw into, their figure, and whether the figure is this call's own (then laid out here)."""
     if ax is not None:
@@ -119,9 +140,9 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
     anything with t1, t2, admissible) marked, potential open, admissible filled. An SPP is where a dashed curve
-    touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max; points: grid points per axis; ax: axes
-    to draw into (default a new figure)."""
-    w = window
+    touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that 4-tuple);
+    points: grid points per axis; ax: axes to draw into (default a new figure)."""
+    w = _window(window)
     rm = root_map(system, w["t1_max"], w["t2_max"], w["t1_min"], w["t2_min"], points, points)
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
     for p in rm.flight_poles:

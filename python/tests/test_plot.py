@@ -114,3 +114,15 @@ def test_positions_past_ten_dofs_use_a_colour_map():
     assert len(colors) == 12 and len(set(colors)) == 12
     assert bottom.get_legend() is None and any(a.get_label() == "<colorbar>" for a in fig.axes)
     plt.close("all")
+
+
+def test_root_map_takes_a_result_or_a_tuple_as_window():
+    import matplotlib.pyplot as plt
+    import pytest
+    s, r = result()
+    a = plot.root_map_figure(s, r.solutions, r, points=40)
+    b = plot.root_map_figure(s, r.solutions, (r.t1_min, r.t1_max, r.t2_min, r.t2_max), points=40)
+    assert a.axes[0].get_xlim() == b.axes[0].get_xlim() == (r.t1_min, r.t1_max)
+    with pytest.raises(ValueError, match="expected a dict with t1_min"):
+        plot.root_map_figure(s, r.solutions, (1, 2), points=40)
+    plt.close("all")

@@ -226,3 +226,14 @@ def test_fundamental_box_and_modal_frequencies():
     assert len(spp.solve(s, t1_max=t1, t2_max=t2).solutions) == 28  # design note §3b: 28 at n = 5
     with pytest.raises(ValueError, match="no contact-phase oscillation"):
         spp.fundamental_box(spp.chain(1))
+
+
+def test_solve_result_pickle_refuses_a_foreign_system():
+    import pickle
+    r = spp.solve(spp.chain(3), t1_max=8, t2_max=8)
+    r.system = spp.chain(4)
+    with pytest.raises(ValueError, match="n = 4 dofs, its solutions 3"):
+        pickle.dumps(r)
+    r.system = "foo"
+    with pytest.raises(ValueError, match="must be the spp.System"):
+        pickle.dumps(r)
