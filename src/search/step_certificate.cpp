@@ -322,13 +322,9 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
 }  // namespace
 
 Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e, const Eigen::VectorXd& b) {
-  auto pole_free = [](const Eigen::VectorXd& freqs, double lo, double hi) {
-    for (Eigen::Index i = 0; i < freqs.size(); ++i)
-      if (std::floor(freqs(i) * lo / M_PI + 0.5) != std::floor(freqs(i) * hi / M_PI + 0.5)) return false;
-    return true;
-  };
   const double inf = std::numeric_limits<double>::infinity();
-  if (!(pole_free(md.omega(), t1 - e, t1 + e) && pole_free(md.d(), t2 - e, t2 + e))) return {inf, inf};
+  if (count_tangent_poles(md.omega(), t1 - e, t1 + e) > 0 || count_tangent_poles(md.d(), t2 - e, t2 + e) > 0)
+    return {inf, inf};
   const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e, t1 + e), C = phase_bounds(md.d(), sym, t2 - e, t2 + e);
   return {weighted_norm(F.increment, b) + weighted_norm(C.increment, md.G().transpose() * b),
           F.increment.maxCoeff() + C.increment.maxCoeff()};
