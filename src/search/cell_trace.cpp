@@ -101,9 +101,24 @@ class CellTracer::Impl {
     p.slope_sum = l1 + l2;
     p.pos_err = (std::abs(q.lam) + q.at->eigen_error()) / (l1 + l2);
     if (opt_.certify_steps) {  // residual, neighbouring eigenvalues and error bound only feed the certificate
-      // at the true curve point of this anti-diagonal (pos_err away, twice for safety; t rounded in tan)
-      const double e = 2.0 * p.pos_err + 4.0 * std::numeric_limits<double>::epsilon() * std::max(q.t1, q.t2);
-      const Offset off = offset_bound(md_, sym_, q.t1, q.t2, e, b0);
+      // The true curve point that stands for this one: lambda_k = 0 at about |lambda_k| / l away along t1 (l = l1),
+      // t2 (l2) or (1, 1) (l1 + l2); twice that for safety, plus the rounding of t in tan. Of the three, the one that
+      // moves b least: next to a contact pole line |dH/dt2 b| is ~100x b^T dH/dt2 b, and moving along t1 alone keeps
+      // the offset bound (hence the uncertainty of g near a root) ~100x smaller than along (1, 1).
+      const double lam_err = std::abs(q.lam) + q.at->eigen_error();
+      const double rounding = 4.0 * std::numeric_limits<double>::epsilon() * std::max(q.t1, q.t2);
+      const double inf = std::numeric_limits<double>::infinity();
+      Offset off{inf, inf};
+      const double moves[3][2] = {{1.0 / (l1 + l2), 1.0 / (l1 + l2)}, {1.0 / l1, 0.0}, {0.0, 1.0 / l2}};
+      for (const auto& mv : moves) {
+        const double e1 = 2.0 * lam_err * mv[0] + rounding, e2 = 2.0 * lam_err * mv[1] + rounding;
+        if (!std::isfinite(e1) || !std::isfinite(e2)) continue;
+        const Offset o = offset_bound(md_, sym_, q.t1, q.t2, e1, e2, b0);
+        if (o.residual < off.residual) {
+          off = o;
+          p.pos_err = 0.5 * std::max(e1, e2);
+        }
+      }
       p.residual = (q.at->apply(b0) - q.lam * b0).norm() + std::abs(q.lam) + off.residual;
       if (q.k > 0) p.lam_below = q.at->eigenvalue(q.k - 1);
       if (q.k + 1 < q.at->size()) p.lam_above = q.at->eigenvalue(q.k + 1);

@@ -91,7 +91,7 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   const Reach R = reach_over(dF, dC);
   const double k2 = R.k2, sin = R.sin, cos = R.cos;
   if (!(k2 < 0.5)) return sb;
-  // g of the true curve point at s_x (within pos_err of x along (1, 1); tan evaluated at a rounded t): the mean value
+  // g of the true curve point at s_x (within pos_err of x in t1 and t2; tan evaluated at a rounded t): the mean value
   // range below starts from it, not from g_x
   const double ex = 2.0 * x.pos_err + 4.0 * eps * std::max(std::abs(x.t1), std::abs(x.t2));
   const double xlo1 = std::max(lo1, x.t1 - ex), xhi1 = std::min(hi1, x.t1 + ex);
@@ -173,7 +173,7 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   // (curves along which c^T b stays near 0).
   const double h = hi_s - lo_s;
   double mlo, mhi;
-  if (x.s <= lo_s) {
+  if (x.s <= 0.5 * (lo_s + hi_s)) {
     mlo = gx + std::min(0.0, h * sb.dg_lo);
     mhi = gx + std::max(0.0, h * sb.dg_hi);
   } else {
@@ -207,7 +207,8 @@ PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, 
 namespace {
 StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b) {
   StepCertificate cert;
-  const double h = b.s - a.s;
+  // the s-interval between the true curve points of the ends (each within pos_err of its end in t1 and t2)
+  const double h = b.s - a.s + 2.0 * (a.pos_err + b.pos_err);
   const PhaseBounds F = phase_bounds(md.omega(), sym, std::min(a.t1, b.t1), std::max(a.t1, b.t1));
   const PhaseBounds C = phase_bounds(md.d(), sym, std::min(a.t2, b.t2), std::max(a.t2, b.t2));
   const double dF = F.increment.maxCoeff(), dC = C.increment.maxCoeff();
@@ -321,11 +322,12 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
 
 }  // namespace
 
-Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e, const Eigen::VectorXd& b) {
+Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e1, double e2,
+                    const Eigen::VectorXd& b) {
   const double inf = std::numeric_limits<double>::infinity();
-  if (count_tangent_poles(md.omega(), t1 - e, t1 + e) > 0 || count_tangent_poles(md.d(), t2 - e, t2 + e) > 0)
+  if (count_tangent_poles(md.omega(), t1 - e1, t1 + e1) > 0 || count_tangent_poles(md.d(), t2 - e2, t2 + e2) > 0)
     return {inf, inf};
-  const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e, t1 + e), C = phase_bounds(md.d(), sym, t2 - e, t2 + e);
+  const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e1, t1 + e1), C = phase_bounds(md.d(), sym, t2 - e2, t2 + e2);
   return {weighted_norm(F.increment, b) + weighted_norm(C.increment, md.G().transpose() * b),
           F.increment.maxCoeff() + C.increment.maxCoeff()};
 }
@@ -338,7 +340,7 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     return cert;
   }
   if (sym != Symmetry::Axial) return cert;
-  // The true curve points of the step: within pos_err (twice, for safety) of the computed ends along (1, 1), t1
+  // The true curve points of the step: within pos_err (twice, for safety) of the computed ends in t1 and t2, t1
   // non-increasing and t2 non-decreasing in s, and inside the cell (which keeps every phase function monotone).
   const double e = 2.0 * std::max(a.pos_err, b.pos_err);
   const double lo1 = std::max(cell.lo1, std::min(a.t1, b.t1) - e), hi1 = std::min(cell.hi1, std::max(a.t1, b.t1) + e);
@@ -353,7 +355,9 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
   };
   for (const StepEnd* x : {&b, &a}) {
     ++cert.evaluations;
-    const SpectralBounds sb = spectral_bounds(md, sym, *x, a.s, b.s, lo1, hi1, lo2, hi2);
+    // s-range between the true curve points of the ends (each within pos_err of its end in t1 and t2)
+    const SpectralBounds sb =
+        spectral_bounds(md, sym, *x, a.s - 2.0 * a.pos_err, b.s + 2.0 * b.pos_err, lo1, hi1, lo2, hi2);
     if (!sb.valid) continue;
     const bool same_sign = (a.g > 0) == (b.g > 0);
     if ((sb.g_lo > 0 || sb.g_hi < 0) && same_sign && (sb.g_lo > 0) == (a.g > 0)) {

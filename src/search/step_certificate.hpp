@@ -46,7 +46,7 @@ struct StepEnd {
   double eig_error = 0;    ///< error bound of the computed eigenvalues (of H at the point)
   double offset_norm = 0;  ///< bound of |H(true curve point) - H(point)| (offset_bound)
   double slope_sum = 0;    ///< l1 + l2 = b^T (dH/dt1 + dH/dt2) b at the point
-  double pos_err = 0;      ///< distance along (1, 1) to the true curve point on the same anti-diagonal
+  double pos_err = 0;      ///< bound of |t1 - t1*| and |t2 - t2*| for the true curve point (t1*, t2*) of this end
   int proved_sign = 0;     ///< sign of the true g here, proved by the step that reached this point (0: not proved)
   const Eigen::VectorXd* b = nullptr;  ///< unit null vector (oriented)
 };
@@ -109,13 +109,14 @@ struct SpectralBounds {
 SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
                                double lo1, double hi1, double lo2, double hi2);
 
-/// Bounds of |(H(t1', t2') - H(t1, t2)) b| and of |H(t1', t2') - H(t1, t2)|_2 over |t1' - t1|, |t2' - t2| <= e (+inf
-/// when a pole line lies within e): added to a traced point's residual and eigenvalue error so that they hold at the
-/// true curve point (within pos_err along (1, 1), and tan evaluated at a rounded t), not only at the computed one.
+/// Bounds of |(H(t1', t2') - H(t1, t2)) b| and of |H(t1', t2') - H(t1, t2)|_2 over |t1' - t1| <= e1,
+/// |t2' - t2| <= e2 (+inf when a pole line lies that close): added to a traced point's residual and eigenvalue error
+/// so that they hold at a true curve point (within e1, e2; tan evaluated at a rounded t), not only at the computed one.
 struct Offset {
   double residual, norm;
 };
-Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e, const Eigen::VectorXd& b);
+Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e1, double e2,
+                    const Eigen::VectorXd& b);
 
 /// Extreme values over t in [lo, hi] (inside one pole interval) of the phase functions of the flight (omega) or
 /// contact (d) frequencies: f = w tan(w t) (axial) or tan(w t)/w (point); increments |f(hi) - f(lo)| per mode,
