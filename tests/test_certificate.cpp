@@ -143,6 +143,42 @@ bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, 
 
 }  // namespace
 
+TEST(BorderedForm, SameNullVectorsShiftedInertiaAndMonotoneThroughThePole) {
+  // Next to a flight and a contact pole line of the paper's chain: the bordered form borders both modes; its null
+  // vectors are H's extended (B [b; nu] = 0), its inertia is H's plus the positive border values' count
+  // (Haynsworth), its entries stay bounded where H's grow like 1 / distance, and it grows with t1 and t2 (Loewner).
+  const ModalForm md(load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"));
+  const double P1 = M_PI / (2.0 * md.omega()(2)), P2 = 3.0 * M_PI / (2.0 * md.d()(3));
+  for (const double dist : {1e-2, 1e-5, 1e-8}) {
+    const double lo1 = P1 - 2 * dist, hi1 = P1 - dist, lo2 = P2 + dist, hi2 = P2 + 2 * dist;
+    const search::BorderedForm bf(md, lo1, hi1, lo2, hi2);
+    EXPECT_GE(bf.bordered(), 2) << dist;
+    const double t1 = 0.5 * (lo1 + hi1), t2 = 0.5 * (lo2 + hi2);
+    const Eigen::MatrixXd H = md.H(t1, t2), B = bf.matrix(t1, t2);
+    EXPECT_LT(B.cwiseAbs().maxCoeff(), 10.0 * md.omega().maxCoeff()) << dist;
+    EXPECT_GT(H.cwiseAbs().maxCoeff(), 0.1 / dist) << dist;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eh(H), eb(B);
+    const Eigen::Index neg_h = (eh.eigenvalues().array() < 0).count(), neg_b = (eb.eigenvalues().array() < 0).count();
+    // Haynsworth: inertia(B) = inertia(H) + inertia(-Lambda^-1) (f = omega tan(omega t1) > 0 left of its pole, c =
+    // d tan(d t2) < 0 right of its pole: at least one of each sign here)
+    const Eigen::VectorXd lam = bf.border_values(t1, t2);
+    EXPECT_GE((lam.array() > 0).count(), 1);
+    EXPECT_GE((lam.array() < 0).count(), 1);
+    EXPECT_EQ(neg_b, neg_h + (lam.array() > 0).count()) << dist;
+    // an eigenpair H b = mu b extends to B [b; nu] = [mu b; 0] (so null vectors of H to null vectors of B)
+    for (int k = 0; k < md.m(); ++k) {
+      const Eigen::VectorXd b = eh.eigenvectors().col(k), x = bf.extend(b, t1, t2);
+      Eigen::VectorXd expect = Eigen::VectorXd::Zero(x.size());
+      expect.head(md.m()) = eh.eigenvalues()(k) * b;
+      EXPECT_LT((B * x - expect).norm(), 1e-9 * (1.0 + x.norm()) * H.norm()) << dist << " " << k;
+    }
+    // Loewner: B(t1', t2') - B(t1, t2) is positive semi-definite for t1' >= t1, t2' >= t2 in the box
+    const Eigen::MatrixXd D = bf.matrix(hi1, hi2) - bf.matrix(lo1, lo2);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ed(D, Eigen::EigenvaluesOnly);
+    EXPECT_GE(ed.eigenvalues().minCoeff(), -1e-14 * B.norm()) << dist;
+  }
+}
+
 TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
   // Property: on random steps of random curves in random cells (the paper's chain and a stiff 5-dof system with
   // stiffness spread 1e5), g = zhat^T b and dg/ds sampled on the true curve (an independent bisection) lie within the
@@ -156,7 +192,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
     const Eigen::VectorXd zhat = md.z().normalized();
     const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
     const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
-    int valid = 0, deciding = 0;
+    int valid = 0, deciding = 0, bordered = 0;
     for (int trial = 0; trial < 3000 && valid < 150; ++trial) {
       const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
       const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
@@ -167,6 +203,15 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       const double h = (d2 - c1 - (c2 - d1)) * std::pow(10.0, -5.0 + 4.0 * u(rng));
       CurvePoint pa, pb;
       if (!curve_point(md, c1, d1, c2, d2, sa, k, pa) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb)) continue;
+      // The box the bounds are taken over (it holds the true curve and the computed ends), and its bordered form:
+      // the bounds are those of g = c^T x / |x| for the bordered form's null vector x = [b; nu] (same sign as
+      // zhat^T b), sampled here with their own derivative.
+      const double off = 1e-12 * (1.0 + std::max(pa.t1, pa.t2)) * (2.0 * u(rng) - 1.0);
+      const double e = 2.0 * std::abs(off);
+      const double lo1 = std::max(c1, std::min(pa.t1, pb.t1) - e), hi1 = std::min(d1, std::max(pa.t1, pb.t1) + e);
+      const double lo2 = std::max(c2, std::min(pa.t2, pb.t2) - e), hi2 = std::min(d2, std::max(pa.t2, pb.t2) + e);
+      const search::BorderedForm bf(md, lo1, hi1, lo2, hi2);
+      bordered += bf.bordered() > 0 ? 1 : 0;
       // samples of the true curve on [sa, sa + h], b oriented continuously from pa
       const int ns = 40;
       std::vector<double> gs, dgs;
@@ -179,22 +224,25 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
         if (!ok) break;
         const Eigen::VectorXd b = q.b.dot(prev) < 0 ? Eigen::VectorXd(-q.b) : q.b;
         prev = b;
-        gs.push_back(zhat.dot(b));
-        // dg/ds = -(H^+ zhat)^T H' b, H' = tau' F' + (1 + tau') C', tau' = -l2 / (l1 + l2) (first-order perturbation
-        // of the null vector along the curve), with the pseudo-inverse from the full eigenpairs
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(q.t1, q.t2));
+        const Eigen::VectorXd x = bf.extend(b, q.t1, q.t2).normalized();
+        gs.push_back(bf.onset().dot(x));
+        // dg/ds = -(B^+ c)^T B' x, B' = tau' dB/dt1 + (1 + tau') dB/dt2, tau' = -l2 / (l1 + l2) (first-order
+        // perturbation of the null vector along the curve), with the pseudo-inverse from the full eigenpairs
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(q.t1, q.t2));
+        Eigen::Index kz = 0;
+        es.eigenvalues().cwiseAbs().minCoeff(&kz);
         Eigen::VectorXd inv = es.eigenvalues().cwiseInverse();
-        inv(k) = 0.0;
-        const Eigen::VectorXd v = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose() * zhat;
-        const Eigen::VectorXd Fb = md.dflight_dt1(q.t1).cwiseProduct(b), Cb = md.dcontact_dt2(q.t2) * b;
-        const double l1 = b.dot(Fb), l2 = b.dot(Cb), tp = -l2 / (l1 + l2);
-        dgs.push_back(-v.dot(tp * Fb + (1.0 + tp) * Cb));
+        inv(kz) = 0.0;
+        const Eigen::VectorXd v = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose() * bf.onset();
+        const Eigen::VectorXd Fx = bf.flight().d1(q.t1).cwiseProduct(x);
+        const Eigen::VectorXd Cx = bf.Gx() * bf.contact().d1(q.t2).cwiseProduct(bf.Gx().transpose() * x);
+        const double l1 = x.dot(Fx), l2 = x.dot(Cx), tp = -l2 / (l1 + l2);
+        dgs.push_back(-v.dot(tp * Fx + (1.0 + tp) * Cx));
       }
       if (!ok) continue;
       if (pb.b.dot(prev) < 0) pb.b = -pb.b;
       // The ends as the tracer leaves them: off the curve along (1, 1) by up to pos_err (its bisection stops at
       // |lambda_k| ~ 1e-13 |H|), with the eigenvector computed there.
-      const double off = 1e-12 * (1.0 + std::max(pa.t1, pa.t2)) * (2.0 * u(rng) - 1.0);
       auto end = [&](CurvePoint& p, double s, const Eigen::VectorXd& ref) {
         p.t1 += off;
         p.t2 += off;
@@ -213,11 +261,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       const Eigen::VectorXd ra = pa.b, rb = pb.b;
       const search::StepEnd ea = end(pa, sa, ra), eb = end(pb, sa + h, rb);
       for (const search::StepEnd* x : {&ea, &eb}) {
-        const double e = 2.0 * std::abs(off);  // the box holds the true curve and the computed ends
-        const search::SpectralBounds sb =
-            search::spectral_bounds(md, Symmetry::Axial, *x, sa, sa + h, std::max(c1, std::min(pa.t1, pb.t1) - e),
-                                    std::min(d1, std::max(pa.t1, pb.t1) + e), std::max(c2, std::min(pa.t2, pb.t2) - e),
-                                    std::min(d2, std::max(pa.t2, pb.t2) + e));
+        const search::SpectralBounds sb = search::spectral_bounds(bf, *x, sa, sa + h, lo1, hi1, lo2, hi2);
         if (!sb.valid) continue;
         ++valid;
         if (sb.g_lo > 0 || sb.g_hi < 0 || sb.dg_lo > 0 || sb.dg_hi < 0) ++deciding;
@@ -232,6 +276,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
     }
     EXPECT_GE(valid, 100) << f;
     EXPECT_GE(deciding, 30) << f;
+    EXPECT_GE(bordered, 10) << f;  // steps next to pole lines, where the bordered form differs from H
   }
 }
 

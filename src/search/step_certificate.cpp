@@ -8,15 +8,16 @@ namespace spp::search {
 
 namespace {
 
-// Phase function of one frequency f at t (inside a pole interval): value, first and second derivative.
+// Phase function a tan(w t + shift) of coordinate k of a family at t (inside a pole interval): value, first and
+// second derivative.
 struct Phase {
   double v, d1, d2;
 };
-Phase phase(double f, Symmetry sym, double t) {
-  if (f == 0.0) return sym == Symmetry::Point ? Phase{t, 1.0, 0.0} : Phase{0.0, 0.0, 0.0};
-  const double tn = std::tan(f * t), sec2 = 1.0 + tn * tn;
-  if (sym == Symmetry::Point) return {tn / f, sec2, 2.0 * f * sec2 * tn};
-  return {f * tn, f * f * sec2, 2.0 * f * f * f * sec2 * tn};
+Phase phase(const PhaseFamily& f, Eigen::Index k, double t) {
+  if (f.linear(k)) return {t, 1.0, 0.0};
+  if (f.amp(k) == 0.0) return {0.0, 0.0, 0.0};
+  const double w = f.freq(k), tn = std::tan(w * t + f.shift(k)), sec2 = 1.0 + tn * tn, a = f.amp(k);
+  return {a * tn, a * w * sec2, 2.0 * a * w * w * sec2 * tn};
 }
 
 // Positive root of G + c1 x - L2 x^2 / 2 (the Taylor lower bound of |g| reaches 0 there); 0 when G <= 0.
@@ -35,10 +36,16 @@ double weighted_norm(const Eigen::VectorXd& weights, const Eigen::VectorXd& v) {
 // The derivation is in the header (spectral_bounds).
 SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
                                double lo1, double hi1, double lo2, double hi2) {
+  if (sym != Symmetry::Axial) return {};
+  return spectral_bounds(BorderedForm(md, lo1, hi1, lo2, hi2), x, lo_s, hi_s, lo1, hi1, lo2, hi2);
+}
+
+SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
+                               double hi1, double lo2, double hi2) {
   using Vec = Eigen::VectorXd;
   using Mat = Eigen::MatrixXd;
   SpectralBounds sb;
-  const Eigen::SelfAdjointEigenSolver<Mat> es(md.H(x.t1, x.t2, sym));
+  const Eigen::SelfAdjointEigenSolver<Mat> es(bf.matrix(x.t1, x.t2));
   if (es.info() != Eigen::Success) return sb;
   const Vec& lam = es.eigenvalues();
   const Mat& U = es.eigenvectors();
@@ -46,7 +53,7 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   Eigen::Index k = 0;
   lam.cwiseAbs().minCoeff(&k);
   Vec bx = U.col(k);
-  if (bx.dot(*x.b) < 0) bx = -bx;
+  if (bx.dot(bf.extend(*x.b, x.t1, x.t2)) < 0) bx = -bx;
   const double eps = std::numeric_limits<double>::epsilon();
   const double err = 16.0 * static_cast<double>(m) * eps * lam.cwiseAbs().maxCoeff();  // |H_x - U lam U^T|
   double gap = std::numeric_limits<double>::infinity();
@@ -57,12 +64,12 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
     inv(j) = 1.0 / lam(j);
   }
   if (!(gap > 0) || !std::isfinite(gap)) return sb;
-  const Mat& G = md.G();
+  const Mat& G = bf.Gx();
   const Mat Hp = U * inv.asDiagonal() * U.transpose();
   const Mat HpG = Hp * G, GHpG = G.transpose() * HpG;
   const Mat aHp = Hp.cwiseAbs(), aHpG = HpG.cwiseAbs(), aGHpG = GHpG.cwiseAbs();
-  const PhaseBounds F = phase_bounds(md.omega(), sym, lo1, hi1);
-  const PhaseBounds C = phase_bounds(md.d(), sym, lo2, hi2);
+  const PhaseBounds F = phase_bounds(bf.flight(), lo1, hi1);
+  const PhaseBounds C = phase_bounds(bf.contact(), lo2, hi2);
   const Vec& dF = F.increment;
   const Vec& dC = C.increment;
   const Vec yb = G.transpose() * bx;
@@ -70,7 +77,7 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
 
   // angle of b(s) to b_x, and the reach of g = c^T b, over a box with increments (iF, iC)
   const double e_gap = err / gap;
-  const Vec c = md.z().normalized();
+  const Vec& c = bf.onset();
   const Vec vx = Hp * c, yv = G.transpose() * vx;
   const Vec avx = vx.cwiseAbs(), ayv = yv.cwiseAbs();
   const double gx = c.dot(bx);
@@ -97,9 +104,10 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   const double xlo1 = std::max(lo1, x.t1 - ex), xhi1 = std::min(hi1, x.t1 + ex);
   const double xlo2 = std::max(lo2, x.t2 - ex), xhi2 = std::min(hi2, x.t2 + ex);
   const Reach Rx =
-      reach_over(phase_bounds(md.omega(), sym, xlo1, xhi1).increment, phase_bounds(md.d(), sym, xlo2, xhi2).increment);
+      reach_over(phase_bounds(bf.flight(), xlo1, xhi1).increment, phase_bounds(bf.contact(), xlo2, xhi2).increment);
   if (!(Rx.k2 < 0.5)) return sb;
   sb.g_err = Rx.g + (1.0 - Rx.cos) * std::abs(gx) + e_gap + 4.0 * eps;
+  sb.g_x = gx;
   const double db_norm = std::sqrt(2.0 * (1.0 - cos));
   // componentwise |b(s) - b_x| (flight basis dbF, contact basis dbC)
   const Vec eF = dF.cwiseProduct((abx.array() + sin).matrix()), eC = dC.cwiseProduct((ayb.array() + sin).matrix());
@@ -132,8 +140,9 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
           B.d1.dot((dv.cwiseProduct(b.cwiseAbs() + db) + v.cwiseAbs().cwiseProduct(db)));
   };
   double P = 0, dP = 0, Q = 0, dQ = 0;
-  part(md.dflight_dt1(x.t1, sym), F, vx, bx, dvF, dbF, P, dP);
-  part(md.dcontact_eigs(x.t2, sym), C, yv, yb, dvC, dbC, Q, dQ);
+  const Vec d1x = bf.flight().d1(x.t1), d2x = bf.contact().d1(x.t2);
+  part(d1x, F, vx, bx, dvF, dbF, P, dP);
+  part(d2x, C, yv, yb, dvC, dbC, Q, dQ);
   // g' = (l1 Q - l2 P) / (l1 + l2) with l1 = b^T F' b, l2 = b^T C' b > 0 (tau' = -l2 / (l1 + l2)): the sign of g' is
   // that of N = l1 Q - l2 P, bounded by its value at x and the variations (keeping the cancellation between the
   // two terms exact at x, which bounding tau', P and Q separately would lose).
@@ -141,8 +150,8 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
     const Vec r = upper ? Vec(ab + db) : Vec((ab - db).cwiseMax(0.0));
     return w.dot(r.cwiseProduct(r));
   };
-  const double l1x = md.dflight_dt1(x.t1, sym).dot(bx.cwiseProduct(bx));
-  const double l2x = md.dcontact_eigs(x.t2, sym).dot(yb.cwiseProduct(yb));
+  const double l1x = d1x.dot(bx.cwiseProduct(bx));
+  const double l2x = d2x.dot(yb.cwiseProduct(yb));
   const double l1lo = form(F.d1_min, abx, dbF, false), l1hi = form(F.d1, abx, dbF, true);
   const double l2lo = form(C.d1_min, ayb, dbC, false), l2hi = form(C.d1, ayb, dbC, true);
   const double dl1 = std::max(l1hi - l1x, l1x - l1lo), dl2 = std::max(l2hi - l2x, l2x - l2lo);
@@ -186,22 +195,28 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   return sb;
 }
 
-PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi) {
-  const Eigen::Index m = freqs.size();
+PhaseBounds phase_bounds(const PhaseFamily& f, double lo, double hi) {
+  const Eigen::Index m = f.size();
   PhaseBounds pb{Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m)};
   for (Eigen::Index i = 0; i < m; ++i) {
-    const Phase a = phase(freqs(i), sym, lo), b = phase(freqs(i), sym, hi);
-    // f is increasing, f' convex and f'' increasing between poles: their extremes are at the ends.
+    const Phase a = phase(f, i, lo), b = phase(f, i, hi);
+    // a tan is increasing, its derivative convex and its second derivative increasing between poles: their extremes
+    // are at the ends.
     pb.increment(i) = std::abs(b.v - a.v);
     pb.d1(i) = std::max(a.d1, b.d1);
     pb.d2(i) = std::max(std::abs(a.d2), std::abs(b.d2));
     pb.value(i) = std::max(std::abs(a.v), std::abs(b.v));
-    // f' = w^2 sec^2 (axial) or sec^2 (point) is smallest where tan = 0 if the interval holds such a point
-    const double floor = freqs(i) == 0.0 ? 1.0 : (sym == Symmetry::Point ? 1.0 : freqs(i) * freqs(i));
-    pb.d1_min(i) = (a.v <= 0.0 && b.v >= 0.0) ? floor : std::min(a.d1, b.d1);
-    if (freqs(i) == 0.0 && sym == Symmetry::Axial) pb.d1_min(i) = 0.0;
+    // the derivative a w sec^2 is smallest (a w) where tan = 0, if the interval holds such a point
+    if (f.linear(i) || f.amp(i) == 0.0)
+      pb.d1_min(i) = a.d1;
+    else
+      pb.d1_min(i) = (a.v <= 0.0 && b.v >= 0.0) ? f.amp(i) * f.freq(i) : std::min(a.d1, b.d1);
   }
   return pb;
+}
+
+PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi) {
+  return phase_bounds(PhaseFamily::of_modes(freqs, sym), lo, hi);
 }
 
 namespace {
@@ -353,23 +368,30 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     const double err = (y.residual + y.eig_error) / gap + 4.0 * std::numeric_limits<double>::epsilon();
     return std::abs(y.g) > err ? (y.g > 0 ? 1 : -1) : 0;
   };
+  // The bounds from each end in turn (b first), in the bordered form of the step's box. Each range holds on the
+  // whole step, so what one end proves (monotone g) combines with what the other adds (its own end sign).
+  const BorderedForm bf(md, lo1, hi1, lo2, hi2);
+  int sign_a = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sign_b = sign_at(b);
+  bool monotone = false;
   for (const StepEnd* x : {&b, &a}) {
     ++cert.evaluations;
     // s-range between the true curve points of the ends (each within pos_err of its end in t1 and t2)
-    const SpectralBounds sb =
-        spectral_bounds(md, sym, *x, a.s - 2.0 * a.pos_err, b.s + 2.0 * b.pos_err, lo1, hi1, lo2, hi2);
+    const SpectralBounds sb = spectral_bounds(bf, *x, a.s - 2.0 * a.pos_err, b.s + 2.0 * b.pos_err, lo1, hi1, lo2, hi2);
     if (!sb.valid) continue;
+    // the sign of the true g at x, from the bordered form's own error bound there (tighter next to pole lines)
+    if (std::abs(sb.g_x) > sb.g_err) {
+      int& sx = x == &a ? sign_a : sign_b;
+      if (sx == 0) sx = sb.g_x > 0 ? 1 : -1;
+    }
     const bool same_sign = (a.g > 0) == (b.g > 0);
+    monotone = monotone || sb.dg_lo > 0 || sb.dg_hi < 0;
     if ((sb.g_lo > 0 || sb.g_hi < 0) && same_sign && (sb.g_lo > 0) == (a.g > 0)) {
       cert.verdict = StepVerdict::NoRoot;  // g keeps the sign the computed ends show
       cert.end_sign = sb.g_lo > 0 ? 1 : -1;
-    } else if (sb.dg_lo > 0 || sb.dg_hi < 0) {  // g monotone: the true end signs decide
-      const int sa = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sbb = sign_at(b);
-      if (sa != 0 && sbb != 0 && (sa > 0) == (a.g > 0) && (sbb > 0) == (b.g > 0)) {
-        cert.verdict = sa == sbb ? StepVerdict::NoRoot : StepVerdict::OneRoot;
-        cert.end_sign = sbb;
-      } else if (sa != 0 && (sa > 0) == (a.g > 0) && sbb == 0) {
-        cert.end_unresolved = true;
+    } else if (monotone) {  // the true end signs decide
+      if (sign_a != 0 && sign_b != 0 && (sign_a > 0) == (a.g > 0) && (sign_b > 0) == (b.g > 0)) {
+        cert.verdict = sign_a == sign_b ? StepVerdict::NoRoot : StepVerdict::OneRoot;
+        cert.end_sign = sign_b;
       }
     }
     if (cert.verdict != StepVerdict::Uncertified) {
@@ -377,6 +399,7 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
       return cert;
     }
   }
+  cert.end_unresolved = monotone && sign_a != 0 && (sign_a > 0) == (a.g > 0) && sign_b == 0;
   return cert;
 }
 

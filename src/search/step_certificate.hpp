@@ -32,6 +32,7 @@
 
 #include <Eigen/Dense>
 
+#include "search/bordered_form.hpp"
 #include "spp/modal.hpp"
 
 namespace spp::search {
@@ -103,11 +104,17 @@ struct SpectralBounds {
   double g_lo = 0, g_hi = 0;    ///< range of g over the step
   double dg_lo = 0, dg_hi = 0;  ///< range of g' = dg/ds over the step
   double g_err = 0;             ///< error bound of g at x (computed b_x against the true null vector there)
+  double g_x = 0;               ///< g at x (of the bordered form's null vector: the sign of the traced g's)
 };
 /// The bounds above from end x of the step [lo_s, hi_s] of a curve whose true points lie in the box
 /// [lo1, hi1] x [lo2, hi2] (inside one cell). Costs one H and its full eigenpairs (O(m^3)). Axial symmetry only.
 SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
                                double lo1, double hi1, double lo2, double hi2);
+/// The same in the bordered form bf of the box (bordered_form.hpp; the modal form's H when nothing is bordered): next
+/// to a pole line its phases' derivatives stay O(1) where H's grow like 1 / distance^2, which is what keeps the bounds
+/// tight there. g, g' and their ranges are those of c^T [b; nu] / |[b; nu]| (same sign as the traced g).
+SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
+                               double hi1, double lo2, double hi2);
 
 /// Bounds of |(H(t1', t2') - H(t1, t2)) b| and of |H(t1', t2') - H(t1, t2)|_2 over |t1' - t1| <= e1,
 /// |t2' - t2| <= e2 (+inf when a pole line lies that close): added to a traced point's residual and eigenvalue error
@@ -126,5 +133,7 @@ struct PhaseBounds {
   Eigen::VectorXd d1_min;  ///< min f' per mode over [lo, hi]
 };
 PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi);
+/// The same for any family of phases a tan(w t + shift) (bordered_form.hpp).
+PhaseBounds phase_bounds(const PhaseFamily& phases, double lo, double hi);
 
 }  // namespace spp::search

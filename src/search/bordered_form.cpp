@@ -1,0 +1,144 @@
+#include "search/bordered_form.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace spp::search {
+
+Eigen::VectorXd PhaseFamily::value(double t) const {
+  Eigen::VectorXd v(size());
+  for (Eigen::Index k = 0; k < size(); ++k)
+    v(k) = linear(k) ? t : (amp(k) == 0.0 ? 0.0 : amp(k) * std::tan(freq(k) * t + shift(k)));
+  return v;
+}
+
+Eigen::VectorXd PhaseFamily::d1(double t) const {
+  Eigen::VectorXd v(size());
+  for (Eigen::Index k = 0; k < size(); ++k) {
+    if (linear(k) || amp(k) == 0.0) {
+      v(k) = linear(k) ? 1.0 : 0.0;
+      continue;
+    }
+    const double c = std::cos(freq(k) * t + shift(k));
+    v(k) = amp(k) * freq(k) / (c * c);
+  }
+  return v;
+}
+
+double PhaseFamily::poles_in(double lo, double hi) const {
+  double count = 0.0;
+  for (Eigen::Index k = 0; k < size(); ++k) {
+    if (linear(k) || amp(k) == 0.0) continue;
+    // poles where freq t + shift = (n + 1/2) pi, n in (a, b) below
+    const double a = (freq(k) * lo + shift(k)) / std::numbers::pi - 0.5;
+    const double b = (freq(k) * hi + shift(k)) / std::numbers::pi - 0.5;
+    count += std::max(0.0, std::ceil(b) - 1.0 - std::floor(a));
+  }
+  return count;
+}
+
+PhaseFamily PhaseFamily::of_modes(const Eigen::VectorXd& freqs, Symmetry sym) {
+  const Eigen::Index m = freqs.size();
+  PhaseFamily p{Eigen::VectorXd(m), freqs, Eigen::VectorXd::Zero(m), Eigen::Array<bool, Eigen::Dynamic, 1>(m)};
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const double f = freqs(k);
+    p.linear(k) = sym == Symmetry::Point && f == 0.0;
+    p.amp(k) = sym == Symmetry::Point ? (f == 0.0 ? 1.0 : 1.0 / f) : f;
+  }
+  return p;
+}
+
+namespace {
+// Mode of frequency f stays next to one of its poles over [lo, hi]: |tan(f t)| >= 1 at both ends, same sign (tan is
+// increasing between poles, and the box holds none, so no zero lies between).
+bool next_to_pole(double f, double lo, double hi) {
+  if (!(f > 0)) return false;
+  const double a = std::tan(f * lo), b = std::tan(f * hi);
+  return (a > 0) == (b > 0) && std::min(std::abs(a), std::abs(b)) >= 1.0;
+}
+}  // namespace
+
+BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2) : md_(md) {
+  const Eigen::VectorXd& w = md.omega();
+  const Eigen::VectorXd& d = md.d();
+  m_ = static_cast<int>(w.size());
+  for (int i = 0; i < m_; ++i)
+    if (next_to_pole(w(i), lo1, hi1)) flight_modes_.push_back(i);
+  for (int j = 0; j < static_cast<int>(d.size()); ++j)
+    if (next_to_pole(d(j), lo2, hi2)) contact_modes_.push_back(j);
+  const int nf = static_cast<int>(flight_modes_.size()), nc = static_cast<int>(contact_modes_.size());
+  const int size = m_ + nf + nc;
+  const double half_pi = 0.5 * std::numbers::pi;
+
+  // flight phases, one per coordinate: plain modes omega tan(omega t1); a bordered mode's own coordinate 0 and its
+  // border coordinate -1/f = tan(omega t1 - pi/2) / omega; contact border coordinates 0
+  const PhaseFamily plain_f = PhaseFamily::of_modes(w, Symmetry::Axial);
+  flight_ = {Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size),
+             Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(size, false)};
+  flight_.amp.head(m_) = plain_f.amp;
+  flight_.freq.head(m_) = w;
+  K0_ = Eigen::MatrixXd::Zero(size, size);
+  for (int p = 0; p < nf; ++p) {
+    const int i = flight_modes_[p], q = m_ + p;
+    flight_.amp(i) = 0.0;
+    flight_.amp(q) = 1.0 / w(i);
+    flight_.freq(q) = w(i);
+    flight_.shift(q) = -half_pi;
+    K0_(i, q) = K0_(q, i) = 1.0;
+  }
+  // contact phases, one per column of Gx: the plain modes' columns of G (padded with zeros), then one border
+  // coordinate per bordered mode
+  const int plain_c = static_cast<int>(d.size()) - nc;
+  Gx_ = Eigen::MatrixXd::Zero(size, plain_c + nc);
+  contact_ = {Eigen::VectorXd::Zero(plain_c + nc), Eigen::VectorXd::Zero(plain_c + nc),
+              Eigen::VectorXd::Zero(plain_c + nc), Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(plain_c + nc, false)};
+  const PhaseFamily plain_c_phase = PhaseFamily::of_modes(d, Symmetry::Axial);
+  int col = 0;
+  for (int j = 0; j < static_cast<int>(d.size()); ++j) {
+    if (std::find(contact_modes_.begin(), contact_modes_.end(), j) != contact_modes_.end()) continue;
+    Gx_.col(col).head(m_) = md.G().col(j);
+    contact_.amp(col) = plain_c_phase.amp(j);
+    contact_.freq(col) = d(j);
+    ++col;
+  }
+  for (int p = 0; p < nc; ++p, ++col) {
+    const int j = contact_modes_[p], q = m_ + nf + p;
+    Gx_(q, col) = 1.0;
+    contact_.amp(col) = 1.0 / d(j);
+    contact_.freq(col) = d(j);
+    contact_.shift(col) = -half_pi;
+    K0_.col(q).head(m_) = md.G().col(j);
+    K0_.row(q).head(m_) = md.G().col(j).transpose();
+  }
+  c_ = Eigen::VectorXd::Zero(size);
+  c_.head(m_) = md.z().normalized();
+}
+
+Eigen::MatrixXd BorderedForm::matrix(double t1, double t2) const {
+  Eigen::MatrixXd B = K0_ + Gx_ * contact_.value(t2).asDiagonal() * Gx_.transpose();
+  B.diagonal() += flight_.value(t1);
+  return B;
+}
+
+Eigen::VectorXd BorderedForm::border_values(double t1, double t2) const {
+  Eigen::VectorXd v(bordered());
+  const size_t nf = flight_modes_.size();
+  for (size_t p = 0; p < nf; ++p) v(p) = md_.omega()(flight_modes_[p]) * std::tan(md_.omega()(flight_modes_[p]) * t1);
+  for (size_t p = 0; p < contact_modes_.size(); ++p)
+    v(nf + p) = md_.d()(contact_modes_[p]) * std::tan(md_.d()(contact_modes_[p]) * t2);
+  return v;
+}
+
+Eigen::VectorXd BorderedForm::extend(const Eigen::VectorXd& b, double t1, double t2) const {
+  Eigen::VectorXd x(size());
+  x.head(m_) = b;
+  const Eigen::VectorXd lam = border_values(t1, t2);
+  const size_t nf = flight_modes_.size();
+  for (size_t p = 0; p < nf; ++p) x(m_ + p) = lam(p) * b(flight_modes_[p]);
+  for (size_t p = 0; p < contact_modes_.size(); ++p)
+    x(m_ + nf + p) = lam(nf + p) * md_.G().col(contact_modes_[p]).dot(b);
+  return x;
+}
+
+}  // namespace spp::search

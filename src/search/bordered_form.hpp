@@ -1,0 +1,70 @@
+#pragma once
+// The bordered form of H over a box (docs/modal-form.md §3c): the same zero set, with every entry bounded next to
+// pole lines.
+//
+// Next to a pole of one flight mode i, H = H' + f_i e_i e_i^T with f_i = omega_i tan(omega_i t1) unbounded; next to a
+// pole of a contact mode j, H = H' + c_j g_j g_j^T (g_j = G e_j, c_j = d_j tan(d_j t2)). For any set of such "pole
+// modes", with U = [e_i ..., g_j ...] and Lambda = diag(f_i ..., c_j ...),
+//
+//     B = [[H', U], [U^T, -Lambda^-1]]
+//
+// is the bordered form: its Schur complement on the border block is H' + U Lambda U^T = H, so
+//  - B [b; nu] = 0 iff H b = 0 with nu = Lambda U^T b (same null vectors, extended; same sign of c^T b);
+//  - inertia(B) = inertia(H) + inertia(-Lambda^-1);
+//  - -1/f_i = -cot(omega_i t1) / omega_i = tan(omega_i t1 - pi/2) / omega_i is increasing, bounded and analytic
+//    through the pole of f_i: B grows with t1 and t2 (Loewner) like H, with derivatives that stay O(1) where those of
+//    H grow like 1 / distance^2.
+// B keeps the structure of H: B = K0 + diag(phi(t1)) + Gx diag(psi(t2)) Gx^T with K0 constant, Gx with orthonormal
+// columns and every phase a tan(w t + shift) (or 0), so the bounds of step_certificate apply to it unchanged.
+// Written here because no library provides this structured matrix family.
+
+#include <Eigen/Dense>
+
+#include "spp/modal.hpp"
+
+namespace spp::search {
+
+/// Phase functions a_k tan(w_k t + shift_k) (a_k = 0: the constant 0; linear_k: the function t, point symmetry's
+/// zero frequency), one per coordinate (flight, in t1) or per column of Gx (contact, in t2).
+struct PhaseFamily {
+  Eigen::VectorXd amp, freq, shift;
+  Eigen::Array<bool, Eigen::Dynamic, 1> linear;
+  Eigen::Index size() const { return amp.size(); }
+  Eigen::VectorXd value(double t) const;
+  Eigen::VectorXd d1(double t) const;  ///< first derivative
+  /// Number of poles of the phases in (lo, hi).
+  double poles_in(double lo, double hi) const;
+  /// The phases of H itself: omega tan(omega t) (axial) or tan(omega t) / omega (point).
+  static PhaseFamily of_modes(const Eigen::VectorXd& freqs, Symmetry sym);
+};
+
+class BorderedForm {
+ public:
+  /// Borders the modes that stay next to their pole over [lo1, hi1] x [lo2, hi2] (|tan| >= 1 at both ends of the
+  /// box's interval, no zero of tan between): there -1/f is bounded by the mode's own scale, and f is not. The box
+  /// holds no pole line. Axial symmetry.
+  BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2);
+
+  int size() const { return static_cast<int>(flight_.size()); }
+  int bordered() const { return size() - m_; }
+  Eigen::MatrixXd matrix(double t1, double t2) const;
+  const PhaseFamily& flight() const { return flight_; }    ///< diag(phi(t1)), one phase per coordinate
+  const PhaseFamily& contact() const { return contact_; }  ///< Gx diag(psi(t2)) Gx^T, one phase per column
+  const Eigen::MatrixXd& Gx() const { return Gx_; }
+  /// The onset direction extended by zeros: c^T [b; nu] = z^T b / |z|.
+  const Eigen::VectorXd& onset() const { return c_; }
+  /// Lambda at (t1, t2): f_i (bordered flight modes), then c_j (bordered contact modes), in border order.
+  Eigen::VectorXd border_values(double t1, double t2) const;
+  /// [b; Lambda U^T b], the null vector of B for a null vector b of H at (t1, t2).
+  Eigen::VectorXd extend(const Eigen::VectorXd& b, double t1, double t2) const;
+
+ private:
+  const ModalForm& md_;
+  int m_ = 0;
+  std::vector<int> flight_modes_, contact_modes_;  // bordered, in border order (flight first)
+  PhaseFamily flight_, contact_;
+  Eigen::MatrixXd Gx_, K0_;
+  Eigen::VectorXd c_;
+};
+
+}  // namespace spp::search
