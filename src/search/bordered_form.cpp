@@ -121,6 +121,12 @@ Eigen::MatrixXd BorderedForm::matrix(double t1, double t2) const {
   return B;
 }
 
+std::vector<int> BorderedForm::key() const {
+  std::vector<int> k = flight_modes_;
+  for (const int j : contact_modes_) k.push_back(m_ + j);
+  return k;
+}
+
 Eigen::VectorXd BorderedForm::border_values(double t1, double t2) const {
   Eigen::VectorXd v(bordered());
   const size_t nf = flight_modes_.size();

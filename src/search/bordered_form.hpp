@@ -19,6 +19,7 @@
 // Written here because no library provides this structured matrix family.
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "spp/modal.hpp"
 
@@ -53,6 +54,8 @@ class BorderedForm {
   const Eigen::MatrixXd& Gx() const { return Gx_; }
   /// The onset direction extended by zeros: c^T [b; nu] = z^T b / |z|.
   const Eigen::VectorXd& onset() const { return c_; }
+  /// The bordered modes: flight modes, then m + contact modes (two forms with the same key are the same matrices).
+  std::vector<int> key() const;
   /// Lambda at (t1, t2): f_i (bordered flight modes), then c_j (bordered contact modes), in border order.
   Eigen::VectorXd border_values(double t1, double t2) const;
   /// [b; Lambda U^T b], the null vector of B for a null vector b of H at (t1, t2).

@@ -312,7 +312,7 @@ class CellTracer::Impl {
         const bool onset_proved = onset_first && box_free();
         const StepCertificate cert = onset_proved
                                          ? StepCertificate{}
-                                         : certify_step(md_, sym_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B});
+                                         : certify_step(md_, sym_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B}, &eigen_cache_);
         st_.evaluations += cert.evaluations;
         // Where the curvature bound is too weak (next to pole lines, mostly), the step's box may still be proved
         // root-free by the onset inertia at its two Loewner corners; g keeps its sign then, which orients p.
@@ -569,6 +569,7 @@ class CellTracer::Impl {
   static constexpr int kPieceBudget = 20000;               // trace steps (tried or taken) per curve piece
   static constexpr int kProofBudget = 200000;  // the same with certify_steps, before the midpoint check takes over
   int examine_budget_ = kPieceBudget;
+  EigenCache eigen_cache_;  // full eigenpairs of the certificate at the last trace points
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
   static constexpr int kLengthenings = 8;   // doublings of a step that ended next to a root of g, in a row
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying

@@ -40,12 +40,35 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
   return spectral_bounds(BorderedForm(md, lo1, hi1, lo2, hi2), x, lo_s, hi_s, lo1, hi1, lo2, hi2);
 }
 
+const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const BorderedForm& bf, double t1, double t2,
+                                                                      bool& computed) {
+  const std::vector<int> key = bf.key();
+  for (Entry& e : entries_)
+    if (e.used && e.t1 == t1 && e.t2 == t2 && e.key == key) {
+      computed = false;
+      return e.es;
+    }
+  Entry& e = entries_[next_];
+  next_ = (next_ + 1) % 3;
+  e.t1 = t1;
+  e.t2 = t2;
+  e.key = key;
+  e.es.compute(bf.matrix(t1, t2));
+  e.used = true;
+  computed = true;
+  return e.es;
+}
+
 SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
-                               double hi1, double lo2, double hi2) {
+                               double hi1, double lo2, double hi2, EigenCache* cache) {
   using Vec = Eigen::VectorXd;
   using Mat = Eigen::MatrixXd;
   SpectralBounds sb;
-  const Eigen::SelfAdjointEigenSolver<Mat> es(bf.matrix(x.t1, x.t2));
+  Eigen::SelfAdjointEigenSolver<Mat> own;
+  bool computed = true;
+  if (!cache) own.compute(bf.matrix(x.t1, x.t2));
+  const Eigen::SelfAdjointEigenSolver<Mat>& es = cache ? cache->at(bf, x.t1, x.t2, computed) : own;
+  sb.evaluations = computed ? 1 : 0;
   if (es.info() != Eigen::Success) return sb;
   const Vec& lam = es.eigenvalues();
   const Mat& U = es.eigenvectors();
@@ -348,7 +371,7 @@ Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, dou
 }
 
 StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
-                             const StepBox& cell) {
+                             const StepBox& cell, EigenCache* cache) {
   StepCertificate cert = certify_step_weyl(md, sym, a, b);
   if (cert.verdict != StepVerdict::Uncertified) {  // each of its proofs needs |g_b| beyond its error
     cert.end_sign = b.g > 0 ? 1 : -1;
@@ -368,15 +391,16 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     const double err = (y.residual + y.eig_error) / gap + 4.0 * std::numeric_limits<double>::epsilon();
     return std::abs(y.g) > err ? (y.g > 0 ? 1 : -1) : 0;
   };
-  // The bounds from each end in turn (b first), in the bordered form of the step's box. Each range holds on the
+  // The bounds from each end in turn (a first: its eigenpairs are usually cached), in the bordered form of the step's box. Each range holds on the
   // whole step, so what one end proves (monotone g) combines with what the other adds (its own end sign).
   const BorderedForm bf(md, lo1, hi1, lo2, hi2);
   int sign_a = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sign_b = sign_at(b);
   bool monotone = false;
-  for (const StepEnd* x : {&b, &a}) {
-    ++cert.evaluations;
+  for (const StepEnd* x : {&a, &b}) {
     // s-range between the true curve points of the ends (each within pos_err of its end in t1 and t2)
-    const SpectralBounds sb = spectral_bounds(bf, *x, a.s - 2.0 * a.pos_err, b.s + 2.0 * b.pos_err, lo1, hi1, lo2, hi2);
+    const SpectralBounds sb =
+        spectral_bounds(bf, *x, a.s - 2.0 * a.pos_err, b.s + 2.0 * b.pos_err, lo1, hi1, lo2, hi2, cache);
+    cert.evaluations += sb.evaluations;
     if (!sb.valid) continue;
     // the sign of the true g at x, from the bordered form's own error bound there (tighter next to pole lines)
     if (std::abs(sb.g_x) > sb.g_err) {

@@ -76,11 +76,30 @@ struct StepBox {
   double lo1, hi1, lo2, hi2;
 };
 
+/// Full eigenpairs of bordered forms at the last few points: a step's start is the previous step's end, and a step
+/// the bounds refuse is retried, shorter, from the same start. Keyed by the point and the bordered modes.
+class EigenCache {
+ public:
+  /// The eigenpairs of bf at (t1, t2); `computed` is set when they were not cached (one evaluation).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& at(const BorderedForm& bf, double t1, double t2,
+                                                           bool& computed);
+
+ private:
+  struct Entry {
+    double t1 = 0, t2 = 0;
+    std::vector<int> key;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
+    bool used = false;
+  };
+  Entry entries_[3];
+  int next_ = 0;
+};
+
 /// The bounds of the header comment, for the step a -> b of curve k (s_b > s_a) inside `cell`: the Weyl /
 /// Davis-Kahan bounds first (no evaluation of H), then, where they fail (axial symmetry), the spectral bounds from the
 /// full eigenpairs at b, then at a.
 StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
-                             const StepBox& cell);
+                             const StepBox& cell, EigenCache* cache = nullptr);
 
 // Spectrally weighted bounds of g and g' over a step, from the full eigenpairs at one end x (axial symmetry,
 // c = z / |z|). Notation: H_x = U diag(lam) U^T (lam_k ~ 0, b_x = u_k), Hp = U diag(1 / lam_j, j != k) U^T its
@@ -105,6 +124,7 @@ struct SpectralBounds {
   double dg_lo = 0, dg_hi = 0;  ///< range of g' = dg/ds over the step
   double g_err = 0;             ///< error bound of g at x (computed b_x against the true null vector there)
   double g_x = 0;               ///< g at x (of the bordered form's null vector: the sign of the traced g's)
+  int evaluations = 0;          ///< full eigenpairs computed (0 when the cache had them)
 };
 /// The bounds above from end x of the step [lo_s, hi_s] of a curve whose true points lie in the box
 /// [lo1, hi1] x [lo2, hi2] (inside one cell). Costs one H and its full eigenpairs (O(m^3)). Axial symmetry only.
@@ -114,7 +134,7 @@ SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd&
 /// to a pole line its phases' derivatives stay O(1) where H's grow like 1 / distance^2, which is what keeps the bounds
 /// tight there. g, g' and their ranges are those of c^T [b; nu] / |[b; nu]| (same sign as the traced g).
 SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
-                               double hi1, double lo2, double hi2);
+                               double hi1, double lo2, double hi2, EigenCache* cache = nullptr);
 
 /// Bounds of |(H(t1', t2') - H(t1, t2)) b| and of |H(t1', t2') - H(t1, t2)|_2 over |t1' - t1| <= e1,
 /// |t2' - t2| <= e2 (+inf when a pole line lies that close): added to a traced point's residual and eigenvalue error
