@@ -38,11 +38,12 @@ struct SolveOptions {
   /// any evaluation, with their count.
   long max_cells = 10'000'000;
   /// Prove every trace step outside the axis bands (search/step_certificate.hpp: zeroth-order drift of the null
-  /// vector, or the curvature bound, or the onset inertia of the step's box), falling back to the midpoint check where
-  /// none of them proves the step within the step budget, and report the window Incomplete unless every step was
-  /// proved. Costs 5-10x the evaluations of the default on the paper's examples (both end success); on stiff or
-  /// generic random systems pieces still run out of their step budget (Incomplete). Off: every step by the midpoint
-  /// check (heuristic_steps), a careful heuristic, not a proof.
+  /// vector, the curvature bound, the spectral bounds in the bordered form, or the onset inertia of the step's box),
+  /// falling back to the midpoint check where none of them proves the step within the step budget, and report the
+  /// window Incomplete unless every step was proved. Costs 1.5-8x the evaluations of the default (README: every
+  /// benchmark case ends success); where two zero curves run side by side, or g stays small and flat, steps are still
+  /// left unproved (Incomplete). Off: every step by the midpoint check (heuristic_steps), a careful heuristic, not a
+  /// proof.
   bool certify_steps = false;
   double pole_margin =
       1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)
