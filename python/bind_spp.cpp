@@ -123,6 +123,7 @@ PYBIND11_MODULE(_spp, m) {
             d["unpaired_crossings"] = st.unpaired_crossings;
             d["unresolved_pieces"] = st.unresolved_pieces;
             d["unpolished_roots"] = st.unpolished_roots;
+            d["unsearched_cells"] = st.unsearched_cells;
             d["pole_line_artifacts"] = st.pole_line_artifacts;
             d["decoupled_modes"] = r.decoupled_modes;
             d["repeated_frequency_groups"] = r.repeated_groups;
@@ -283,16 +284,71 @@ PYBIND11_MODULE(_spp, m) {
     }
     return o.cast<spp::SolveOptions>();
   };
+  py::class_<spp::SolveProgress>(m, "SolveProgress",
+                                 "What a running solve reports to its progress callback (solve(..., progress=f)).")
+      .def_readonly("cells_done", &spp::SolveProgress::cells_done, "cells of the window traced so far")
+      .def_readonly("cells_total", &spp::SolveProgress::cells_total, "cells of the window")
+      .def_readonly("candidates", &spp::SolveProgress::candidates, "sign changes of g found so far (before polish)")
+      .def_readonly("seconds", &spp::SolveProgress::seconds, "time since the trace started")
+      .def("__repr__", [](const spp::SolveProgress& p) {
+        std::ostringstream os;
+        os << "<spp.SolveProgress cells " << p.cells_done << " / " << p.cells_total << ", " << p.candidates
+           << " sign changes, " << p.seconds << " s>";
+        return os.str();
+      });
   m.def(
       "solve",
       [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
-        const spp::SolveOptions o = solve_options(options, fields, "solve");
+        // progress is not a SolveOptions field (a callable): taken out of the keywords first
+        py::dict rest;
+        py::object progress = py::none();
+        for (const auto& [key, value] : fields) {
+          if (py::str(key).cast<std::string>() == "progress")
+            progress = py::reinterpret_borrow<py::object>(value);
+          else
+            rest[key] = value;
+        }
+        spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "solve");
         o.validate();
+        const bool text = py::isinstance<py::bool_>(progress) && progress.cast<bool>();
+        const bool call = !progress.is_none() && !py::isinstance<py::bool_>(progress);
+        if (call && !PyCallable_Check(progress.ptr()))
+          throw std::invalid_argument("solve: progress must be True, False, None or a callable f(SolveProgress)");
+        bool interrupted = false, shown = false;
+        // Called from this thread every 0.2 s (spp::SolveOptions::progress): Ctrl-C (KeyboardInterrupt) stops the
+        // search and keeps what was found; the user's callable may stop it too (by returning False) or raise.
+        o.progress = [&](const spp::SolveProgress& p) {
+          const py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) {
+            if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+            PyErr_Clear();
+            interrupted = true;
+            return false;
+          }
+          if (text && p.seconds >= 1.0) {
+            std::ostringstream os;
+            os << "\r  cells " << p.cells_done << " / " << p.cells_total << ", " << p.candidates
+               << " sign changes of g, " << std::fixed << std::setprecision(1) << p.seconds << " s";
+            py::module_::import("sys").attr("stderr").attr("write")(os.str());
+            shown = true;
+          }
+          if (!call) return true;
+          const py::object r = progress(p);
+          return r.is_none() || r.cast<bool>();
+        };
         spp::SolveResult r;
         {
           py::gil_scoped_release release;
           r = spp::solve(s, o);
         }
+        if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
+        if (interrupted &&
+            PyErr_WarnEx(PyExc_RuntimeWarning,
+                         ("solve interrupted (Ctrl-C): " + std::to_string(r.stats.unsearched_cells) +
+                          " cell(s) not searched; the result holds what was found before (status incomplete)")
+                             .c_str(),
+                         1) < 0)
+          throw py::error_already_set();  // warnings turned into errors
         py::object result = py::cast(std::move(r));
         result.attr("system") = s;
         return result;
@@ -300,7 +356,10 @@ PYBIND11_MODULE(_spp, m) {
       "system"_a, "options"_a = py::none(),
       "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
       "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
-      "potential SPPs of paper §6.2; certify_steps=True: every step proved). Raises ValueError.");
+      "potential SPPs of paper §6.2; certify_steps=True: every step proved). progress=True prints the cells traced on "
+      "stderr; progress=f calls f(SolveProgress) every 0.2 s (returning False stops the search). Ctrl-C stops it "
+      "too: the result then holds what was found (status incomplete, stats['unsearched_cells'] > 0) and a "
+      "RuntimeWarning says so. Raises ValueError.");
 
   m.def(
       "fundamental_box", [](const spp::System& s) { return spp::fundamental_box(spp::ModalForm(s)); }, "system"_a,

@@ -219,6 +219,10 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
   std::atomic<size_t> next_strip{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  // progress (SolveOptions::progress): counted by the workers, reported by the calling thread, which may stop them
+  std::atomic<long> cells_done{0}, candidates_found{0};
+  std::atomic<bool> stop{false};
+  std::atomic<size_t> workers_done{0};
   auto worker = [&]() {
     try {
       for (size_t j = next_strip++; j < J; j = next_strip++) {
@@ -226,6 +230,12 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
         search::DenseEvaluator evaluator(md, opt.symmetry);
         search::CellTracer tracer(md, opt, out.stats, evaluator);
         for (size_t i = 0; i < I; ++i) {
+          if (stop) {  // stopped: the rest of the strip is listed as not searched
+            out.stats.unsearched_cells += static_cast<long>(I - i);
+            out.uncertified.push_back({a1.bp[i], a1.bp[I], a2.bp[j], a2.bp[j + 1], "interrupted"});
+            break;
+          }
+          const size_t found_before = tracer.candidates().size();
           const search::Cell cell{a1.bp[i] + a1.margin[i],
                                   a1.bp[i + 1] - a1.margin[i + 1],
                                   a2.bp[j] + a2.margin[j],
@@ -234,12 +244,14 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
                                   a1.pole[i + 1],
                                   a2.pole[j],
                                   a2.pole[j + 1]};
+          ++cells_done;
           if (!(cell.a1 < cell.b1 && cell.A < cell.B)) continue;
           // curves leave through the left edge (pole line i) into the right edge of cell i - 1, and through the
           // top edge (pole line j + 1) into the bottom edge of strip j + 1
           if (!tracer.trace_cell(cell, i, tw.hits.v_from[i][j], tw.hits.h_from[j + 1][i], tw.hits.v_to[i + 1][j],
                                  tw.hits.h_to[j][i]))
             out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, "step"});
+          candidates_found += static_cast<long>(tracer.candidates().size() - found_before);
         }
         out.candidates = std::move(tracer.candidates());
         out.stats.evaluations += evaluator.evaluations();  // plus those of the step certificates
@@ -247,13 +259,40 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failure_mutex);
       failure = std::current_exception();
+      stop = true;
     }
+    ++workers_done;
   };
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const size_t nthreads = std::min<size_t>(J, opt.threads > 0 ? static_cast<size_t>(opt.threads) : hw);
   std::vector<std::thread> pool;
-  for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(worker);
-  worker();
+  if (!opt.progress) {
+    for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(worker);
+    worker();
+  } else {  // the workers trace, this thread reports (a callback may need this thread, e.g. Python's GIL)
+    for (size_t t = 0; t < nthreads; ++t) pool.emplace_back(worker);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto report = [&] {
+      const SolveProgress p{cells_done.load(), static_cast<long>(I * J), candidates_found.load(),
+                            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+      return opt.progress(p);
+    };
+    try {
+      auto last = t0;
+      while (workers_done.load() < nthreads) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        if (std::chrono::steady_clock::now() - last >= std::chrono::milliseconds(200)) {
+          last = std::chrono::steady_clock::now();
+          if (!stop && !report()) stop = true;
+        }
+      }
+      report();
+    } catch (...) {  // the callback threw: stop the workers, then pass it on
+      stop = true;
+      for (auto& th : pool) th.join();
+      throw;
+    }
+  }
   for (auto& th : pool) th.join();
   if (failure) std::rethrow_exception(failure);
   for (StripOut& out : strips) {
@@ -266,6 +305,7 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
     res.stats.uncertified_steps += s.uncertified_steps;
     res.stats.uncertified_corners += s.uncertified_corners;
     res.stats.unresolved_pieces += s.unresolved_pieces;
+    res.stats.unsearched_cells += s.unsearched_cells;
     for (auto& c : out.candidates) tw.candidates.push_back(std::move(c));
     for (auto& u : out.uncertified) res.uncertified.push_back(std::move(u));
   }
@@ -371,6 +411,10 @@ void finalize(const SolveOptions& options, SolveResult& res) {
         "beyond max_turn within the minimum step: eigenvalues within rounding of each other, "
         "e.g. next to a pole line): a root there is not excluded (cell in 'uncertified')");
   cause(st.uncertified_corners, "cell corner(s) kept an eigenvalue within its error bound of zero");
+  cause(st.unsearched_cells,
+        "cell(s) were not searched: the search was stopped (progress callback, or Ctrl-C); the strips next to pole "
+        "lines were not paired either. What was found is reported; rerun the window (or the cells listed in "
+        "'uncertified') for the rest");
   cause(st.unpaired_crossings,
         "curve crossing(s) of a pole line could not be paired: a root in that thin strip is "
         "not excluded");
@@ -418,8 +462,10 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   res.stats.contact_pole_lines = static_cast<int>(std::count(plan.t2.pole.begin(), plan.t2.pole.end(), true));
   // 2-3. count at the corners and trace the pieces, cell by cell
   TracedWindow traced = trace_cells(md, plan, res);
-  // 4. pair the curves across the thin strips around pole lines
-  search::pair_across_pole_lines(traced.hits, plan.t1, plan.t2, res.stats, res.uncertified, traced.candidates);
+  // 4. pair the curves across the thin strips around pole lines (a stopped search has no hits from the cells it
+  // skipped: its strips are left unpaired, and the status says that the search was stopped)
+  if (res.stats.unsearched_cells == 0)
+    search::pair_across_pole_lines(traced.hits, plan.t1, plan.t2, res.stats, res.uncertified, traced.candidates);
   // 5. polish into roots, keep those of the window
   polish_candidates(system, md, plan, traced.candidates, options.compute_return_error, res);
   // 6. finalize

@@ -467,3 +467,26 @@ TEST(Cli, BoxSolvesTheFundamentalBox) {
   EXPECT_EQ(none.code, 1);
   EXPECT_NE(none.out.find("--t1-max and --t2-max are required (or --box"), std::string::npos) << none.out;
 }
+
+TEST(Cli, CtrlCStopsTheSolveAndWritesWhatWasFound) {
+  // SIGINT one second into a search of about a minute: exit code 130, the summary and the JSON hold the roots found
+  // so far, status incomplete, the cells not searched counted.
+  const fs::path sys = dir() / "chain20.json", out = dir() / "interrupted.json";
+  ASSERT_EQ(run("generate chain --n 20 --out " + sys.string()).code, 0);
+  fs::remove(out);
+  const std::string cmd = "timeout --preserve-status -s INT 1 " + std::string(SPP_CLI) + " solve " + sys.string() +
+                          " --box --quiet --json " + out.string() + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string text;
+  std::array<char, 4096> buf{};
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) text.append(buf.data(), n);
+  const int st = pclose(p);
+  ASSERT_TRUE(WIFEXITED(st)) << text;
+  EXPECT_EQ(WEXITSTATUS(st), 130) << text;
+  EXPECT_NE(text.find("interrupted:"), std::string::npos) << text;
+  std::ifstream in(out);
+  ASSERT_TRUE(in.good()) << text;
+  const nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_EQ(r.at("status"), "incomplete");
+  EXPECT_GT(r.at("stats").at("unsearched_cells").get<long>(), 0);
+}

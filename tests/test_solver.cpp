@@ -2,6 +2,9 @@
 // equations and the exact physical flows, independently of the modal form the solver uses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <tuple>
+
 #include "paper_reference.hpp"
 #include "physical_flow.hpp"
 #include "spp/generators.hpp"
@@ -369,4 +372,56 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
     }
   // The grid sees every root of this window: the same count both ways.
   EXPECT_EQ(brute.size(), r.solutions.size());
+}
+
+TEST(Progress, ReportsEveryCellAndStopsWithWhatWasFound) {
+  // A callback that always continues changes nothing, and its last report has every cell traced.
+  const System s5 = chain5();
+  SolveOptions o;
+  o.t1_max = 12;
+  o.t2_max = 12;
+  const SolveResult plain = solve(s5, o);
+  SolveProgress last;
+  int calls = 0;
+  o.progress = [&](const SolveProgress& p) {
+    last = p;
+    ++calls;
+    return true;
+  };
+  const SolveResult reported = solve(s5, o);
+  EXPECT_GE(calls, 1);
+  EXPECT_EQ(last.cells_done, last.cells_total);
+  EXPECT_GE(last.candidates, static_cast<long>(plain.solutions.size()));  // sign changes, before polish
+  ASSERT_EQ(reported.solutions.size(), plain.solutions.size());
+  for (size_t i = 0; i < plain.solutions.size(); ++i) {
+    EXPECT_EQ(reported.solutions[i].t1, plain.solutions[i].t1);
+    EXPECT_EQ(reported.solutions[i].t2, plain.solutions[i].t2);
+  }
+  EXPECT_EQ(reported.stats.evaluations, plain.stats.evaluations);
+  EXPECT_EQ(reported.status, SolveStatus::Success);
+
+  // Stopped at its first report (0.2 s into a search of minutes): the cells not traced are counted and listed, the
+  // status is Incomplete, and what was found is part of the whole window's result (checked on a sub-window).
+  const System s20 = chain(20, {1.0}, {1.0}, 19, ContactSide::Upper, 1.0);
+  SolveOptions big;
+  std::tie(big.t1_max, big.t2_max) = fundamental_box(ModalForm(s20));
+  big.threads = 2;
+  big.progress = [](const SolveProgress&) { return false; };
+  const SolveResult part = solve(s20, big);
+  EXPECT_EQ(part.status, SolveStatus::Incomplete);
+  EXPECT_GT(part.stats.unsearched_cells, 0);
+  const bool listed = std::any_of(part.uncertified.begin(), part.uncertified.end(),
+                                  [](const UncertifiedRegion& u) { return u.cause == "interrupted"; });
+  EXPECT_TRUE(listed);
+  for (const Solution& x : part.solutions) {
+    SolveOptions around;
+    around.t1_min = x.t1 * (1 - 1e-6);
+    around.t1_max = x.t1 * (1 + 1e-6);
+    around.t2_min = x.t2 * (1 - 1e-6);
+    around.t2_max = x.t2 * (1 + 1e-6);
+    const SolveResult r = solve(s20, around);
+    ASSERT_EQ(r.solutions.size(), 1u) << x.t1 << " " << x.t2;
+    EXPECT_NEAR(r.solutions[0].t1, x.t1, 1e-9 * x.t1);
+    EXPECT_NEAR(r.solutions[0].t2, x.t2, 1e-9 * x.t2);
+  }
 }

@@ -1,5 +1,10 @@
 // spp solve: every SPP of a window (or, for a parametric system with g0 = 0, of (t1, t2, parameter), paper §6.1).
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -27,6 +32,30 @@ struct SolveArgs {
   CLI::Option* t1_max_given = nullptr;
   CLI::Option* t2_max_given = nullptr;
 };
+
+// Ctrl-C during a solve: the first one stops the search (the result found so far is reported and written, exit code
+// 130); the handler then restores the default, so a second one ends the program at once.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) {
+  g_interrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+// The progress callback of the CLI: a line on stderr, rewritten in place (only when stderr is a terminal and not
+// --quiet), and the Ctrl-C check.
+std::function<bool(const SolveProgress&)> cli_progress(bool quiet, bool& shown) {
+  const bool tty = !quiet && isatty(STDERR_FILENO) != 0;
+  return [tty, &shown](const SolveProgress& p) {
+    if (tty && p.seconds >= 1.0) {  // short runs stay silent
+      const double pct = p.cells_total > 0 ? 100.0 * static_cast<double>(p.cells_done) / p.cells_total : 100.0;
+      std::fprintf(stderr, "\r  cells %ld / %ld (%.0f%%), %ld sign changes of g, %.1f s%s", p.cells_done,
+                   p.cells_total, pct, p.candidates, p.seconds, g_interrupted ? " (stopping)" : "");
+      std::fflush(stderr);
+      shown = true;
+    }
+    return g_interrupted == 0;
+  };
+}
 
 // A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
 int run_zero_gap(const SolveArgs& a) {
@@ -93,7 +122,13 @@ int run(SolveArgs& a) {
       std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max << ", t2 <= pi / d_1 = "
                 << a.options.t2_max << "\n";
   }
+  bool shown = false;
+  a.options.progress = cli_progress(a.quiet, shown);
+  g_interrupted = 0;
+  std::signal(SIGINT, on_interrupt);
   const SolveResult res = solve(sys, modal, a.options);
+  std::signal(SIGINT, SIG_DFL);
+  if (shown) std::fputs("\n", stderr);
   // prepare every output before writing any
   const std::string json_text = a.json.empty() ? "" : result_json(sys, res);
   const std::string csv_text = a.csv.empty() ? "" : result_to_csv(res);
@@ -105,6 +140,11 @@ int run(SolveArgs& a) {
   for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
   if (!a.csv.empty()) write_file_atomic(a.csv, csv_text);
+  if (res.stats.unsearched_cells > 0) {
+    std::cerr << "interrupted: " << res.stats.unsearched_cells << " cell(s) not searched; the result above (and its "
+              << "files) holds what was found before\n";
+    return 130;
+  }
   return 0;
 }
 

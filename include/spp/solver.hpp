@@ -15,6 +15,7 @@
 // step_certificate); solve() in src/solver.cpp calls them in order.
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,14 @@
 #include "spp/system.hpp"
 
 namespace spp {
+
+/// What a running solve reports to SolveOptions::progress: the window's cells traced so far (of all of them), the
+/// sign changes of g found so far (candidate roots, before polishing) and the time since the start.
+struct SolveProgress {
+  long cells_done = 0, cells_total = 0;
+  long candidates = 0;
+  double seconds = 0.0;
+};
 
 /// The window is half-open, (t1_min, t1_max] x (t2_min, t2_max]: a root on a shared edge of two tiles belongs to one
 /// tile only, so the union of the results of a tiling equals the result of the whole window.
@@ -56,6 +65,11 @@ struct SolveOptions {
   /// Axial: the SPPs (eqs. 5.1). Point: the point-symmetric potential SPPs of det T2 = 0 (paper §6.2), same
   /// search on H_T (see Symmetry); never admissible, and with g0 != 0 they need a moving obstacle.
   Symmetry symmetry = Symmetry::Axial;
+  /// Called about every 0.2 s while the cells are traced, always from the thread that called solve() (so a Python
+  /// callback may take the GIL), and once when the trace ends. Returning false stops the search: the cells not
+  /// traced yet are skipped, what was found is polished and returned, and the status is Incomplete with
+  /// stats.unsearched_cells > 0 and the skipped cells listed in `uncertified` (cause "interrupted"). Empty: no reports.
+  std::function<bool(const SolveProgress&)> progress;
 
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
@@ -105,13 +119,14 @@ struct SolveStats {
   long unresolved_pieces = 0;    ///< curve pieces whose null vector could not be followed (budget, or turn at min step)
   long unpolished_roots = 0;     ///< sign changes of g that Newton could not polish to a root (residual above 1e-10
                                  ///< away from pole lines: not reported as SPPs)
+  long unsearched_cells = 0;     ///< cells skipped because SolveOptions::progress stopped the search
   double seconds = 0.0;
 };
 
 /// A part of the window that could not be certified, and why.
 struct UncertifiedRegion {
   double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;
-  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish"
+  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish", "interrupted"
 };
 
 struct SolveResult {

@@ -237,3 +237,34 @@ def test_solve_result_pickle_refuses_a_foreign_system():
     r.system = "foo"
     with pytest.raises(ValueError, match="must be the spp.System"):
         pickle.dumps(r)
+
+
+def test_progress_reports_and_ctrl_c_keeps_what_was_found():
+    import signal
+    import threading
+    import warnings
+
+    s = chain5()
+    reports = []
+    r = spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: reports.append(p))
+    assert r.status == "success" and reports and reports[-1].cells_done == reports[-1].cells_total
+    # a callable that returns False stops the search: what was found is kept, the rest counted
+    big = spp.System(np.eye(20), 2 * np.eye(20) - np.eye(20, k=1) - np.eye(20, k=-1), np.eye(20)[-1], 1.0)
+    t1, t2 = spp.fundamental_box(big)
+    r = spp.solve(big, t1_max=t1, t2_max=t2, progress=lambda p: False)
+    assert r.status == "incomplete" and r.stats["unsearched_cells"] > 0
+    assert any(u["cause"] == "interrupted" for u in r.uncertified)
+    # Ctrl-C (SIGINT) stops it the same way, with a RuntimeWarning
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = spp.solve(big, t1_max=t1, t2_max=t2)
+    timer.join()
+    assert r.status == "incomplete" and r.stats["unsearched_cells"] > 0
+    assert any("interrupted" in str(w.message) for w in caught)
+    # an exception in the callable reaches the caller; anything but a callable or a bool is refused
+    with pytest.raises(ZeroDivisionError):
+        spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: 1 / 0)
+    with pytest.raises(ValueError, match="progress"):
+        spp.solve(s, t1_max=12, t2_max=12, progress=3)

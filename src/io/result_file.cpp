@@ -53,6 +53,7 @@ json result_to_json(const System& s, const SolveResult& r) {
                 {"unpaired_crossings", r.stats.unpaired_crossings},
                 {"unresolved_pieces", r.stats.unresolved_pieces},
                 {"unpolished_roots", r.stats.unpolished_roots},
+                {"unsearched_cells", r.stats.unsearched_cells},
                 {"pole_line_artifacts", r.stats.pole_line_artifacts},
                 {"decoupled_modes", r.decoupled_modes},
                 {"repeated_frequency_groups", r.repeated_groups},
@@ -132,6 +133,8 @@ SolveResult result_from_json(const json& r, const std::string& where) {
   s.unpaired_crossings = st.integer("unpaired_crossings");
   s.unresolved_pieces = st.integer("unresolved_pieces");
   s.unpolished_roots = st.integer("unpolished_roots");
+  // files written before the field existed have none
+  s.unsearched_cells = st.o.contains("unsearched_cells") ? st.integer("unsearched_cells") : 0;
   s.pole_line_artifacts = st.integer("pole_line_artifacts");
   s.seconds = st.number("seconds");
   res.decoupled_modes = static_cast<int>(st.integer("decoupled_modes"));
