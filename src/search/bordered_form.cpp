@@ -6,23 +6,22 @@
 
 namespace spp::search {
 
+PhaseFamily::Point PhaseFamily::at(Eigen::Index k, double t) const {
+  if (linear(k)) return {t, 1.0, 0.0};
+  if (amp(k) == 0.0) return {0.0, 0.0, 0.0};
+  const double w = freq(k), tn = std::tan(w * t + shift(k)), sec2 = 1.0 + tn * tn, a = amp(k);
+  return {a * tn, a * w * sec2, 2.0 * a * w * w * sec2 * tn};
+}
+
 Eigen::VectorXd PhaseFamily::value(double t) const {
   Eigen::VectorXd v(size());
-  for (Eigen::Index k = 0; k < size(); ++k)
-    v(k) = linear(k) ? t : (amp(k) == 0.0 ? 0.0 : amp(k) * std::tan(freq(k) * t + shift(k)));
+  for (Eigen::Index k = 0; k < size(); ++k) v(k) = at(k, t).v;
   return v;
 }
 
 Eigen::VectorXd PhaseFamily::d1(double t) const {
   Eigen::VectorXd v(size());
-  for (Eigen::Index k = 0; k < size(); ++k) {
-    if (linear(k) || amp(k) == 0.0) {
-      v(k) = linear(k) ? 1.0 : 0.0;
-      continue;
-    }
-    const double c = std::cos(freq(k) * t + shift(k));
-    v(k) = amp(k) * freq(k) / (c * c);
-  }
+  for (Eigen::Index k = 0; k < size(); ++k) v(k) = at(k, t).d1;
   return v;
 }
 

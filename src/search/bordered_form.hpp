@@ -31,6 +31,11 @@ struct PhaseFamily {
   Eigen::VectorXd amp, freq, shift;
   Eigen::Array<bool, Eigen::Dynamic, 1> linear;
   Eigen::Index size() const { return amp.size(); }
+  /// Phase k at t (inside one of its pole intervals): value, first and second derivative.
+  struct Point {
+    double v, d1, d2;
+  };
+  Point at(Eigen::Index k, double t) const;
   Eigen::VectorXd value(double t) const;
   Eigen::VectorXd d1(double t) const;  ///< first derivative
   /// Number of poles of the phases in (lo, hi).

@@ -8,18 +8,6 @@ namespace spp::search {
 
 namespace {
 
-// Phase function a tan(w t + shift) of coordinate k of a family at t (inside a pole interval): value, first and
-// second derivative.
-struct Phase {
-  double v, d1, d2;
-};
-Phase phase(const PhaseFamily& f, Eigen::Index k, double t) {
-  if (f.linear(k)) return {t, 1.0, 0.0};
-  if (f.amp(k) == 0.0) return {0.0, 0.0, 0.0};
-  const double w = f.freq(k), tn = std::tan(w * t + f.shift(k)), sec2 = 1.0 + tn * tn, a = f.amp(k);
-  return {a * tn, a * w * sec2, 2.0 * a * w * w * sec2 * tn};
-}
-
 // Positive root of G + c1 x - L2 x^2 / 2 (the Taylor lower bound of |g| reaches 0 there); 0 when G <= 0.
 double zero_free_radius(double G, double c1, double L2) {
   if (!(G > 0)) return 0.0;
@@ -222,7 +210,7 @@ PhaseBounds phase_bounds(const PhaseFamily& f, double lo, double hi) {
   const Eigen::Index m = f.size();
   PhaseBounds pb{Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m), Eigen::VectorXd(m)};
   for (Eigen::Index i = 0; i < m; ++i) {
-    const Phase a = phase(f, i, lo), b = phase(f, i, hi);
+    const PhaseFamily::Point a = f.at(i, lo), b = f.at(i, hi);
     // a tan is increasing, its derivative convex and its second derivative increasing between poles: their extremes
     // are at the ends.
     pb.increment(i) = std::abs(b.v - a.v);
