@@ -217,7 +217,19 @@ PYBIND11_MODULE(_spp, m) {
             py::dict attrs;
             attrs["system"] = spp::parse_result_system(text, "pickled SolveResult");
             return std::make_pair(spp::parse_result(text, "pickled SolveResult"), attrs);
-          }));
+          }))
+      .def_static(
+          "from_json",
+          [](const std::string& path) {
+            spp::System system = spp::load_result_system(path);
+            py::object result = py::cast(spp::load_result(path));
+            result.attr("system") = std::move(system);
+            return result;
+          },
+          "path"_a,
+          "The SolveResult of a result file (spp solve --json, SolveResult.to_json), with its system as attribute "
+          "system: the status, solutions, stats, uncertified regions and warnings that were written. Raises "
+          "ValueError naming the file and the field.");
 
   py::enum_<spp::Symmetry>(m, "Symmetry", "Which equations: the SPPs (axial) or the point-symmetric potential SPPs "
                                            "of det T2 = 0 (point, paper §6.2)")

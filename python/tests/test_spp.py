@@ -268,3 +268,19 @@ def test_progress_reports_and_ctrl_c_keeps_what_was_found():
         spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: 1 / 0)
     with pytest.raises(ValueError, match="progress"):
         spp.solve(s, t1_max=12, t2_max=12, progress=3)
+
+
+def test_solve_result_from_json_gives_back_what_was_written(tmp_path):
+    s = spp.rod_with_slip()
+    r = spp.solve(s, t1_max=8, t2_max=3)
+    path = tmp_path / "r.json"
+    path.write_text(r.to_json(s))
+    back = spp.SolveResult.from_json(str(path))
+    assert back.status == r.status and back.stats == r.stats and back.warnings == r.warnings
+    assert back.uncertified == r.uncertified and back.symmetry == r.symmetry
+    assert [(x.t1, x.t2, x.admissible, x.period) for x in back.solutions] == [
+        (x.t1, x.t2, x.admissible, x.period) for x in r.solutions]
+    assert np.array_equal(back.system.M, s.M) and back.system.g0 == s.g0
+    assert back.to_dataframe().equals(r.to_dataframe())
+    with pytest.raises(ValueError, match="nowhere.json"):
+        spp.SolveResult.from_json(str(tmp_path / "nowhere.json"))
