@@ -339,8 +339,12 @@ PYBIND11_MODULE(_spp, m) {
           }
           if (text && p.seconds >= 1.0) {
             std::ostringstream os;
+            const double eta = p.cells_done > 0 ? p.seconds * static_cast<double>(p.cells_total - p.cells_done) /
+                                                      static_cast<double>(p.cells_done)
+                                                : 0.0;  // the cells left costing what the cells done did
             os << "\r  cells " << p.cells_done << " / " << p.cells_total << ", " << p.candidates
-               << " sign changes of g, " << std::fixed << std::setprecision(1) << p.seconds << " s";
+               << " sign changes of g, " << std::fixed << std::setprecision(1) << p.seconds << " s, ~"
+               << std::setprecision(0) << eta << " s left   ";
             py::module_::import("sys").attr("stderr").attr("write")(os.str());
             shown = true;
           }

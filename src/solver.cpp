@@ -312,6 +312,19 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
   return tw;
 }
 
+// Step 1 of solve(): the window outside the axis bands, planned (throws for a window inside a band, or too large).
+search::WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {
+  const auto [band1, band2] = axis_band(md);
+  if (options.t1_max <= band1 || options.t2_max <= band2) {
+    std::ostringstream os;
+    os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
+       << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
+       << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
+    throw std::invalid_argument(os.str());
+  }
+  return search::plan_window(md, options);
+}
+
 // True when (t1, t2) lies within kOnPoleLine (relative) of a flight or contact pole line.
 bool on_pole_line(const ModalForm& md, double t1, double t2) {
   const double r = search::kOnPoleLine;
@@ -446,14 +459,7 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
 
   // 1. plan the window: search region, pole lines, cells (refused if too many) before any evaluation
   const auto [band1, band2] = axis_band(md);
-  if (options.t1_max <= band1 || options.t2_max <= band2) {
-    std::ostringstream os;
-    os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
-       << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
-       << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
-    throw std::invalid_argument(os.str());
-  }
-  const search::WindowPlan plan = search::plan_window(md, options);
+  const search::WindowPlan plan = plan_search(md, options);
   res.t1_min = std::max(plan.options.t1_min, band1);
   res.t1_max = plan.options.t1_max;
   res.t2_min = std::max(plan.options.t2_min, band2);
@@ -472,6 +478,41 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   finalize(options, res);
   res.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
+}
+
+WindowEstimate estimate_window(const System& system, const ModalForm& md, const SolveOptions& options) {
+  options.validate();
+  require_nonzero_gap(system);
+  require_modal_of(system, md, "estimate_window");
+  const auto [band1, band2] = axis_band(md);
+  const search::WindowPlan plan = plan_search(md, options);
+  WindowEstimate e;
+  e.t1_min = std::max(plan.options.t1_min, band1);
+  e.t1_max = plan.options.t1_max;
+  e.t2_min = std::max(plan.options.t2_min, band2);
+  e.t2_max = plan.options.t2_max;
+  e.flight_pole_lines = static_cast<int>(std::count(plan.t1.pole.begin(), plan.t1.pole.end(), true));
+  e.contact_pole_lines = static_cast<int>(std::count(plan.t2.pole.begin(), plan.t2.pole.end(), true));
+  e.cells = static_cast<long>(plan.t1.cells() * plan.t2.cells());
+  // one evaluation as the trace makes it: H, its inertia, the eigenpair nearest the middle of the spectrum
+  search::DenseEvaluator ev(md, options.symmetry);
+  constexpr int kSamples = 8;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < kSamples; ++i) {
+    const double f = (i + 0.5) / kSamples;  // points along the window's diagonal (t2 changes: no cached part)
+    const auto h = ev.at(e.t1_min + f * (e.t1_max - e.t1_min), e.t2_min + f * (e.t2_max - e.t2_min));
+    const int k = h->size() / 2;
+    const double lam = h->eigenvalue(k);
+    (void)h->count_below(0.0);
+    (void)h->eigenvector(lam);
+  }
+  e.seconds_per_evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / kSamples;
+  e.evaluations_per_cell = options.certify_steps ? 480.0 : 120.0;
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  e.threads = static_cast<int>(std::min<size_t>(std::max<size_t>(1, plan.t2.cells()),
+                                                options.threads > 0 ? static_cast<size_t>(options.threads) : hw));
+  e.seconds = static_cast<double>(e.cells) * e.evaluations_per_cell * e.seconds_per_evaluation / e.threads;
+  return e;
 }
 
 NearestSpp nearest_spp(const System& system, double t1, double t2, double radius, const SolveOptions& options) {

@@ -490,3 +490,14 @@ TEST(Cli, CtrlCStopsTheSolveAndWritesWhatWasFound) {
   EXPECT_EQ(r.at("status"), "incomplete");
   EXPECT_GT(r.at("stats").at("unsearched_cells").get<long>(), 0);
 }
+
+TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
+  const fs::path out = dir() / "dry.json";
+  fs::remove(out);
+  const CliRun r = run("solve " + kChain + " --t1-max 12 --t2-max 12 --dry-run --json " + out.string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  // the paper's chain in (0, 12]^2: 22 x 19 pole lines, 460 cells (the counts solve() reports)
+  EXPECT_NE(r.out.find("22 flight and 19 contact pole lines, 460 cells"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("estimate:"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}

@@ -26,7 +26,7 @@ namespace {
 struct SolveArgs {
   std::string system, json, csv, symmetry = "axial";
   SolveOptions options;
-  bool quiet = false, box = false;
+  bool quiet = false, box = false, dry_run = false;
   double at = 0.0;
   CLI::Option* at_given = nullptr;
   CLI::Option* t1_max_given = nullptr;
@@ -48,8 +48,13 @@ std::function<bool(const SolveProgress&)> cli_progress(bool quiet, bool& shown) 
   return [tty, &shown](const SolveProgress& p) {
     if (tty && p.seconds >= 1.0) {  // short runs stay silent
       const double pct = p.cells_total > 0 ? 100.0 * static_cast<double>(p.cells_done) / p.cells_total : 100.0;
-      std::fprintf(stderr, "\r  cells %ld / %ld (%.0f%%), %ld sign changes of g, %.1f s%s", p.cells_done,
-                   p.cells_total, pct, p.candidates, p.seconds, g_interrupted ? " (stopping)" : "");
+      // remaining time, assuming the cells left cost what the cells done did
+      const double eta = p.cells_done > 0 ? p.seconds * static_cast<double>(p.cells_total - p.cells_done) /
+                                                static_cast<double>(p.cells_done)
+                                          : 0.0;
+      std::fprintf(stderr, "\r  cells %ld / %ld (%.0f%%), %ld sign changes of g, %.1f s, ~%.0f s left%s   ",
+                   p.cells_done, p.cells_total, pct, p.candidates, p.seconds, eta,
+                   g_interrupted ? " (stopping)" : "");
       std::fflush(stderr);
       shown = true;
     }
@@ -122,6 +127,18 @@ int run(SolveArgs& a) {
       std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max << ", t2 <= pi / d_1 = "
                 << a.options.t2_max << "\n";
   }
+  if (a.dry_run) {  // the work, before any: pole lines, cells, a rough time; nothing written
+    const WindowEstimate e = estimate_window(sys, modal, a.options);
+    std::cout << std::setprecision(6) << "window (" << e.t1_min << ", " << e.t1_max << "] x (" << e.t2_min << ", "
+              << e.t2_max << "]: " << e.flight_pole_lines << " flight and " << e.contact_pole_lines
+              << " contact pole lines, " << e.cells << " cells\n"
+              << std::setprecision(2) << "one evaluation of H here: " << e.seconds_per_evaluation * 1e3
+              << " ms; estimate: " << e.cells << " cells x ~" << static_cast<long>(e.evaluations_per_cell)
+              << " evaluations per cell (benchmarks' mean" << (a.options.certify_steps ? ", certified" : "")
+              << ") / " << e.threads << " thread(s) ~ " << e.seconds
+              << " s (an order of magnitude: it varies several-fold between systems)\n";
+    return 0;
+  }
   bool shown = false;
   a.options.progress = cli_progress(a.quiet, shown);
   g_interrupted = 0;
@@ -166,6 +183,8 @@ Subcommand add_solve(CLI::App& app) {
   s->add_option("--csv", a->csv, "write the solutions as CSV");
   s->add_flag("--admissible-only", o.admissible_only, "keep only admissible SPPs");
   s->add_flag("--quiet", a->quiet, "print only the one-line summary");
+  s->add_flag("--dry-run", a->dry_run,
+              "print the window's pole lines, cells and a rough time estimate, then stop (writes nothing)");
   s->add_option("--threads", o.threads, "worker threads (default 0: all hardware threads)");
   s->add_option("--max-cells", o.max_cells,
                 "refuse windows holding more cells between pole lines than this (default 1e7)");

@@ -189,6 +189,22 @@ struct NearestSpp {
 /// (t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the SPP nearest to the guess
 /// (relative distance). found = false when the window holds none: a status, not an exception. Throws
 /// std::invalid_argument for a non-positive guess or radius outside (0, 1), and as solve() does.
+/// The work of a window, known before the search (spp solve --dry-run): its pole lines and cells (as solve() plans
+/// them), the measured cost of one evaluation of H here, and a rough time: cells x evaluations per cell (about 120 on
+/// the benchmarks' chains and random systems with the midpoint trace, about 4x that with certify_steps) x that cost,
+/// divided by the threads. An order of magnitude: curves per cell and step counts vary several-fold between systems.
+struct WindowEstimate {
+  double t1_min = 0, t1_max = 0, t2_min = 0, t2_max = 0;  ///< the window searched (lower ends filled in)
+  int flight_pole_lines = 0, contact_pole_lines = 0;
+  long cells = 0;
+  double seconds_per_evaluation = 0;  ///< measured: mean of a few evaluations (eigenpairs) of H in the window
+  double evaluations_per_cell = 0;    ///< the model's constant (above)
+  int threads = 1;
+  double seconds = 0;  ///< the estimate
+};
+/// Throws std::invalid_argument like solve() for an invalid window, or one beyond options.max_cells.
+WindowEstimate estimate_window(const System& system, const ModalForm& modal, const SolveOptions& options);
+
 NearestSpp nearest_spp(const System& system, double t1, double t2, double radius = 0.05,
                        const SolveOptions& options = {});
 NearestSpp nearest_spp(const System& system, const ModalForm& modal, double t1, double t2, double radius = 0.05,
