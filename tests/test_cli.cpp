@@ -501,3 +501,22 @@ TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
   EXPECT_NE(r.out.find("estimate:"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
 }
+
+TEST(Cli, TrajectoryFromAResultNeedsNoSystemFile) {
+  const fs::path res = dir() / "c5_for_trajectory.json", a = dir() / "ta.csv", b = dir() / "tb.csv";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);
+  const CliRun alone = run("trajectory --result " + res.string() + " --solution 3 --csv " + a.string());
+  EXPECT_EQ(alone.code, 0) << alone.out;
+  const CliRun with = run("trajectory " + kChain + " --result " + res.string() + " --solution 3 --csv " + b.string());
+  EXPECT_EQ(with.code, 0) << with.out;
+  std::ifstream fa(a), fb(b);
+  const std::string ta((std::istreambuf_iterator<char>(fa)), {}), tb((std::istreambuf_iterator<char>(fb)), {});
+  EXPECT_FALSE(ta.empty());
+  EXPECT_EQ(ta, tb);  // the same system, from the result file or given
+  const fs::path c = dir() / "tc.csv";
+  const CliRun other = run("trajectory " + std::string(SPP_SOURCE_DIR) + "/examples/rod4.json --result " +
+                           res.string() + " --solution 3 --csv " + c.string());
+  EXPECT_EQ(other.code, 1) << other.out;
+  EXPECT_NE(other.out.find("another system"), std::string::npos) << other.out;
+  EXPECT_FALSE(fs::exists(c));
+}

@@ -21,7 +21,17 @@ struct TrajectoryArgs {
 
 int run(TrajectoryArgs& a) {
   check_output(a.csv, "--csv", {a.system, a.result});
-  const System sys = load_system(a.system);
+  if (a.system.empty() && a.result.empty())
+    throw std::invalid_argument("trajectory: give SYSTEM.json with --t1 and --t2, or --result and --solution");
+  // a result file holds the system it was solved for: SYSTEM.json is then optional, and must be that system
+  const System sys = a.system.empty() ? load_result_system(a.result) : load_system(a.system);
+  if (!a.system.empty() && !a.result.empty()) {
+    const System solved = load_result_system(a.result);
+    if (solved.n() != sys.n() || !solved.M().isApprox(sys.M(), 1e-12) || !solved.K().isApprox(sys.K(), 1e-12) ||
+        !solved.w().isApprox(sys.w(), 1e-12) || std::abs(solved.g0() - sys.g0()) > 1e-12 * std::abs(sys.g0()))
+      throw std::invalid_argument(a.result + ": was solved for another system than " + a.system +
+                                  " (omit " + a.system + ": the result file holds its system)");
+  }
   const ModalForm md(sys);  // once, for the search and the samples
   if (!a.result.empty()) {
     if (a.solution < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
@@ -63,7 +73,7 @@ int run(TrajectoryArgs& a) {
 Subcommand add_trajectory(CLI::App& app) {
   auto a = std::make_shared<TrajectoryArgs>();
   auto* t = app.add_subcommand("trajectory", "sample one period of an SPP: t, x, v, gap, force");
-  t->add_option("system", a->system, "system JSON file")->required();
+  t->add_option("system", a->system, "system JSON file (optional with --result, whose file holds it)");
   a->t1_given = t->add_option("--t1", a->t1, "flight half-duration (refined to the nearest SPP)");
   auto* t2 = t->add_option("--t2", a->t2, "contact half-duration (refined to the nearest SPP)");
   t->add_option("--radius", a->radius,
