@@ -322,10 +322,14 @@ PYBIND11_MODULE(_spp, m) {
         }
         spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "solve");
         o.validate();
-        const bool text = py::isinstance<py::bool_>(progress) && progress.cast<bool>();
-        const bool call = !progress.is_none() && !py::isinstance<py::bool_>(progress);
-        if (call && !PyCallable_Check(progress.ptr()))
-          throw std::invalid_argument("solve: progress must be True, False, None or a callable f(SolveProgress)");
+        // a callable is called; anything else is taken for its truth (True, numpy.True_: the text line)
+        const bool call = PyCallable_Check(progress.ptr()) != 0;
+        auto truth = [](const py::object& v) {
+          const int t = PyObject_IsTrue(v.ptr());
+          if (t < 0) throw py::error_already_set();
+          return t != 0;
+        };
+        const bool text = !call && truth(progress);
         bool interrupted = false, shown = false;
         // Called from this thread every 0.2 s (spp::SolveOptions::progress): Ctrl-C (KeyboardInterrupt) stops the
         // search and keeps what was found; the user's callable may stop it too (by returning False) or raise.
@@ -350,7 +354,7 @@ PYBIND11_MODULE(_spp, m) {
           }
           if (!call) return true;
           const py::object r = progress(p);
-          return r.is_none() || r.cast<bool>();
+          return r.is_none() || truth(r);  // None continues; otherwise the value's truth
         };
         spp::SolveResult r;
         {
@@ -358,12 +362,21 @@ PYBIND11_MODULE(_spp, m) {
           r = spp::solve(s, o);
         }
         if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
-        if (interrupted &&
-            PyErr_WarnEx(PyExc_RuntimeWarning,
-                         ("solve interrupted (Ctrl-C): " + std::to_string(r.stats.unsearched_cells) +
-                          " cell(s) not searched; the result holds what was found before (status incomplete)")
-                             .c_str(),
-                         1) < 0)
+        // a Ctrl-C that came after the last report (while the roots were polished): the result is complete, so it
+        // is returned, not lost to a KeyboardInterrupt at the next line
+        bool late = false;
+        if (PyErr_CheckSignals() != 0) {
+          if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+          PyErr_Clear();
+          late = !interrupted;
+          interrupted = true;
+        }
+        const std::string message =
+            late && r.stats.unsearched_cells == 0
+                ? std::string("Ctrl-C came after the search had finished: the result is complete")
+                : "solve interrupted (Ctrl-C): " + std::to_string(r.stats.unsearched_cells) +
+                      " cell(s) not searched; the result holds what was found before (status incomplete)";
+        if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0)
           throw py::error_already_set();  // warnings turned into errors
         py::object result = py::cast(std::move(r));
         result.attr("system") = s;
@@ -377,6 +390,38 @@ PYBIND11_MODULE(_spp, m) {
       "too: the result then holds what was found (status incomplete, stats['unsearched_cells'] > 0) and a "
       "RuntimeWarning says so. Raises ValueError.");
 
+  m.def(
+      "trajectory",
+      [](const spp::System& s, double t1, double t2, int samples) {
+        if (samples < 2) throw std::invalid_argument("trajectory: samples must be >= 2, got " + std::to_string(samples));
+        const spp::ModalForm md(s);
+        spp::SolveOptions o;
+        o.compute_return_error = false;
+        spp::Solution sol;
+        {
+          py::gil_scoped_release release;
+          sol = spp::solution_at(s, md, t1, t2, o);
+        }
+        const Eigen::Index n = s.n();
+        Eigen::VectorXd t(samples), gap(samples), force(samples);
+        Eigen::MatrixXd x(samples, n), v(samples, n);
+        const double T = sol.orbit.period();
+        for (int k = 0; k < samples; ++k) {
+          t(k) = T * k / (samples - 1);
+          const spp::OrbitState st = spp::orbit_state(md, sol.orbit, t(k));
+          x.row(k) = st.x.transpose();
+          v.row(k) = st.v.transpose();
+          gap(k) = st.gap;
+          force(k) = st.force;
+        }
+        return py::dict("t"_a = t, "x"_a = x, "v"_a = v, "gap"_a = gap, "force"_a = force, "t1"_a = sol.t1,
+                        "t2"_a = sol.t2, "period"_a = T, "admissible"_a = sol.admissible);
+      },
+      "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
+      "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
+      "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
+      "admissible. Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 somewhere). "
+      "Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
   m.def(
       "fundamental_box", [](const spp::System& s) { return spp::fundamental_box(spp::ModalForm(s)); }, "system"_a,
       "(t1_max, t2_max) of the fundamental box: t1 <= pi / omega_1 (slowest free-flight mode that sees the contact), "

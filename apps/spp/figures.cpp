@@ -26,7 +26,7 @@ namespace {
 }
 
 struct PlotArgs {
-  std::string result, out, formats = "png,svg";
+  std::string result, out, formats = "png,svg", solutions = "admissible";
   int points = 400;
 };
 
@@ -44,6 +44,9 @@ std::vector<Subcommand> add_figures(CLI::App& app) {
   plot->add_option("--out", p->out, "output directory")->required();
   plot->add_option("--formats", p->formats, "comma-separated png, svg, pdf (default png,svg)");
   plot->add_option("--root-map-points", p->points, "root map grid points per axis; 0: no root map (default 400)");
+  plot->add_option("--solutions", p->solutions,
+                   "SPPs drawn one figure each: admissible (default), all, or 0-based indices like 0,3,5 (an "
+                   "inadmissible one is drawn as its potential orbit, the violations shaded)");
   auto a = std::make_shared<AnimateArgs>();
   auto* anim = app.add_subcommand("animate", "animation of one SPP of a result (GIF, or MP4 with ffmpeg)");
   anim->add_option("result", a->result, "result JSON of spp solve")->required();
@@ -56,7 +59,7 @@ std::vector<Subcommand> add_figures(CLI::App& app) {
   anim->add_option("--layout", a->layout, "auto, chain, plane or dofs (default auto: from M, K and w)");
   auto run_plot = [p]() -> int {
     exec_python({"plot", p->result, "--out", p->out, "--formats", p->formats, "--root-map-points",
-                 std::to_string(p->points)});
+                 std::to_string(p->points), "--solutions", p->solutions});
   };
   auto run_animate = [a]() -> int {
     exec_python({"animate", a->result, "--out", a->out, "--solution", std::to_string(a->solution), "--frames",

@@ -103,6 +103,8 @@ int run(SolveArgs& a) {
   if (!parametric && at_given)
     throw std::invalid_argument("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
   if (parametric && !at_given) return run_zero_gap(a);
+  g_interrupted = 0;  // Ctrl-C from here on stops the search at its first report (and then reports what was found)
+  std::signal(SIGINT, on_interrupt);
   std::optional<ParametricSystem> ps;
   if (parametric) {
     ps = load_parametric_system(a.system);
@@ -141,8 +143,6 @@ int run(SolveArgs& a) {
   }
   bool shown = false;
   a.options.progress = cli_progress(a.quiet, shown);
-  g_interrupted = 0;
-  std::signal(SIGINT, on_interrupt);
   const SolveResult res = solve(sys, modal, a.options);
   std::signal(SIGINT, SIG_DFL);
   if (shown) std::fputs("\n", stderr);
@@ -157,6 +157,8 @@ int run(SolveArgs& a) {
   for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
   if (!a.csv.empty()) write_file_atomic(a.csv, csv_text);
+  if (g_interrupted && res.stats.unsearched_cells == 0)
+    std::cerr << "note: Ctrl-C came after the search had finished: the result is complete\n";
   if (res.stats.unsearched_cells > 0) {
     std::cerr << "interrupted: " << res.stats.unsearched_cells << " cell(s) not searched; the result above (and its "
               << "files) holds what was found before\n";

@@ -1,7 +1,8 @@
 """python3 -m spp plot|animate: figures and animations of a result of `spp solve --json` (also run by `spp plot`
 and `spp animate`).
 
-plot RESULT.json --out DIR: DIR/root_map.*, DIR/frequency_energy.* and DIR/spp_K.* for each admissible SPP K.
+plot RESULT.json --out DIR [--solutions admissible|all|0,3,5]: DIR/root_map.*, DIR/frequency_energy.* and
+DIR/spp_K.* for each chosen SPP K (default: the admissible ones).
 animate RESULT.json --out FILE.gif|FILE.mp4 [--solution K]: one SPP over its period.
 """
 import argparse
@@ -25,6 +26,7 @@ def _plot(a):
     if a.root_map_points != 0 and a.root_map_points < 16:
         raise ValueError(f"--root-map-points must be 0 (no root map) or >= 16, got {a.root_map_points}")
     system, spps, window = load_result(a.result)
+    chosen = _chosen(a.solutions, spps, a.result)
     os.makedirs(a.out, exist_ok=True)
     written = []
 
@@ -38,10 +40,25 @@ def _plot(a):
     if a.root_map_points:
         save(plot.root_map_figure(system, spps, window, points=a.root_map_points), "root_map")
     save(plot.frequency_energy_figure(spps), "frequency_energy")
-    for k, sol in enumerate(spps):
-        if sol.admissible:
-            save(plot.spp_figure(system, sol), f"spp_{k}")
+    for k in chosen:
+        save(plot.spp_figure(system, spps[k]), f"spp_{k}")
     print(f"wrote {len(written)} figures to {a.out}")
+
+
+def _chosen(text, spps, result):
+    """Indices of the SPPs to draw: 'admissible', 'all', or a comma-separated list of 0-based indices."""
+    if text == "admissible":
+        return [k for k, s in enumerate(spps) if s.admissible]
+    if text == "all":
+        return list(range(len(spps)))
+    try:
+        ks = [int(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise ValueError(f"--solutions: expected admissible, all or indices like 0,3,5, got {text!r}") from None
+    bad = [k for k in ks if not 0 <= k < len(spps)]
+    if bad or not ks:
+        raise ValueError(f"--solutions {text}: {result} has {len(spps)} solutions (0..{len(spps) - 1})")
+    return ks
 
 
 def _animate(a):
@@ -70,6 +87,8 @@ def main(argv=None):
     p.add_argument("--out", required=True, help="output directory (created if missing)")
     p.add_argument("--formats", default="png,svg", help="comma-separated: png, svg, pdf (default png,svg)")
     p.add_argument("--root-map-points", type=int, default=400, help="grid points per axis; 0: no root map")
+    p.add_argument("--solutions", default="admissible",
+                   help="SPPs drawn one figure each: admissible (default), all, or indices like 0,3,5")
     q = sub.add_parser("animate", help="animation of one SPP (GIF, or MP4 with ffmpeg)")
     q.add_argument("result", help="result JSON of spp solve --json")
     q.add_argument("--out", required=True, help="output file, .gif or .mp4")

@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
 from ._files import atomic_path
-from ._spp import root_map, simulate
+from ._spp import root_map, trajectory
 
 COLUMN_WIDTH_IN = 3.5  # one journal column
 
@@ -79,13 +79,14 @@ def spp_figure(system, solution, samples=2000, path=None, axes=None):
     """Top: gap (left axis) and normal contact force (right axis, its own scale) over one period, contact phase
     shaded, symmetry axes at -t1 (mid-flight) and t2 (mid-contact); bottom: every position (coloured by dof index
     past 10 dofs, with a colour bar instead of a legend). Time origin at contact onset: flight on [-2 t1, 0], contact
-    on [0, 2 t2]. The curves come from spp.simulate (exact flows) started at the solution's x0, v0.
+    on [0, 2 t2]. The curves come from spp.trajectory (the SPP's own equations, exact flows), so an inadmissible
+    SPP is drawn as the potential orbit it is (gap or force negative somewhere, marked), as spp trajectory writes it.
     axes: (top, bottom) to draw into; default a new figure."""
     T, t1, t2 = solution.period, solution.t1, solution.t2
-    sim = simulate(system, solution.x0, solution.v0, T, 0.0, samples / T)
-    t = np.where(sim.t > 2 * t2, sim.t - T, sim.t)  # flight after the contact is the flight before it
+    tr = trajectory(system, t1, t2, samples)
+    t = np.where(tr["t"] > 2 * t2, tr["t"] - T, tr["t"])  # flight after the contact is the flight before it
     order = np.argsort(t, kind="stable")
-    t, x, gap, force = t[order], sim.x[order], sim.gap[order], sim.force[order]
+    t, x, gap, force = t[order], tr["x"][order], tr["gap"][order], tr["force"][order]
     if axes is None:
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(COLUMN_WIDTH_IN * 2, 4.6),
                                           gridspec_kw={"height_ratios": [1, 1.3]})
@@ -102,6 +103,15 @@ def spp_figure(system, solution, samples=2000, path=None, axes=None):
     right = top.twinx()  # the force has its own scale (at n = 20 the gap reaches 500 and the force 40)
     right.plot(t, force, color="C3", lw=1.4, label=r"contact force $\lambda$ (-)")
     right.set_ylabel(r"contact force $\lambda$ (-)", color="C3")
+    # a potential SPP's violations of ineqs. (5.3): gap < 0 in flight, force < 0 in contact, shaded in red
+    flight, contact = t < 0, (t >= 0) & (t <= 2 * t2)
+    scale_g, scale_f = max(np.abs(gap).max(), 1e-300), max(np.abs(force).max(), 1e-300)
+    bad_gap, bad_force = flight & (gap < -1e-9 * scale_g), contact & (force < -1e-9 * scale_f)
+    if bad_gap.any():
+        top.fill_between(t, gap, 0.0, where=bad_gap, color="red", alpha=0.35, lw=0, label="gap < 0 in flight")
+    if bad_force.any():
+        right.fill_between(t, force, 0.0, where=bad_force, color="red", alpha=0.2, lw=0, hatch="//",
+                           label="force < 0 in contact")
     _align_zeros(top, right)
     handles = top.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
     top.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)

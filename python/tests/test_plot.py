@@ -126,3 +126,20 @@ def test_root_map_takes_a_result_or_a_tuple_as_window():
     with pytest.raises(ValueError, match="expected a dict with t1_min"):
         plot.root_map_figure(s, r.solutions, (1, 2), points=40)
     plt.close("all")
+
+
+def test_plot_command_draws_the_chosen_solutions(tmp_path):
+    from spp.__main__ import main
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    res = tmp_path / "r.json"
+    res.write_text(r.to_json(s))
+    out = tmp_path / "figs"
+    main(["plot", str(res), "--out", str(out), "--solutions", "0,3", "--root-map-points", "0", "--formats", "png"])
+    assert sorted(os.listdir(out)) == ["frequency_energy.png", "spp_0.png", "spp_3.png"]
+    admissible = [k for k, x in enumerate(r.solutions) if x.admissible]
+    main(["plot", str(res), "--out", str(tmp_path / "adm"), "--root-map-points", "0", "--formats", "png"])
+    assert sorted(os.listdir(tmp_path / "adm")) == sorted(["frequency_energy.png"] + [f"spp_{k}.png" for k in admissible])
+    assert main(["plot", str(res), "--out", str(tmp_path / "none"), "--solutions", "64"]) == 1  # (0..63)
+    assert main(["plot", str(res), "--out", str(tmp_path / "none"), "--solutions", "1,x"]) == 1
+    assert not (tmp_path / "none").exists()

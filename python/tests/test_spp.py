@@ -266,8 +266,10 @@ def test_progress_reports_and_ctrl_c_keeps_what_was_found():
     # an exception in the callable reaches the caller; anything but a callable or a bool is refused
     with pytest.raises(ZeroDivisionError):
         spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: 1 / 0)
-    with pytest.raises(ValueError, match="progress"):
-        spp.solve(s, t1_max=12, t2_max=12, progress=3)
+    # any return value counts by its truth (None continues)
+    r = spp.solve(big, t1_max=t1, t2_max=t2, progress=lambda p: "")
+    assert r.stats["unsearched_cells"] > 0
+    assert spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: "go on").status == "success"
 
 
 def test_solve_result_from_json_gives_back_what_was_written(tmp_path):
@@ -284,3 +286,20 @@ def test_solve_result_from_json_gives_back_what_was_written(tmp_path):
     assert back.to_dataframe().equals(r.to_dataframe())
     with pytest.raises(ValueError, match="nowhere.json"):
         spp.SolveResult.from_json(str(tmp_path / "nowhere.json"))
+
+
+def test_trajectory_follows_the_spps_own_equations():
+    s = chain5()
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    good = [x for x in r.solutions if x.admissible][0]
+    tr = spp.trajectory(s, good.t1, good.t2, 801)
+    assert tr["x"].shape == (801, 5) and tr["t"][-1] == pytest.approx(good.period)
+    # an admissible SPP: the exact event-driven simulator follows the same orbit
+    sim = spp.simulate(s, good.x0, good.v0, good.period, 0.0, 800 / good.period)
+    assert np.allclose(np.interp(tr["t"], sim.t, sim.gap), tr["gap"], atol=1e-6 * np.abs(tr["gap"]).max())
+    # an inadmissible one is the potential orbit: its gap goes below zero in flight, down to the solve's min_gap
+    bad = [x for x in r.solutions if not x.admissible and x.min_gap < -1e-3][0]
+    tb = spp.trajectory(s, bad.t1, bad.t2, 4001)
+    assert tb["admissible"] is False and tb["gap"].min() == pytest.approx(bad.min_gap, rel=1e-3, abs=1e-6)
+    with pytest.raises(ValueError, match="no SPP near"):
+        spp.trajectory(s, 1.0, 1.0)
