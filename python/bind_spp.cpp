@@ -41,9 +41,38 @@ PYBIND11_MODULE(_spp, m) {
   m.attr("__version__") = SPP_VERSION;
 
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
-      .def(py::init<Eigen::MatrixXd, Eigen::MatrixXd, Eigen::VectorXd, double, std::string>(), "M"_a, "K"_a, "w"_a,
-           "g0"_a, "name"_a = "",
-           "M, K: (n, n) symmetric positive definite; w: (n,) non-zero; g0: gap at rest. Raises ValueError.")
+      .def(py::init([](const py::object& M, const py::object& K, const py::object& w, double g0,
+                       const std::string& name) {
+             // numpy arrays, nested lists, scipy.sparse matrices (densified: the solver is dense), and w as (n,),
+             // (1, n) or (n, 1): each converted here, with the argument named when it cannot be
+             const py::module_ np = py::module_::import("numpy");
+             auto dense = [&](const py::object& a, const char* what) {
+               py::object d = py::hasattr(a, "toarray") ? a.attr("toarray")() : a;
+               py::object arr;
+               try {
+                 arr = np.attr("asarray")(d, "dtype"_a = "float64");
+               } catch (const py::error_already_set&) {
+                 throw std::invalid_argument(std::string("System: ") + what + " must be an array of numbers");
+               }
+               return arr;
+             };
+             const py::object m = dense(M, "M"), k = dense(K, "K"), v = dense(w, "w");
+             for (const auto& [arr, what] : {std::make_pair(m, "M"), std::make_pair(k, "K")})
+               if (arr.attr("ndim").cast<int>() != 2)
+                 throw std::invalid_argument(std::string("System: ") + what + " must be a square matrix, got shape " +
+                                             py::str(arr.attr("shape")).cast<std::string>());
+             const py::tuple shape = v.attr("shape").cast<py::tuple>();
+             const bool vector_like = shape.size() == 1 || (shape.size() == 2 && (shape[0].cast<long>() == 1 ||
+                                                                                  shape[1].cast<long>() == 1));
+             if (!vector_like)
+               throw std::invalid_argument("System: w must be a vector, (n,), (1, n) or (n, 1), got shape " +
+                                           py::str(py::object(shape)).cast<std::string>());
+             return spp::System(m.cast<Eigen::MatrixXd>(), k.cast<Eigen::MatrixXd>(),
+                                v.attr("ravel")().cast<Eigen::VectorXd>(), g0, name);
+           }),
+           "M"_a, "K"_a, "w"_a, "g0"_a, "name"_a = "",
+           "M, K: (n, n) symmetric positive definite (numpy, lists or scipy.sparse); w: non-zero, (n,), (1, n) or "
+           "(n, 1); g0: gap at rest. Raises ValueError.")
       .def_static("from_json", &spp::load_system, "path"_a, "Loads a system JSON file (M/K may be Matrix Market).")
       .def_property_readonly("n", &spp::System::n)
       .def_property_readonly("M", &spp::System::M, "(n, n) mass matrix")

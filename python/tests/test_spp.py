@@ -303,3 +303,19 @@ def test_trajectory_follows_the_spps_own_equations():
     assert tb["admissible"] is False and tb["gap"].min() == pytest.approx(bad.min_gap, rel=1e-3, abs=1e-6)
     with pytest.raises(ValueError, match="no SPP near"):
         spp.trajectory(s, 1.0, 1.0)
+
+
+def test_system_accepts_sparse_matrices_and_row_or_column_w():
+    import scipy.sparse as sparse
+    K = np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]])
+    ref = spp.System(np.eye(3), K, np.array([0.0, 0.0, -1.0]), 1.0)
+    for M, KK, w in [(sparse.identity(3, format="csr"), sparse.csr_matrix(K), [0, 0, -1]),
+                     (np.eye(3), K, np.array([[0.0, 0.0, -1.0]])), (np.eye(3).tolist(), K, [[0.0], [0.0], [-1.0]])]:
+        s = spp.System(M, KK, w, 1.0)
+        assert np.array_equal(s.M, ref.M) and np.array_equal(s.K, ref.K) and np.array_equal(s.w, ref.w)
+    with pytest.raises(ValueError, match="w must be a vector"):
+        spp.System(np.eye(3), K, np.ones((3, 3)), 1.0)
+    with pytest.raises(ValueError, match="K must be an array of numbers"):
+        spp.System(np.eye(3), "K", [0, 0, 1], 1.0)
+    with pytest.raises(ValueError, match="M must be a square matrix"):
+        spp.System(np.ones(3), K, [0, 0, 1], 1.0)
