@@ -242,14 +242,19 @@ double admissibility_margin(const ModalForm& md, const Orbit& o) {
 
 double return_error(const System& sys, const Orbit& o) {
   const int n = sys.n();
-  Eigen::VectorXd X0(2 * n);
-  X0 << o.x0, o.v0;
-  Eigen::MatrixXd A1 = Eigen::MatrixXd::Zero(2 * n, 2 * n), A2 = A1;
+  // State (x, v / w) with w a frequency of the system (sqrt |M^-1 K|): both halves in the same units and the flows'
+  // generators balanced (entries ~ w, not 1 and w^2), so that the relative error does not depend on the time scale
+  // (with K scaled by 1e16, the unbalanced form gave return errors of 0.5 to 7 for exact roots).
   const auto llt = sys.M().llt();
-  A1.topRightCorner(n, n).setIdentity();
-  A2.topRightCorner(n, n).setIdentity();
-  A1.bottomLeftCorner(n, n) = -llt.solve(sys.K());
-  A2.bottomLeftCorner(n, n) = -llt.solve(sys.contact_stiffness());
+  const Eigen::MatrixXd MK = llt.solve(sys.K());
+  const double w = std::sqrt(MK.norm());
+  Eigen::VectorXd X0(2 * n);
+  X0 << o.x0, o.v0 / w;
+  Eigen::MatrixXd A1 = Eigen::MatrixXd::Zero(2 * n, 2 * n), A2 = A1;
+  A1.topRightCorner(n, n) = w * Eigen::MatrixXd::Identity(n, n);
+  A2.topRightCorner(n, n) = w * Eigen::MatrixXd::Identity(n, n);
+  A1.bottomLeftCorner(n, n) = -MK / w;
+  A2.bottomLeftCorner(n, n) = -llt.solve(sys.contact_stiffness()) / w;
   const Eigen::MatrixXd E2 = (2.0 * o.t2 * A2).exp(), E1 = (2.0 * o.t1 * A1).exp();
   const Eigen::VectorXd XT = E1 * (E2 * X0);
   return (XT - X0).norm() / X0.norm();

@@ -469,12 +469,14 @@ TEST(Cli, BoxSolvesTheFundamentalBox) {
 }
 
 TEST(Cli, CtrlCStopsTheSolveAndWritesWhatWasFound) {
-  // SIGINT one second into a search of about a minute: exit code 130, the summary and the JSON hold the roots found
+  // One SIGINT two seconds into a search of about a minute (timeout --foreground: without it, timeout signals the
+  // child and then its whole process group, and the second SIGINT is the "second Ctrl-C" that ends the program):
+  // exit code 130, the summary and the JSON hold the roots found
   // so far, status incomplete, the cells not searched counted.
   const fs::path sys = dir() / "chain20.json", out = dir() / "interrupted.json";
   ASSERT_EQ(run("generate chain --n 20 --out " + sys.string()).code, 0);
   fs::remove(out);
-  const std::string cmd = "timeout --preserve-status -s INT 1 " + std::string(SPP_CLI) + " solve " + sys.string() +
+  const std::string cmd = "timeout --foreground --preserve-status -s INT 2 " + std::string(SPP_CLI) + " solve " + sys.string() +
                           " --box --quiet --json " + out.string() + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   std::string text;

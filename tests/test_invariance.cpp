@@ -71,3 +71,17 @@ TEST(Invariance, RotatingCoordinates) {
   const System t(Q * s.M() * Q.transpose(), Q * s.K() * Q.transpose(), Q * s.w(), s.g0());
   expect_same(run(s), run(t), Q, 1.0);
 }
+
+TEST(Invariance, ScalingTimeKeepsTheReturnErrorAtRoundingLevel) {
+  // K scaled by f scales time by 1 / sqrt(f): the same roots, scaled, and the return error over one period stays at
+  // the rounding level (it was 0.5 to 24 at f = 1e16 when positions and velocities were mixed unscaled).
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+  for (const double f : {1e-16, 1.0, 1e16, 1e24}) {
+    const System t(s.M(), f * s.K(), s.w(), s.g0());
+    SolveOptions o;
+    o.t1_max = o.t2_max = 12.0 / std::sqrt(f);
+    const SolveResult r = solve(t, o);
+    ASSERT_EQ(r.solutions.size(), 64u) << f;
+    for (const Solution& x : r.solutions) EXPECT_LT(x.return_error, 1e-8) << f << " at " << x.t1 << ", " << x.t2;
+  }
+}
