@@ -74,6 +74,13 @@ PYBIND11_MODULE(_spp, m) {
            "M, K: (n, n) symmetric positive definite (numpy, lists or scipy.sparse); w: non-zero, (n,), (1, n) or "
            "(n, 1); g0: gap at rest. Raises ValueError.")
       .def_static("from_json", &spp::load_system, "path"_a, "Loads a system JSON file (M/K may be Matrix Market).")
+      .def(py::pickle(  // (multiprocessing, joblib): the stored M, K, unit w and g0 rebuild the same system
+          [](const spp::System& s) { return py::make_tuple(s.M(), s.K(), s.w(), s.g0(), s.name()); },
+          [](const py::tuple& t) {
+            if (t.size() != 5) throw std::invalid_argument("System pickle: expected (M, K, w, g0, name)");
+            return spp::System(t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(),
+                               t[2].cast<Eigen::VectorXd>(), t[3].cast<double>(), t[4].cast<std::string>());
+          }))
       .def_property_readonly("n", &spp::System::n)
       .def_property_readonly("M", &spp::System::M, "(n, n) mass matrix")
       .def_property_readonly("K", &spp::System::K, "(n, n) stiffness matrix")

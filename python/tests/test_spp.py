@@ -319,3 +319,13 @@ def test_system_accepts_sparse_matrices_and_row_or_column_w():
         spp.System(np.eye(3), "K", [0, 0, 1], 1.0)
     with pytest.raises(ValueError, match="M must be a square matrix"):
         spp.System(np.ones(3), K, [0, 0, 1], 1.0)
+
+
+def test_system_pickles():
+    import pickle
+    s = spp.System(np.diag([1.0, 2.0]), np.array([[3.0, -1.0], [-1.0, 1.0]]), [0.0, -2.0], 1.0, "two")
+    t = pickle.loads(pickle.dumps(s))
+    assert np.array_equal(t.M, s.M) and np.array_equal(t.K, s.K) and np.array_equal(t.w, s.w)
+    assert t.g0 == s.g0 and t.name == s.name
+    r1, r2 = spp.solve(s, t1_max=6, t2_max=6), spp.solve(t, t1_max=6, t2_max=6)
+    assert [(x.t1, x.t2) for x in r1.solutions] == [(x.t1, x.t2) for x in r2.solutions]
