@@ -338,12 +338,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("cells_total", &spp::SolveProgress::cells_total, "cells of the window")
       .def_readonly("candidates", &spp::SolveProgress::candidates, "sign changes of g found so far (before polish)")
       .def_readonly("seconds", &spp::SolveProgress::seconds, "time since the trace started")
-      .def("__repr__", [](const spp::SolveProgress& p) {
-        std::ostringstream os;
-        os << "<spp.SolveProgress cells " << p.cells_done << " / " << p.cells_total << ", " << p.candidates
-           << " sign changes, " << p.seconds << " s>";
-        return os.str();
-      });
+      .def("__repr__", [](const spp::SolveProgress& p) { return "<spp.SolveProgress " + p.line() + ">"; });
   m.def(
       "solve",
       [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
@@ -378,14 +373,7 @@ PYBIND11_MODULE(_spp, m) {
             return false;
           }
           if (text && p.seconds >= 1.0) {
-            std::ostringstream os;
-            const double eta = p.cells_done > 0 ? p.seconds * static_cast<double>(p.cells_total - p.cells_done) /
-                                                      static_cast<double>(p.cells_done)
-                                                : 0.0;  // the cells left costing what the cells done did
-            os << "\r  cells " << p.cells_done << " / " << p.cells_total << ", " << p.candidates
-               << " sign changes of g, " << std::fixed << std::setprecision(1) << p.seconds << " s, ~"
-               << std::setprecision(0) << eta << " s left   ";
-            py::module_::import("sys").attr("stderr").attr("write")(os.str());
+            py::module_::import("sys").attr("stderr").attr("write")("\r  " + p.line() + "   ");
             shown = true;
           }
           if (!call) return true;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <iomanip>
 #include <mutex>
 #include <numbers>
 #include <sstream>
@@ -311,6 +312,21 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
   }
   return tw;
 }
+
+}  // namespace
+
+std::string SolveProgress::line() const {
+  const double done = static_cast<double>(cells_done), total = static_cast<double>(cells_total);
+  const double pct = cells_total > 0 ? 100.0 * done / total : 100.0;
+  const double left = cells_done > 0 ? seconds * (total - done) / done : 0.0;
+  std::ostringstream os;
+  os << std::fixed << "cells " << cells_done << " / " << cells_total << " (" << std::setprecision(0) << pct << "%), "
+     << candidates << " sign changes of g, " << std::setprecision(1) << seconds << " s, ~" << std::setprecision(0)
+     << left << " s left";
+  return os.str();
+}
+
+namespace {
 
 // Step 1 of solve(): the window outside the axis bands, planned (throws for a window inside a band, or too large).
 search::WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {

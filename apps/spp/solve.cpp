@@ -47,14 +47,7 @@ std::function<bool(const SolveProgress&)> cli_progress(bool quiet, bool& shown) 
   const bool tty = !quiet && isatty(STDERR_FILENO) != 0;
   return [tty, &shown](const SolveProgress& p) {
     if (tty && p.seconds >= 1.0) {  // short runs stay silent
-      const double pct = p.cells_total > 0 ? 100.0 * static_cast<double>(p.cells_done) / p.cells_total : 100.0;
-      // remaining time, assuming the cells left cost what the cells done did
-      const double eta = p.cells_done > 0 ? p.seconds * static_cast<double>(p.cells_total - p.cells_done) /
-                                                static_cast<double>(p.cells_done)
-                                          : 0.0;
-      std::fprintf(stderr, "\r  cells %ld / %ld (%.0f%%), %ld sign changes of g, %.1f s, ~%.0f s left%s   ",
-                   p.cells_done, p.cells_total, pct, p.candidates, p.seconds, eta,
-                   g_interrupted ? " (stopping)" : "");
+      std::fprintf(stderr, "\r  %s%s   ", p.line().c_str(), g_interrupted ? " (stopping)" : "");
       std::fflush(stderr);
       shown = true;
     }

@@ -31,6 +31,9 @@ struct SolveProgress {
   long cells_done = 0, cells_total = 0;
   long candidates = 0;
   double seconds = 0.0;
+  /// "cells 120 / 460 (26%), 17 sign changes of g, 1.2 s, ~3 s left": the line the CLI and Python show (time left
+  /// assuming the cells left cost what the cells done did).
+  std::string line() const;
 };
 
 /// The window is half-open, (t1_min, t1_max] x (t2_min, t2_max]: a root on a shared edge of two tiles belongs to one
