@@ -426,20 +426,10 @@ PYBIND11_MODULE(_spp, m) {
           py::gil_scoped_release release;
           sol = spp::solution_at(s, md, t1, t2, o);
         }
-        const Eigen::Index n = s.n();
-        Eigen::VectorXd t(samples), gap(samples), force(samples);
-        Eigen::MatrixXd x(samples, n), v(samples, n);
-        const double T = sol.orbit.period();
-        for (int k = 0; k < samples; ++k) {
-          t(k) = T * k / (samples - 1);
-          const spp::OrbitState st = spp::orbit_state(md, sol.orbit, t(k));
-          x.row(k) = st.x.transpose();
-          v.row(k) = st.v.transpose();
-          gap(k) = st.gap;
-          force(k) = st.force;
-        }
-        return py::dict("t"_a = t, "x"_a = x, "v"_a = v, "gap"_a = gap, "force"_a = force, "t1"_a = sol.t1,
-                        "t2"_a = sol.t2, "period"_a = T, "admissible"_a = sol.admissible);
+        spp::OrbitSamples os = spp::sample_orbit(md, sol.orbit, samples);
+        return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
+                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1, "t2"_a = sol.t2,
+                        "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible);
       },
       "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
       "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "

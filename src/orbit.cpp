@@ -240,6 +240,21 @@ double admissibility_margin(const ModalForm& md, const Orbit& o) {
   return std::min(gmin, fmin);
 }
 
+OrbitSamples sample_orbit(const ModalForm& md, const Orbit& o, int samples) {
+  OrbitSamples s{Eigen::VectorXd(samples), Eigen::VectorXd(samples), Eigen::VectorXd(samples),
+                 Eigen::MatrixXd(samples, md.n()), Eigen::MatrixXd(samples, md.n())};
+  const double T = o.period();
+  for (int k = 0; k < samples; ++k) {
+    s.t(k) = T * k / (samples - 1);
+    const OrbitState st = orbit_state(md, o, s.t(k));
+    s.x.row(k) = st.x.transpose();
+    s.v.row(k) = st.v.transpose();
+    s.gap(k) = st.gap;
+    s.force(k) = st.force;
+  }
+  return s;
+}
+
 double return_error(const System& sys, const Orbit& o) {
   const int n = sys.n();
   // State (x, v / w) with w a frequency of the system (sqrt |M^-1 K|): both halves in the same units and the flows'

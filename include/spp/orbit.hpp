@@ -45,6 +45,14 @@ struct OrbitState {
 /// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight).
 OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
 
+/// One period sampled at `samples` (>= 2) equally spaced times t_k = T k / (samples - 1), both ends included: the
+/// rows of spp trajectory's CSV and of Python's spp.trajectory.
+struct OrbitSamples {
+  Eigen::VectorXd t, gap, force;  ///< (samples)
+  Eigen::MatrixXd x, v;           ///< (samples, n)
+};
+OrbitSamples sample_orbit(const ModalForm& modal, const Orbit& orbit, int samples);
+
 struct Admissibility {
   bool admissible = false;
   double min_gap = 0.0;            ///< smallest gap over the whole flight (0 at its tangent ends); certified

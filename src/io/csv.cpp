@@ -33,14 +33,12 @@ std::string trajectory_csv(const ModalForm& md, const Orbit& o, int samples) {
   for (int i = 1; i <= n; ++i) os << ",x" << i;
   for (int i = 1; i <= n; ++i) os << ",v" << i;
   os << ",gap,force\n";
-  const double T = o.period();
+  const OrbitSamples s = sample_orbit(md, o, samples);
   for (int k = 0; k < samples; ++k) {
-    const double t = T * k / (samples - 1);
-    const OrbitState st = orbit_state(md, o, t);
-    os << num(t);
-    for (int i = 0; i < n; ++i) os << "," << num(st.x(i));
-    for (int i = 0; i < n; ++i) os << "," << num(st.v(i));
-    os << "," << num(st.gap) << "," << num(st.force) << "\n";
+    os << num(s.t(k));
+    for (int i = 0; i < n; ++i) os << "," << num(s.x(k, i));
+    for (int i = 0; i < n; ++i) os << "," << num(s.v(k, i));
+    os << "," << num(s.gap(k)) << "," << num(s.force(k)) << "\n";
   }
   return os.str();
 }
