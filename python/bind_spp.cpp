@@ -417,7 +417,8 @@ PYBIND11_MODULE(_spp, m) {
   m.def(
       "trajectory",
       [](const spp::System& s, double t1, double t2, int samples) {
-        if (samples < 2) throw std::invalid_argument("trajectory: samples must be >= 2, got " + std::to_string(samples));
+        if (samples < 2)
+          throw std::invalid_argument("trajectory: samples must be >= 2, got " + std::to_string(samples));
         const spp::ModalForm md(s);
         spp::SolveOptions o;
         o.compute_return_error = false;

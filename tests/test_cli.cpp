@@ -476,8 +476,8 @@ TEST(Cli, CtrlCStopsTheSolveAndWritesWhatWasFound) {
   const fs::path sys = dir() / "chain20.json", out = dir() / "interrupted.json";
   ASSERT_EQ(run("generate chain --n 20 --out " + sys.string()).code, 0);
   fs::remove(out);
-  const std::string cmd = "timeout --foreground --preserve-status -s INT 2 " + std::string(SPP_CLI) + " solve " + sys.string() +
-                          " --box --quiet --json " + out.string() + " 2>&1";
+  const std::string cmd = "timeout --foreground --preserve-status -s INT 2 " + std::string(SPP_CLI) + " solve " +
+                          sys.string() + " --box --quiet --json " + out.string() + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   std::string text;
   std::array<char, 4096> buf{};

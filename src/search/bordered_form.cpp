@@ -91,7 +91,8 @@ BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double l
   const int plain_c = static_cast<int>(d.size()) - nc;
   Gx_ = Eigen::MatrixXd::Zero(size, plain_c + nc);
   contact_ = {Eigen::VectorXd::Zero(plain_c + nc), Eigen::VectorXd::Zero(plain_c + nc),
-              Eigen::VectorXd::Zero(plain_c + nc), Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(plain_c + nc, false)};
+              Eigen::VectorXd::Zero(plain_c + nc),
+              Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(plain_c + nc, false)};
   const PhaseFamily plain_c_phase = PhaseFamily::of_modes(d, Symmetry::Axial);
   int col = 0;
   for (int j = 0; j < static_cast<int>(d.size()); ++j) {

@@ -310,9 +310,9 @@ class CellTracer::Impl {
                             std::min(r.b1, std::max(p.t1, cur.t1) + e), std::min(r.B, std::max(p.t2, cur.t2) + e));
         };
         const bool onset_proved = onset_first && box_free();
-        const StepCertificate cert = onset_proved
-                                         ? StepCertificate{}
-                                         : certify_step(md_, sym_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B}, &eigen_cache_);
+        const StepCertificate cert =
+            onset_proved ? StepCertificate{}
+                         : certify_step(md_, sym_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B}, &eigen_cache_);
         st_.evaluations += cert.evaluations;
         // Where the curvature bound is too weak (next to pole lines, mostly), the step's box may still be proved
         // root-free by the onset inertia at its two Loewner corners; g keeps its sign then, which orients p.

@@ -353,7 +353,8 @@ Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, dou
   const double inf = std::numeric_limits<double>::infinity();
   if (count_tangent_poles(md.omega(), t1 - e1, t1 + e1) > 0 || count_tangent_poles(md.d(), t2 - e2, t2 + e2) > 0)
     return {inf, inf};
-  const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e1, t1 + e1), C = phase_bounds(md.d(), sym, t2 - e2, t2 + e2);
+  const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e1, t1 + e1),
+                    C = phase_bounds(md.d(), sym, t2 - e2, t2 + e2);
   return {weighted_norm(F.increment, b) + weighted_norm(C.increment, md.G().transpose() * b),
           F.increment.maxCoeff() + C.increment.maxCoeff()};
 }
@@ -379,8 +380,9 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     const double err = (y.residual + y.eig_error) / gap + 4.0 * std::numeric_limits<double>::epsilon();
     return std::abs(y.g) > err ? (y.g > 0 ? 1 : -1) : 0;
   };
-  // The bounds from each end in turn (a first: its eigenpairs are usually cached), in the bordered form of the step's box. Each range holds on the
-  // whole step, so what one end proves (monotone g) combines with what the other adds (its own end sign).
+  // The bounds from each end in turn (a first: its eigenpairs are usually cached), in the bordered form of the step's
+  // box. Each range holds on the whole step, so what one end proves (monotone g) combines with what the other adds (its
+  // own end sign).
   const BorderedForm bf(md, lo1, hi1, lo2, hi2);
   int sign_a = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sign_b = sign_at(b);
   bool monotone = false;
