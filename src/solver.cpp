@@ -480,8 +480,8 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   res.t1_max = plan.options.t1_max;
   res.t2_min = std::max(plan.options.t2_min, band2);
   res.t2_max = plan.options.t2_max;
-  res.stats.flight_pole_lines = static_cast<int>(std::count(plan.t1.pole.begin(), plan.t1.pole.end(), true));
-  res.stats.contact_pole_lines = static_cast<int>(std::count(plan.t2.pole.begin(), plan.t2.pole.end(), true));
+  res.stats.flight_pole_lines = plan.t1.poles();
+  res.stats.contact_pole_lines = plan.t2.poles();
   // 2-3. count at the corners and trace the pieces, cell by cell
   TracedWindow traced = trace_cells(md, plan, res);
   // 4. pair the curves across the thin strips around pole lines (a stopped search has no hits from the cells it
@@ -507,8 +507,8 @@ WindowEstimate estimate_window(const System& system, const ModalForm& md, const 
   e.t1_max = plan.options.t1_max;
   e.t2_min = std::max(plan.options.t2_min, band2);
   e.t2_max = plan.options.t2_max;
-  e.flight_pole_lines = static_cast<int>(std::count(plan.t1.pole.begin(), plan.t1.pole.end(), true));
-  e.contact_pole_lines = static_cast<int>(std::count(plan.t2.pole.begin(), plan.t2.pole.end(), true));
+  e.flight_pole_lines = plan.t1.poles();
+  e.contact_pole_lines = plan.t2.poles();
   e.cells = static_cast<long>(plan.t1.cells() * plan.t2.cells());
   // one evaluation as the trace makes it: H, its inertia, the eigenpair nearest the middle of the spectrum
   search::DenseEvaluator ev(md, options.symmetry);

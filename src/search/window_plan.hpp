@@ -3,6 +3,7 @@
 // counted (and refused beyond SolveOptions::max_cells) before any evaluation.
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <vector>
 
 #include "spp/modal.hpp"
@@ -17,6 +18,7 @@ struct AxisPlan {
   std::vector<bool> pole;
   std::vector<double> margin;
   size_t cells() const { return bp.size() - 1; }
+  int poles() const { return static_cast<int>(std::count(pole.begin(), pole.end(), true)); }  ///< pole lines
 };
 
 // The region searched for the window (lo, hi] of one phase: the window widened by a hair (roots found outside the
