@@ -25,18 +25,6 @@ Eigen::VectorXd PhaseFamily::d1(double t) const {
   return v;
 }
 
-double PhaseFamily::poles_in(double lo, double hi) const {
-  double count = 0.0;
-  for (Eigen::Index k = 0; k < size(); ++k) {
-    if (linear(k) || amp(k) == 0.0) continue;
-    // poles where freq t + shift = (n + 1/2) pi, n in (a, b) below
-    const double a = (freq(k) * lo + shift(k)) / std::numbers::pi - 0.5;
-    const double b = (freq(k) * hi + shift(k)) / std::numbers::pi - 0.5;
-    count += std::max(0.0, std::ceil(b) - 1.0 - std::floor(a));
-  }
-  return count;
-}
-
 PhaseFamily PhaseFamily::of_modes(const Eigen::VectorXd& freqs, Symmetry sym) {
   const Eigen::Index m = freqs.size();
   PhaseFamily p{Eigen::VectorXd(m), freqs, Eigen::VectorXd::Zero(m), Eigen::Array<bool, Eigen::Dynamic, 1>(m)};

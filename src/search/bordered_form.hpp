@@ -38,8 +38,6 @@ struct PhaseFamily {
   Point at(Eigen::Index k, double t) const;
   Eigen::VectorXd value(double t) const;
   Eigen::VectorXd d1(double t) const;  ///< first derivative
-  /// Number of poles of the phases in (lo, hi).
-  double poles_in(double lo, double hi) const;
   /// The phases of H itself: omega tan(omega t) (axial) or tan(omega t) / omega (point).
   static PhaseFamily of_modes(const Eigen::VectorXd& freqs, Symmetry sym);
 };

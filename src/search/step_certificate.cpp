@@ -21,13 +21,6 @@ double weighted_norm(const Eigen::VectorXd& weights, const Eigen::VectorXd& v) {
 
 }  // namespace
 
-// The derivation is in the header (spectral_bounds).
-SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
-                               double lo1, double hi1, double lo2, double hi2) {
-  if (sym != Symmetry::Axial) return {};
-  return spectral_bounds(BorderedForm(md, lo1, hi1, lo2, hi2), x, lo_s, hi_s, lo1, hi1, lo2, hi2);
-}
-
 const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const BorderedForm& bf, double t1, double t2,
                                                                       bool& computed) {
   const std::vector<int> key = bf.key();
@@ -47,6 +40,7 @@ const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const Borde
   return e.es;
 }
 
+// The derivation is in the header (spectral_bounds).
 SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
                                double hi1, double lo2, double hi2, EigenCache* cache) {
   using Vec = Eigen::VectorXd;

@@ -127,12 +127,11 @@ struct SpectralBounds {
   int evaluations = 0;          ///< full eigenpairs computed (0 when the cache had them)
 };
 /// The bounds above from end x of the step [lo_s, hi_s] of a curve whose true points lie in the box
-/// [lo1, hi1] x [lo2, hi2] (inside one cell). Costs one H and its full eigenpairs (O(m^3)). Axial symmetry only.
-SpectralBounds spectral_bounds(const ModalForm& md, Symmetry sym, const StepEnd& x, double lo_s, double hi_s,
-                               double lo1, double hi1, double lo2, double hi2);
-/// The same in the bordered form bf of the box (bordered_form.hpp; the modal form's H when nothing is bordered): next
-/// to a pole line its phases' derivatives stay O(1) where H's grow like 1 / distance^2, which is what keeps the bounds
-/// tight there. g, g' and their ranges are those of c^T [b; nu] / |[b; nu]| (same sign as the traced g).
+/// [lo1, hi1] x [lo2, hi2] (inside one cell), taken in the bordered form bf of that box (bordered_form.hpp; the modal
+/// form's H when nothing is bordered): next to a pole line its phases' derivatives stay O(1) where H's grow like
+/// 1 / distance^2, which is what keeps the bounds tight there. g, g' and their ranges are those of
+/// c^T [b; nu] / |[b; nu]| (same sign as the traced g). Costs the full eigenpairs of bf at x (O(m^3)), unless cached.
+/// Axial symmetry only.
 SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
                                double hi1, double lo2, double hi2, EigenCache* cache = nullptr);
 
