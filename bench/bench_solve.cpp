@@ -3,7 +3,8 @@
 //  - ChainBox: the chain's fundamental box t1 <= pi/omega_1, t2 <= pi/d_2;
 //  - ChainWindow / RandomWindow: P x P pole lines, t1_max (t2_max) the smallest time with P poles of
 //    tan(W t1) (tan(D t2)) below it (P pi / sum(omega) only holds once every mode has several poles).
-//  - *Certified: the same with SolveOptions::certify_steps (every step proved; "complete" then means proved).
+//  - the cases without a suffix trace with the midpoint check (certify_steps = false, `--no-certify-steps`: a
+//    heuristic, the speed baseline); *Certified: the same with certify_steps, the default (every step proved).
 // Counters: pole lines, rectangles, curve pieces, roots, H evaluations, seconds per root.
 #include <benchmark/benchmark.h>
 

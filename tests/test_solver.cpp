@@ -230,9 +230,12 @@ TEST(Solver, TraceTerminatesOnClusteredPoleLines) {
   o.t1_max = 0.7950900808498774;  // 10 flight pole lines
   o.t2_max = 0.7951882510930521;  // 10 contact pole lines
   o.compute_return_error = false;
+  // The midpoint trace (what this test is about). Certified, the window takes 77 s and leaves 14 corners between the
+  // clustered pole lines with an eigenvalue within its error bound of zero (incomplete).
+  o.certify_steps = false;
   const SolveResult r = solve(s, o);
-  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
-  EXPECT_EQ(r.stats.unresolved_pieces, 0);
+  EXPECT_EQ(r.stats.unresolved_pieces, 0) << r.brief_report();
+  EXPECT_EQ(r.stats.unpaired_crossings + r.stats.unpolished_roots + r.stats.uncertified_corners, 0);
   for (const Solution& sol : r.solutions) {
     if (sol.flags.empty()) {
       EXPECT_LT(sol.residual, 1e-10);
@@ -288,7 +291,10 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
   o.t2_max = 6.0;
   o.symmetry = Symmetry::Point;
   const SolveResult r = solve(s, o);
-  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  // its steps are not proved yet (no spectral bound for a moving onset direction): incomplete for that cause only
+  EXPECT_EQ(r.status, SolveStatus::Incomplete) << r.brief_report();
+  EXPECT_GT(r.stats.uncertified_steps, 0);
+  EXPECT_EQ(r.stats.unresolved_pieces + r.stats.unpaired_crossings + r.stats.unpolished_roots, 0);
   ASSERT_GT(r.solutions.size(), 10u);
   for (const Solution& x : r.solutions) {
     EXPECT_FALSE(x.admissible);

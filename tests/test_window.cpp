@@ -21,8 +21,9 @@ namespace {
 
 System chain5() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"); }
 
-SolveResult solve_window(const System& s, double a1, double b1, double a2, double b2) {
+SolveResult solve_window(const System& s, double a1, double b1, double a2, double b2, bool certify = true) {
   SolveOptions o;
+  o.certify_steps = certify;
   o.t1_min = a1;
   o.t1_max = b1;
   o.t2_min = a2;
@@ -186,10 +187,13 @@ TEST(Window, PairOfRootsHiddenInOneSmallTurnStepIsFound) {
   EXPECT_NEAR(c.solutions[0].t1, 0.00788137049781, 1e-10);
 }
 
-TEST(Window, RandomMassChainsEndSuccessInTheirFundamentalBox) {
+TEST(Window, RandomMassChainsPairEveryCurveAcrossPoleLineCrossings) {
   // Chains of 10 masses drawn uniformly in [0.5, 2] (numpy default_rng seeds 1, 2, 3), unit springs, contact on the last
   // mass, window t1 <= pi / omega_1, t2 <= pi / d_2. Two of the three ended incomplete: curves passing through the
   // square where a vertical and a horizontal pole line cross (diagonally, or straight up inside the vertical strip).
+  // Traced by the midpoint check (the proofs take 115 s here, and leave steps of the second chain unproved where two
+  // zero curves run side by side: README, tests/crosscheck/survey_status.py chains --certify-steps), so the status is
+  // incomplete for that cause only: every crossing paired, every piece followed, every root polished.
   const std::vector<std::vector<double>> masses = {
       {1.267732,1.925696,0.716239,1.922974,0.967747,1.134990,1.741554,1.113799,1.324391,0.541339},
       {0.892418,0.947737,1.721339,0.637874,1.400151,1.592841,0.781852,0.582720,0.912454,1.486150},
@@ -198,8 +202,11 @@ TEST(Window, RandomMassChainsEndSuccessInTheirFundamentalBox) {
   for (size_t c = 0; c < masses.size(); ++c) {
     const System s = spp::chain(10, masses[c], {1.0}, 9, ContactSide::Upper, 1.0);
     const ModalForm md(s);
-    const SolveResult r = solve_window(s, 0.0, std::numbers::pi / md.omega()(0), 0.0, std::numbers::pi / md.d()(1));
-    EXPECT_EQ(r.status, SolveStatus::Success) << c << ": " << r.brief_report();
+    const SolveResult r =
+        solve_window(s, 0.0, std::numbers::pi / md.omega()(0), 0.0, std::numbers::pi / md.d()(1), false);
+    EXPECT_EQ(r.stats.unpaired_crossings, 0) << c << ": " << r.brief_report();
+    EXPECT_EQ(r.stats.unresolved_pieces + r.stats.unpolished_roots + r.stats.unsearched_cells, 0) << c;
+    EXPECT_GT(r.stats.uncertified_steps, 0) << c;  // the only cause of incomplete
     EXPECT_EQ(r.solutions.size(), roots[c]) << c;
   }
 }
@@ -249,15 +256,23 @@ TEST(Window, StalledRootsOnAContactPoleLineAreNotReportedAsSpps) {
   // brute force lists 14 roots in the window, not 16) and three on the 30-mass chain next to the axis (3e-9 from the
   // line; the brute force finds no root there). They are dismissed and counted as pole-line artifacts.
   const System stiff = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_contact_pole.json");
-  const SolveResult r = solve_window(stiff, 3.4588776939613416e-07, 0.02141448834366801, 3.6470949512588234e-07,
-                                     0.047003746905619016);
-  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
-  EXPECT_EQ(r.solutions.size(), 14u);
-  EXPECT_GT(r.stats.pole_line_artifacts, 0);
-  for (const Solution& s : r.solutions) EXPECT_LT(s.residual, 1e-10) << s.t1 << " " << s.t2;
+  // Certified, the window is proved (its trace points next to the line placed by the bordered form) and no sign change
+  // of g arises there; the midpoint trace still meets the stalled points and must dismiss them.
+  for (const bool certify : {true, false}) {
+    const SolveResult r = solve_window(stiff, 3.4588776939613416e-07, 0.02141448834366801, 3.6470949512588234e-07,
+                                       0.047003746905619016, certify);
+    if (certify) EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+    if (!certify) EXPECT_GT(r.stats.pole_line_artifacts, 0);
+    EXPECT_EQ(r.stats.unresolved_pieces + r.stats.unpaired_crossings + r.stats.unpolished_roots, 0);
+    EXPECT_EQ(r.solutions.size(), 14u);
+    for (const Solution& s : r.solutions) EXPECT_LT(s.residual, 1e-10) << s.t1 << " " << s.t2;
+  }
+  // The chain's curve runs 5e-9 from the contact pole line: its trace points, computed in H (entries ~1e9 there), are
+  // off the curve by ~1e-5 and its steps are not proved (259 left to the midpoint check, incomplete); traced by the
+  // midpoint check here, the only cause of incomplete.
   const System chain30 = spp::chain(30, {1.0}, {1.0}, 29, ContactSide::Upper, 1.0);
-  const SolveResult c = solve_window(chain30, 0.04, 0.046, 14.98, 14.99);
-  EXPECT_EQ(c.status, SolveStatus::Success) << c.brief_report();
+  const SolveResult c = solve_window(chain30, 0.04, 0.046, 14.98, 14.99, false);
+  EXPECT_EQ(c.stats.unresolved_pieces + c.stats.unpaired_crossings + c.stats.unpolished_roots, 0) << c.brief_report();
   EXPECT_TRUE(c.solutions.empty());
   EXPECT_GT(c.stats.pole_line_artifacts, 0);
 }

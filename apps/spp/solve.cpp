@@ -183,9 +183,10 @@ Subcommand add_solve(CLI::App& app) {
   s->add_option("--threads", o.threads, "worker threads (default 0: all hardware threads)");
   s->add_option("--max-cells", o.max_cells,
                 "refuse windows holding more cells between pole lines than this (default 1e7)");
-  s->add_flag("--certify-steps", o.certify_steps,
-              "prove every trace step (drift, curvature, spectral or onset-inertia bound; 1.5-8x the evaluations, "
-              "3-25x the time); Incomplete unless all are");
+  s->add_flag("--certify-steps,!--no-certify-steps", o.certify_steps,
+              "prove every trace step (default; drift, curvature, spectral or onset-inertia bound): success only if "
+              "every step is proved. --no-certify-steps: the midpoint check takes every step (3-25x faster, a "
+              "heuristic: the status is then incomplete)");
   s->add_option("--symmetry", a->symmetry,
                 "axial: the SPPs (default); point: the point-symmetric potential SPPs of det T2 = 0 (paper §6.2, "
                 "never admissible, a moving obstacle)")

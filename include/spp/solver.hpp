@@ -6,9 +6,9 @@
 //    exactly the indices k with lambda_k(bottom-left) < 0 < lambda_k(top-right) (Sylvester inertia);
 //  - each such curve is traced by its index k, one 1-D solve per anti-diagonal t2 - t1 = s, never by
 //    following a numerical branch; the signed g = z^T b / |z| (b the null vector, orientation kept
-//    continuous) changes sign exactly at the SPPs; steps are limited by the turn of b (and, where g keeps its
-//    sign, by asin|g| at the ends) and checked with a Hermite model of g: a careful heuristic, not a proof
-//    (SolveOptions::certify_steps proves the steps it can);
+//    continuous) changes sign exactly at the SPPs; each step carries a proof that g changes sign there at most
+//    as seen (SolveOptions::certify_steps, on by default); a step no bound proves is taken by the midpoint check
+//    (turn of b, Hermite model of g: a careful heuristic), counted, and the window ends Incomplete;
 //  - the thin strips left around pole lines are checked by pairing the curves across each line;
 //  - each root is polished by Newton on the pole-free bordered system N(t1,t2) a = 0, z^T cos(W t1) a = 0.
 // The steps, one file each: src/search/window_plan, evaluator, cell_trace, pole_pairing, polish (and
@@ -50,13 +50,14 @@ struct SolveOptions {
   /// any evaluation, with their count.
   long max_cells = 10'000'000;
   /// Prove every trace step outside the axis bands (search/step_certificate.hpp: zeroth-order drift of the null
-  /// vector, the curvature bound, the spectral bounds in the bordered form, or the onset inertia of the step's box),
-  /// falling back to the midpoint check where none of them proves the step within the step budget, and report the
-  /// window Incomplete unless every step was proved. Costs 1.5-8x the evaluations of the default (README: every
-  /// benchmark case ends success); where two zero curves run side by side, or g stays small and flat, steps are still
-  /// left unproved (Incomplete). Off: every step by the midpoint check (heuristic_steps), a careful heuristic, not a
-  /// proof.
-  bool certify_steps = false;
+  /// vector, the curvature bound, the spectral bounds in the bordered form, or the onset inertia of the step's box).
+  /// On by default: `success` means every step was proved. Where no bound proves a step within the step budget (two
+  /// zero curves of det H side by side, g small and flat, curves packed against clustered pole lines) the midpoint
+  /// check takes it, the step is counted in stats.uncertified_steps and the window ends Incomplete. Point symmetry has
+  /// no spectral bound yet: its steps all go to the midpoint check (Incomplete). Off: the midpoint check takes every
+  /// step (3-25x faster on the benchmarks; a careful heuristic, not a proof), so the status is Incomplete whenever a
+  /// step lies outside the axis bands.
+  bool certify_steps = true;
   double pole_margin =
       1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)
   double max_turn = 0.2;             ///< largest angle (rad) of the null vector b between two trace points
@@ -106,7 +107,7 @@ struct SolveStats {
   long evaluations = 0;      ///< symmetric eigen-decompositions of H
   long strip_pairs = 0;      ///< curves paired across pole lines (diagonal passes through a pole-line crossing too)
   long certified_steps = 0;  ///< trace steps with a proof that g keeps its sign, or changes it once (step_certificate)
-  /// Steps accepted by the midpoint turn check (all of them unless certify_steps; with it, those inside the axis
+  /// Steps accepted by the midpoint turn check (all of them without certify_steps; with it, those inside the axis
   /// bands and those no bound proved within the step budget): not a proof.
   long heuristic_steps = 0;
   /// Sign changes whose Newton stalled (residual between 1e-10 and 1e-6) within 1e-6 (relative) of a pole line: the
@@ -115,8 +116,8 @@ struct SolveStats {
   /// Dismissed, not reported.
   long pole_line_artifacts = 0;
   // Causes of an Incomplete status, counted:
-  long uncertified_steps = 0;  ///< steps not proved: certify_steps ones left to the midpoint check outside the
-                               ///< axis bands, and steps at the minimum length where g touches zero (near-double roots)
+  long uncertified_steps = 0;  ///< steps not proved: those the midpoint check took outside the axis bands, and
+                               ///< steps at the minimum length where g touches zero (near-double roots)
   long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces whose null vector could not be followed (budget, or turn at min step)

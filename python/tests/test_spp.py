@@ -115,7 +115,9 @@ def test_continuation_finds_the_zero_gap_spp_of_section_6_1():
 def test_point_symmetric_potential_spps_need_a_moving_obstacle_and_are_never_admissible():
     s = spp.chain(5)
     r = spp.solve(s, t1_max=6, t2_max=6, symmetry="point")
-    assert r.status == "success" and len(r.solutions) == 18
+    # the steps of point symmetry are not proved yet (the midpoint check takes them): incomplete for that cause only
+    assert r.status == "incomplete" and len(r.solutions) == 18 and r.stats["uncertified_steps"] > 0
+    assert r.stats["unresolved_pieces"] == r.stats["unpaired_crossings"] == r.stats["unpolished_roots"] == 0
     for x in r.solutions:
         assert not x.admissible and "point_symmetric" in x.flags and x.min_force < 0
         assert abs(x.obstacle_velocity - s.g0 / x.t2) < 1e-9 * s.g0 / x.t2
@@ -151,9 +153,10 @@ def test_solve_options_as_an_object_or_as_keywords():
     b = spp.solve(s, t1_max=12, t2_max=12)
     assert len(a.solutions) == len(b.solutions) == 64
     # every field is reachable, e.g. the proof of every step and the symmetry as an enum or a name
-    c = spp.solve(s, o, certify_steps=True)
-    assert c.status == "success" and len(c.solutions) == 64
-    assert o.certify_steps is False  # the object passed is not changed
+    assert a.status == "success" and a.stats["uncertified_steps"] == 0  # every step proved by default
+    c = spp.solve(s, o, certify_steps=False)  # the midpoint check: same roots, not a proof
+    assert c.status == "incomplete" and len(c.solutions) == 64 and c.stats["uncertified_steps"] > 0
+    assert o.certify_steps is True  # the object passed is not changed
     p = spp.solve(s, t1_max=6, t2_max=6, symmetry=spp.Symmetry.point)
     assert len(p.solutions) == 18
     o.symmetry = "point"
@@ -164,7 +167,7 @@ def test_solve_options_as_an_object_or_as_keywords():
         assert "unknown option \"t1_maxx\"" in str(e) and "certify_steps" in str(e)
     else:
         raise AssertionError("expected ValueError")
-    near = spp.nearest_spp(s, 3.2, 0.53, certify_steps=True)
+    near = spp.nearest_spp(s, 3.2, 0.53, certify_steps=False)
     assert near.found and abs(near.solution.t1 - 3.2160302) < 1e-6
 
 

@@ -109,9 +109,20 @@ class CellTracer::Impl {
       const double rounding = 4.0 * std::numeric_limits<double>::epsilon() * std::max(q.t1, q.t2);
       const double inf = std::numeric_limits<double>::infinity();
       Offset off{inf, inf};
-      const double moves[3][2] = {{1.0 / (l1 + l2), 1.0 / (l1 + l2)}, {1.0 / l1, 0.0}, {0.0, 1.0 / l2}};
+      double moves[3][2] = {{lam_err / (l1 + l2), lam_err / (l1 + l2)}, {lam_err / l1, 0.0}, {0.0, lam_err / l2}};
+      // Far above rounding (next to a pole line, where H's eigenvalue error grows like 1 / distance): the same
+      // distances from the bordered form, whose error stays at its O(1) scale; the smaller estimate is kept.
+      if (sym_ == Symmetry::Axial && p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
+        const BorderedOffset bo = bordered_offset(md_, q.t1, q.t2);
+        if (bo.valid) {
+          const double via[3] = {bo.lam_err / (bo.l1 + bo.l2), bo.lam_err / bo.l1, bo.lam_err / bo.l2};
+          for (int i = 0; i < 3; ++i)
+            for (double& e : moves[i])
+              if (e > 0 && via[i] < e) e = via[i];
+        }
+      }
       for (const auto& mv : moves) {
-        const double e1 = 2.0 * lam_err * mv[0] + rounding, e2 = 2.0 * lam_err * mv[1] + rounding;
+        const double e1 = 2.0 * mv[0] + rounding, e2 = 2.0 * mv[1] + rounding;
         if (!std::isfinite(e1) || !std::isfinite(e2)) continue;
         const Offset o = offset_bound(md_, sym_, q.t1, q.t2, e1, e2, b0);
         if (o.residual < off.residual) {
@@ -261,13 +272,16 @@ class CellTracer::Impl {
     TracePoint cur = pin;
     if (!(span > 0)) return point(out, &cur.b);  // the curve only touches the cell at a corner
     double h = span, slope = 0.0;                // slope: dtau/ds estimate for the predictor
-    int halvings = 0, lengthenings = 0;
+    int halvings = 0;
     examine_budget_ = kPieceBudget;
     // Stall watch: when certified steps have shrunk 4x since the last step that grew, the trace may approach a pole
     // line or a small gap (the zeroth-order and curvature bounds then shrink the step geometrically) while Hc stays
     // nonsingular on a much larger box: one long step (16x) is tried on the onset inertia first.
     double ref_h = h;
-    bool prove = opt_.certify_steps;
+    // Point symmetry has only the zeroth-order and curvature bounds (its onset direction moves with t2), which prove
+    // few steps next to contact pole lines at a large cost (31 s instead of 0.1 s on the chain's 6 x 6 window): its
+    // steps are taken by the midpoint check and counted as not proved.
+    bool prove = opt_.certify_steps && sym_ == Symmetry::Axial;
     int fallbacks = 0;  // steps of this piece the proofs left to the midpoint check
     // Root watch: certified steps that shrink while |g| falls (both 4x, kApproach times) approach a root that the
     // bounds only let a step cross late: one step of 3 |g / g'| is tried on the proofs; where they fail and half the
@@ -275,7 +289,8 @@ class CellTracer::Impl {
     int approach = 0;
     double root_g = std::abs(cur.g), root_h = h;
     bool stalled = false;
-    const int proof_budget = opt_.certify_steps && sym_ == Symmetry::Axial ? kProofBudget : kPieceBudget;
+    MonotoneRun run;
+    const int proof_budget = prove ? kProofBudget : kPieceBudget;
     for (int budget = proof_budget;; --budget) {
       const bool onset_first = stalled;
       if (onset_first) {
@@ -291,7 +306,10 @@ class CellTracer::Impl {
         certified = false;
         h = std::max(h, 1e-3 * span);
       }
-      if (budget <= 0 || examine_budget_ <= 0) return give_up(r, k, cur, out, certified);
+      if (budget <= 0 || examine_budget_ <= 0) {
+        if (run.open) abandon_run(r, k, run, certified);
+        return give_up(r, k, cur, out, certified);
+      }
       // Inside an axis band nothing is reported (axis_band): steps there need no proof, only the midpoint check that
       // keeps b's orientation.
       const bool in_band = cur.t1 <= band_.first || cur.t2 + step <= band_.second;
@@ -316,12 +334,15 @@ class CellTracer::Impl {
         st_.evaluations += cert.evaluations;
         // Where the curvature bound is too weak (next to pole lines, mostly), the step's box may still be proved
         // root-free by the onset inertia at its two Loewner corners; g keeps its sign then, which orients p.
-        const bool by_onset = onset_proved || (cert.verdict == StepVerdict::Uncertified && !onset_first && box_free());
+        // (Not while a monotone run is open: it needs the proved sign of g that a certificate gives.)
+        const bool by_onset =
+            !run.open && (onset_proved || (cert.verdict == StepVerdict::Uncertified && !onset_first && box_free()));
         if (by_onset) orient_like(p, cur);
         if (cert.verdict != StepVerdict::Uncertified || by_onset) {
+          // a certificate proves the sign of g at cur too (it keeps its sign, or changes it once, over the step)
+          if (run.open) close_run(r, k, run, cur.g > 0 ? 1 : -1, certified);
           ++st_.certified_steps;
           halvings = 0;
-          lengthenings = 0;
           p.proved_sign = by_onset ? cur.proved_sign : cert.end_sign;
           if ((cur.g > 0) != (p.g > 0) && locate_root(r, k, cur, p)) {
             flip(p);
@@ -354,9 +375,30 @@ class CellTracer::Impl {
           h = std::min(span, next);
           continue;
         }
-        // A monotone step that ends within its error bound of the root: a longer one ends farther from it.
-        if (cert.end_unresolved && !last && ++lengthenings <= kLengthenings) {
-          h = std::min(span, 2.0 * step);
+        // A step on which g is proved monotone, in the direction of the open run (or opening one from a point of
+        // proved sign), but whose end lies within g's error bound of zero: taken on trust until a point of proved
+        // sign closes the run (MonotoneRun).
+        const int sign0 = run.open ? run.sign0 : (cur.proved_sign != 0 ? cur.proved_sign : cert.sign_a);
+        if (!by_onset && cert.monotone_dir != 0 && sign0 != 0 && (!run.open || cert.monotone_dir == run.dir)) {
+          if (!run.open) run = MonotoneRun{true, cert.monotone_dir, sign0, 0, false, {}, {}};
+          ++run.steps;
+          halvings = 0;
+          if (!run.flipped && (cur.g > 0) != (p.g > 0)) {
+            run.flipped = true;
+            run.flip_a = cur;
+            run.flip_b = p;
+          }
+          p.proved_sign = 0;
+          if (cert.sign_b != 0) {
+            close_run(r, k, run, cert.sign_b, certified);
+            p.proved_sign = cert.sign_b;
+          } else if (last) {
+            abandon_run(r, k, run, certified);
+          }
+          if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
+          if (last) return p;
+          cur = p;
+          h = std::min(span, 1.5 * step);
           continue;
         }
         // Shorten, towards the length the curvature bound says it could prove (at most 50x at once); after
@@ -370,6 +412,7 @@ class CellTracer::Impl {
       }
       // Midpoint check: the turn of b is measured over both halves of the step (comparing only the ends would accept
       // a b that swings away and comes back near an avoided crossing), g examined on both halves. Not a proof.
+      if (run.open) abandon_run(r, k, run, certified);
       TracePoint mid = point(diagonal_root(r, cur.s + 0.5 * step, cur.t1 + slope * 0.5 * step, k), &cur.b);
       TracePoint q =
           last ? point(out, &mid.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &mid.b);
@@ -397,7 +440,7 @@ class CellTracer::Impl {
         continue;
       }
       ++st_.heuristic_steps;
-      if (opt_.certify_steps && !in_band) {
+      if (!in_band) {  // not a proof, whatever the options: the window cannot end success
         ++st_.uncertified_steps;
         certified = false;
         // The piece is unproved already: after kFallbacks such steps the proofs stop trying on it.
@@ -414,6 +457,38 @@ class CellTracer::Impl {
       cur = q;
       h = std::min(span, std::max(hmin_, step * std::clamp(factor, 0.3, 4.0)));
     }
+  }
+
+  // Steps of one piece on each of which g is proved monotone in the same direction, from a point where the sign of
+  // the true g is proved (sign0): g is monotone on their union, so a later point of proved sign (sign1) proves that
+  // the run holds no root (same signs) or exactly one. Near a root where g' is small and lambda_{k+1} close to 0 (two
+  // zero curves side by side) no single step is both short enough to be proved monotone and long enough to carry g
+  // beyond its error bound; a run of such steps is. The computed g inside the run may change sign more than once (its
+  // error exceeds |g| there): those changes are rounding, and the root, if any, is located at the first one.
+  struct MonotoneRun {
+    bool open = false;
+    int dir = 0, sign0 = 0;
+    long steps = 0;
+    bool flipped = false;       // the computed g changed sign inside the run
+    TracePoint flip_a, flip_b;  // the first step where it did
+  };
+  void close_run(const Rect& r, int k, MonotoneRun& run, int sign1, bool& certified) {
+    if (sign1 != run.sign0 && !run.flipped) {  // the ends' signs differ, the computed g never changed: impossible
+      abandon_run(r, k, run, certified);
+      return;
+    }
+    st_.certified_steps += run.steps;
+    if (sign1 != run.sign0) locate_root(r, k, run.flip_a, run.flip_b);
+    run = MonotoneRun{};
+  }
+  // A run no point of proved sign closes: its steps are not proved (g is still monotone over it: at most one root,
+  // located at the first sign change of the computed g).
+  void abandon_run(const Rect& r, int k, MonotoneRun& run, bool& certified) {
+    st_.uncertified_steps += run.steps;
+    st_.heuristic_steps += run.steps;
+    certified = false;
+    if (run.flipped) locate_root(r, k, run.flip_a, run.flip_b);
+    run = MonotoneRun{};
   }
 
   // A piece whose null vector cannot be followed (its step budget ran out, or b turned more than max_turn within the
@@ -570,8 +645,9 @@ class CellTracer::Impl {
   static constexpr int kProofBudget = 200000;  // the same with certify_steps, before the midpoint check takes over
   int examine_budget_ = kPieceBudget;
   EigenCache eigen_cache_;  // full eigenpairs of the certificate at the last trace points
+  static constexpr double kPosErrBordered =
+      1e-8;                                 // relative position error beyond which the bordered form estimates it
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
-  static constexpr int kLengthenings = 8;   // doublings of a step that ended next to a root of g, in a row
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
   static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped
   static constexpr int kRetraceDepth = 4;   // nested retraces at most

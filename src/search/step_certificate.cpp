@@ -353,6 +353,26 @@ Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, dou
           F.increment.maxCoeff() + C.increment.maxCoeff()};
 }
 
+BorderedOffset bordered_offset(const ModalForm& md, double t1, double t2) {
+  BorderedOffset o;
+  const BorderedForm bf(md, t1, t1, t2, t2);
+  if (bf.bordered() == 0) return o;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(t1, t2));
+  if (es.info() != Eigen::Success) return o;
+  const Eigen::VectorXd& lam = es.eigenvalues();
+  Eigen::Index k = 0;
+  lam.cwiseAbs().minCoeff(&k);
+  const Eigen::VectorXd x = es.eigenvectors().col(k);
+  const double err =
+      16.0 * static_cast<double>(lam.size()) * std::numeric_limits<double>::epsilon() * lam.cwiseAbs().maxCoeff();
+  const Eigen::VectorXd y = bf.Gx().transpose() * x;
+  o.lam_err = std::abs(lam(k)) + err;
+  o.l1 = bf.flight().d1(t1).dot(x.cwiseProduct(x));
+  o.l2 = bf.contact().d1(t2).dot(y.cwiseProduct(y));
+  o.valid = o.l1 >= 0 && o.l2 >= 0 && o.l1 + o.l2 > 0;
+  return o;
+}
+
 StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
                              const StepBox& cell, EigenCache* cache) {
   StepCertificate cert = certify_step_weyl(md, sym, a, b);
@@ -392,7 +412,9 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
       if (sx == 0) sx = sb.g_x > 0 ? 1 : -1;
     }
     const bool same_sign = (a.g > 0) == (b.g > 0);
-    monotone = monotone || sb.dg_lo > 0 || sb.dg_hi < 0;
+    if (cert.monotone_dir == 0 && sb.dg_lo > 0) cert.monotone_dir = 1;
+    if (cert.monotone_dir == 0 && sb.dg_hi < 0) cert.monotone_dir = -1;
+    monotone = cert.monotone_dir != 0;
     if ((sb.g_lo > 0 || sb.g_hi < 0) && same_sign && (sb.g_lo > 0) == (a.g > 0)) {
       cert.verdict = StepVerdict::NoRoot;  // g keeps the sign the computed ends show
       cert.end_sign = sb.g_lo > 0 ? 1 : -1;
@@ -407,7 +429,8 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
       return cert;
     }
   }
-  cert.end_unresolved = monotone && sign_a != 0 && (sign_a > 0) == (a.g > 0) && sign_b == 0;
+  cert.sign_a = sign_a != 0 && (sign_a > 0) == (a.g > 0) ? sign_a : 0;
+  cert.sign_b = sign_b != 0 && (sign_b > 0) == (b.g > 0) ? sign_b : 0;
   return cert;
 }
 
