@@ -432,8 +432,9 @@ void finalize(const SolveOptions& options, SolveResult& res) {
     if (count > 0) res.warnings.push_back(std::to_string(count) + " " + what);
   };
   cause(st.uncertified_steps,
-        "trace step(s) were not proved, only taken by the midpoint check (a heuristic): certify_steps off, point "
-        "symmetry, or steps no bound proved within the step budget (two zero curves side by side, g small and flat); "
+        "trace step(s) were not proved, only taken by the midpoint check (a heuristic): certify_steps off, or steps "
+        "no bound proved within the step budget (two zero curves side by side, g small and flat, a curve hugging a "
+        "pole line); "
         "or g touches zero within the bounds' resolution at the minimum step length (a near-double root)");
   cause(st.unresolved_pieces,
         "curve piece(s) whose null vector could not be followed (step budget spent, or a turn "

@@ -122,11 +122,12 @@ struct CurvePoint {
   Eigen::VectorXd b;
   Eigen::VectorXd lam;
 };
-bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, double s, int k, CurvePoint& p) {
+bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, double s, int k, CurvePoint& p,
+                 Symmetry sym = Symmetry::Axial) {
   double lo = std::max(a1, A - s), hi = std::min(b1, B - s);
   if (!(lo < hi)) return false;
   auto lam_k = [&](double t1) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(t1, t1 + s));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(t1, t1 + s, sym));
     return es.eigenvalues()(k);
   };
   if (!(lam_k(lo) < 0 && lam_k(hi) > 0)) return false;
@@ -136,7 +137,7 @@ bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, 
   }
   p.t1 = 0.5 * (lo + hi);
   p.t2 = p.t1 + s;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2, sym));
   p.b = es.eigenvectors().col(k);
   p.lam = es.eigenvalues();
   return true;
@@ -182,13 +183,17 @@ TEST(BorderedForm, SameNullVectorsShiftedInertiaAndMonotoneThroughThePole) {
 
 TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
   // Property: on random steps of random curves in random cells (the paper's chain and a stiff 5-dof system with
-  // stiffness spread 1e5), g = zhat^T b and dg/ds sampled on the true curve (an independent bisection) lie within the
-  // ranges spectral_bounds gives from either end, and the bounds are not vacuous (many valid, some sign-deciding).
+  // stiffness spread 1e5; H and H_T, point symmetry's, whose every contact mode is bordered), g = zhat^T b and dg/ds
+  // sampled on the true curve (an independent bisection) lie within the ranges spectral_bounds gives from either end,
+  // and the bounds are not vacuous (many valid, some sign-deciding).
   const std::vector<std::string> files = {std::string(SPP_SOURCE_DIR) + "/examples/chain5.json",
                                           std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_spread1e5.json"};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const std::string& f : files) {
+  std::vector<std::pair<Symmetry, std::string>> cases;
+  for (const Symmetry sym : {Symmetry::Axial, Symmetry::Point})
+    for (const std::string& f : files) cases.emplace_back(sym, f);
+  for (const auto& [sym, f] : cases) {
     const ModalForm md(load_system(f));
     const Eigen::VectorXd zhat = md.z().normalized();
     const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
@@ -203,7 +208,8 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       const double sa = (c2 - d1) + (d2 - c1 - (c2 - d1)) * u(rng);
       const double h = (d2 - c1 - (c2 - d1)) * std::pow(10.0, -5.0 + 4.0 * u(rng));
       CurvePoint pa, pb;
-      if (!curve_point(md, c1, d1, c2, d2, sa, k, pa) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb)) continue;
+      if (!curve_point(md, c1, d1, c2, d2, sa, k, pa, sym) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb, sym))
+        continue;
       // The box the bounds are taken over (it holds the true curve and the computed ends), and its bordered form:
       // the bounds are those of g = c^T x / |x| for the bordered form's null vector x = [b; nu] (same sign as
       // zhat^T b), sampled here with their own derivative.
@@ -211,7 +217,8 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       const double e = 2.0 * std::abs(off);
       const double lo1 = std::max(c1, std::min(pa.t1, pb.t1) - e), hi1 = std::min(d1, std::max(pa.t1, pb.t1) + e);
       const double lo2 = std::max(c2, std::min(pa.t2, pb.t2) - e), hi2 = std::min(d2, std::max(pa.t2, pb.t2) + e);
-      const search::BorderedForm bf(md, lo1, hi1, lo2, hi2);
+      const search::BorderedForm bf(md, lo1, hi1, lo2, hi2, sym);
+      if (!bf.valid()) continue;  // point symmetry: a zero of tan(d t2) in the box
       bordered += bf.bordered() > 0 ? 1 : 0;
       // samples of the true curve on [sa, sa + h], b oriented continuously from pa
       const int ns = 40;
@@ -221,12 +228,15 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       for (int i = 0; i <= ns && ok; ++i) {
         const double s = sa + h * i / ns;
         CurvePoint q;
-        ok = curve_point(md, c1, d1, c2, d2, s, k, q);
+        ok = curve_point(md, c1, d1, c2, d2, s, k, q, sym);
         if (!ok) break;
         const Eigen::VectorXd b = q.b.dot(prev) < 0 ? Eigen::VectorXd(-q.b) : q.b;
         prev = b;
         const Eigen::VectorXd x = bf.extend(b, q.t1, q.t2).normalized();
         gs.push_back(bf.onset().dot(x));
+        // the bordered form's g has the sign of the onset condition itself (point: c(t2)^T b, c moving with t2)
+        const Eigen::VectorXd c = sym == Symmetry::Axial ? zhat : Eigen::VectorXd(md.onset_direction(q.t2, sym));
+        if (std::abs(c.dot(b)) > 1e-8 * c.norm()) EXPECT_EQ(c.dot(b) > 0, gs.back() > 0) << to_string(sym) << " " << f;
         // dg/ds = -(B^+ c)^T B' x, B' = tau' dB/dt1 + (1 + tau') dB/dt2, tau' = -l2 / (l1 + l2) (first-order
         // perturbation of the null vector along the curve), with the pseudo-inverse from the full eigenpairs
         const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(q.t1, q.t2));
@@ -247,7 +257,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       auto end = [&](CurvePoint& p, double s, const Eigen::VectorXd& ref) {
         p.t1 += off;
         p.t2 += off;
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2));
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2, sym));
         p.b = es.eigenvectors().col(k);
         if (p.b.dot(ref) < 0) p.b = -p.b;
         search::StepEnd x;
@@ -255,7 +265,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
         x.t1 = p.t1;
         x.t2 = p.t2;
         x.b = &p.b;
-        x.g = zhat.dot(p.b);
+        x.g = (sym == Symmetry::Axial ? zhat : md.onset_direction(p.t2, sym)).dot(p.b);
         x.pos_err = std::abs(off);
         return x;
       };
@@ -268,16 +278,17 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
         if (sb.g_lo > 0 || sb.g_hi < 0 || sb.dg_lo > 0 || sb.dg_hi < 0) ++deciding;
         const double gtol = 0.0, dtol = 1e-8 * (1.0 + std::abs(sb.dg_lo) + std::abs(sb.dg_hi));
         for (size_t i = 0; i < gs.size(); ++i) {
-          EXPECT_GE(gs[i], sb.g_lo - gtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
+          EXPECT_GE(gs[i], sb.g_lo - gtol)
+              << to_string(sym) << " " << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
           EXPECT_LE(gs[i], sb.g_hi + gtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
           EXPECT_GE(dgs[i], sb.dg_lo - dtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
           EXPECT_LE(dgs[i], sb.dg_hi + dtol) << f << " k " << k << " s " << sa + h * i / ns << " h " << h;
         }
       }
     }
-    EXPECT_GE(valid, 100) << f;
-    EXPECT_GE(deciding, 30) << f;
-    EXPECT_GE(bordered, 10) << f;  // steps next to pole lines, where the bordered form differs from H
+    EXPECT_GE(valid, 100) << f << " " << to_string(sym);
+    EXPECT_GE(deciding, 30) << f << " " << to_string(sym);
+    EXPECT_GE(bordered, 10) << f << " " << to_string(sym);  // next to pole lines (point: always)
   }
 }
 

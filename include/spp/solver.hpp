@@ -53,10 +53,9 @@ struct SolveOptions {
   /// vector, the curvature bound, the spectral bounds in the bordered form, or the onset inertia of the step's box).
   /// On by default: `success` means every step was proved. Where no bound proves a step within the step budget (two
   /// zero curves of det H side by side, g small and flat, curves packed against clustered pole lines) the midpoint
-  /// check takes it, the step is counted in stats.uncertified_steps and the window ends Incomplete. Point symmetry has
-  /// no spectral bound yet: its steps all go to the midpoint check (Incomplete). Off: the midpoint check takes every
-  /// step (3-25x faster on the benchmarks; a careful heuristic, not a proof), so the status is Incomplete whenever a
-  /// step lies outside the axis bands.
+  /// check takes it, the step is counted in stats.uncertified_steps and the window ends Incomplete. Off: the midpoint
+  /// check takes every step (3-25x faster on the benchmarks; a careful heuristic, not a proof), so the status is
+  /// Incomplete whenever a step lies outside the axis bands.
   bool certify_steps = true;
   double pole_margin =
       1e-6;  ///< distance kept from pole lines, relative to the wider neighbouring cell (at most 1/4 of the narrower)

@@ -115,9 +115,7 @@ def test_continuation_finds_the_zero_gap_spp_of_section_6_1():
 def test_point_symmetric_potential_spps_need_a_moving_obstacle_and_are_never_admissible():
     s = spp.chain(5)
     r = spp.solve(s, t1_max=6, t2_max=6, symmetry="point")
-    # the steps of point symmetry are not proved yet (the midpoint check takes them): incomplete for that cause only
-    assert r.status == "incomplete" and len(r.solutions) == 18 and r.stats["uncertified_steps"] > 0
-    assert r.stats["unresolved_pieces"] == r.stats["unpaired_crossings"] == r.stats["unpolished_roots"] == 0
+    assert r.status == "success" and len(r.solutions) == 18 and r.stats["uncertified_steps"] == 0
     for x in r.solutions:
         assert not x.admissible and "point_symmetric" in x.flags and x.min_force < 0
         assert abs(x.obstacle_velocity - s.g0 / x.t2) < 1e-9 * s.g0 / x.t2

@@ -8,6 +8,10 @@ namespace spp::search {
 
 PhaseFamily::Point PhaseFamily::at(Eigen::Index k, double t) const {
   if (linear(k)) return {t, 1.0, 0.0};
+  if (reciprocal(k)) {
+    const double a = amp(k);
+    return {-a / t, a / (t * t), -2.0 * a / (t * t * t)};
+  }
   if (amp(k) == 0.0) return {0.0, 0.0, 0.0};
   const double w = freq(k), tn = std::tan(w * t + shift(k)), sec2 = 1.0 + tn * tn, a = amp(k);
   return {a * tn, a * w * sec2, 2.0 * a * w * w * sec2 * tn};
@@ -27,7 +31,8 @@ Eigen::VectorXd PhaseFamily::d1(double t) const {
 
 PhaseFamily PhaseFamily::of_modes(const Eigen::VectorXd& freqs, Symmetry sym) {
   const Eigen::Index m = freqs.size();
-  PhaseFamily p{Eigen::VectorXd(m), freqs, Eigen::VectorXd::Zero(m), Eigen::Array<bool, Eigen::Dynamic, 1>(m)};
+  PhaseFamily p{Eigen::VectorXd(m), freqs, Eigen::VectorXd::Zero(m), Eigen::Array<bool, Eigen::Dynamic, 1>(m),
+                Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(m, false)};
   for (Eigen::Index k = 0; k < m; ++k) {
     const double f = freqs(k);
     p.linear(k) = sym == Symmetry::Point && f == 0.0;
@@ -36,7 +41,19 @@ PhaseFamily PhaseFamily::of_modes(const Eigen::VectorXd& freqs, Symmetry sym) {
   return p;
 }
 
+PhaseFamily PhaseFamily::zeros(Eigen::Index size) {
+  return {Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size),
+          Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(size, false),
+          Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(size, false)};
+}
+
 namespace {
+// tan(f t) (t itself for f = 0) has no zero in [lo, hi] (a point symmetric contact border -1/phase stays finite).
+bool no_zero_of_tan(double f, double lo, double hi) {
+  if (!(f > 0)) return lo > 0;
+  return std::floor(f * hi / std::numbers::pi) < f * lo / std::numbers::pi;
+}
+
 // Mode of frequency f stays next to one of its poles over [lo, hi]: |tan(f t)| >= 1 at both ends, same sign (tan is
 // increasing between poles, and the box holds none, so no zero lies between).
 bool next_to_pole(double f, double lo, double hi) {
@@ -46,30 +63,36 @@ bool next_to_pole(double f, double lo, double hi) {
 }
 }  // namespace
 
-BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2) : md_(md) {
+BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2, Symmetry sym)
+    : md_(md), sym_(sym) {
   const Eigen::VectorXd& w = md.omega();
   const Eigen::VectorXd& d = md.d();
+  const bool point = sym == Symmetry::Point;
   m_ = static_cast<int>(w.size());
   for (int i = 0; i < m_; ++i)
     if (next_to_pole(w(i), lo1, hi1)) flight_modes_.push_back(i);
-  for (int j = 0; j < static_cast<int>(d.size()); ++j)
-    if (next_to_pole(d(j), lo2, hi2)) contact_modes_.push_back(j);
+  for (int j = 0; j < static_cast<int>(d.size()); ++j) {
+    if (point && !no_zero_of_tan(d(j), lo2, hi2)) valid_ = false;
+    if (point || next_to_pole(d(j), lo2, hi2)) contact_modes_.push_back(j);
+  }
   const int nf = static_cast<int>(flight_modes_.size()), nc = static_cast<int>(contact_modes_.size());
   const int size = m_ + nf + nc;
   const double half_pi = 0.5 * std::numbers::pi;
 
-  // flight phases, one per coordinate: plain modes omega tan(omega t1); a bordered mode's own coordinate 0 and its
-  // border coordinate -1/f = tan(omega t1 - pi/2) / omega; contact border coordinates 0
-  const PhaseFamily plain_f = PhaseFamily::of_modes(w, Symmetry::Axial);
-  flight_ = {Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size),
-             Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(size, false)};
+  // flight phases, one per coordinate: plain modes omega tan(omega t1) (point: tan(omega t1) / omega); a bordered
+  // mode's own coordinate 0 and its border coordinate -1/f = tan(omega t1 - pi/2) / omega (point: omega tan(omega t1 -
+  // pi/2)); contact border coordinates 0
+  const PhaseFamily plain_f = PhaseFamily::of_modes(w, sym);
+  flight_ = PhaseFamily::zeros(size);
   flight_.amp.head(m_) = plain_f.amp;
   flight_.freq.head(m_) = w;
+  flight_.linear.head(m_) = plain_f.linear;
   K0_ = Eigen::MatrixXd::Zero(size, size);
   for (int p = 0; p < nf; ++p) {
     const int i = flight_modes_[p], q = m_ + p;
     flight_.amp(i) = 0.0;
-    flight_.amp(q) = 1.0 / w(i);
+    flight_.linear(i) = false;
+    flight_.amp(q) = point ? w(i) : 1.0 / w(i);
     flight_.freq(q) = w(i);
     flight_.shift(q) = -half_pi;
     K0_(i, q) = K0_(q, i) = 1.0;
@@ -78,29 +101,36 @@ BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double l
   // coordinate per bordered mode
   const int plain_c = static_cast<int>(d.size()) - nc;
   Gx_ = Eigen::MatrixXd::Zero(size, plain_c + nc);
-  contact_ = {Eigen::VectorXd::Zero(plain_c + nc), Eigen::VectorXd::Zero(plain_c + nc),
-              Eigen::VectorXd::Zero(plain_c + nc),
-              Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(plain_c + nc, false)};
-  const PhaseFamily plain_c_phase = PhaseFamily::of_modes(d, Symmetry::Axial);
+  contact_ = PhaseFamily::zeros(plain_c + nc);
+  const PhaseFamily plain_c_phase = PhaseFamily::of_modes(d, sym);
   int col = 0;
   for (int j = 0; j < static_cast<int>(d.size()); ++j) {
     if (std::find(contact_modes_.begin(), contact_modes_.end(), j) != contact_modes_.end()) continue;
     Gx_.col(col).head(m_) = md.G().col(j);
     contact_.amp(col) = plain_c_phase.amp(j);
     contact_.freq(col) = d(j);
+    contact_.linear(col) = plain_c_phase.linear(j);
     ++col;
   }
+  c_ = Eigen::VectorXd::Zero(size);
+  if (!point) c_.head(m_) = md.z().normalized();
   for (int p = 0; p < nc; ++p, ++col) {
     const int j = contact_modes_[p], q = m_ + nf + p;
     Gx_(q, col) = 1.0;
-    contact_.amp(col) = 1.0 / d(j);
     contact_.freq(col) = d(j);
-    contact_.shift(col) = -half_pi;
+    if (d(j) > 0) {
+      contact_.amp(col) = point ? d(j) : 1.0 / d(j);
+      contact_.shift(col) = -half_pi;
+    } else {  // point symmetry's zero frequency: phase t2, border -1 / t2
+      contact_.amp(col) = 1.0;
+      contact_.reciprocal(col) = true;
+    }
     K0_.col(q).head(m_) = md.G().col(j);
     K0_.row(q).head(m_) = md.G().col(j).transpose();
+    // c(t2)^T b = -sum_j (g_j^T z) tan(d_j t2) / d_j (g_j^T b) = -sum_j (g_j^T z) nu_j
+    if (point) c_(q) = -md.G().col(j).dot(md.z());
   }
-  c_ = Eigen::VectorXd::Zero(size);
-  c_.head(m_) = md.z().normalized();
+  if (point && c_.norm() > 0) c_.normalize();  // only its sign is used
 }
 
 Eigen::MatrixXd BorderedForm::matrix(double t1, double t2) const {
@@ -118,9 +148,9 @@ std::vector<int> BorderedForm::key() const {
 Eigen::VectorXd BorderedForm::border_values(double t1, double t2) const {
   Eigen::VectorXd v(bordered());
   const size_t nf = flight_modes_.size();
-  for (size_t p = 0; p < nf; ++p) v(p) = md_.omega()(flight_modes_[p]) * std::tan(md_.omega()(flight_modes_[p]) * t1);
-  for (size_t p = 0; p < contact_modes_.size(); ++p)
-    v(nf + p) = md_.d()(contact_modes_[p]) * std::tan(md_.d()(contact_modes_[p]) * t2);
+  const Eigen::VectorXd f = md_.flight_part(t1, sym_), c = md_.contact_eigs(t2, sym_);
+  for (size_t p = 0; p < nf; ++p) v(p) = f(flight_modes_[p]);
+  for (size_t p = 0; p < contact_modes_.size(); ++p) v(nf + p) = c(contact_modes_[p]);
   return v;
 }
 

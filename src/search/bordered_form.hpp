@@ -26,10 +26,12 @@
 namespace spp::search {
 
 /// Phase functions a_k tan(w_k t + shift_k) (a_k = 0: the constant 0; linear_k: the function t, point symmetry's
-/// zero frequency), one per coordinate (flight, in t1) or per column of Gx (contact, in t2).
+/// zero frequency; reciprocal_k: -a_k / t, its border), one per coordinate (flight, in t1) or per column of Gx
+/// (contact, in t2). Each is increasing with a monotone second derivative on an interval without pole (t > 0 for the
+/// reciprocal), so its extremes over an interval are at the ends.
 struct PhaseFamily {
   Eigen::VectorXd amp, freq, shift;
-  Eigen::Array<bool, Eigen::Dynamic, 1> linear;
+  Eigen::Array<bool, Eigen::Dynamic, 1> linear, reciprocal;
   Eigen::Index size() const { return amp.size(); }
   /// Phase k at t (inside one of its pole intervals): value, first and second derivative.
   struct Point {
@@ -39,6 +41,8 @@ struct PhaseFamily {
   Eigen::VectorXd value(double t) const;
   Eigen::VectorXd d1(double t) const;  ///< first derivative
   /// The phases of H itself: omega tan(omega t) (axial) or tan(omega t) / omega (point).
+  /// A family of `size` constant zero phases.
+  static PhaseFamily zeros(Eigen::Index size);
   static PhaseFamily of_modes(const Eigen::VectorXd& freqs, Symmetry sym);
 };
 
@@ -46,9 +50,13 @@ class BorderedForm {
  public:
   /// Borders the modes that stay next to their pole over [lo1, hi1] x [lo2, hi2] (|tan| >= 1 at both ends of the
   /// box's interval, no zero of tan between): there -1/f is bounded by the mode's own scale, and f is not. The box
-  /// holds no pole line. Axial symmetry.
-  BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2);
+  /// holds no pole line.
+  /// Point symmetry (H_T, paper §6.2): its onset direction c(t2) = -G diag(tan(d t2) / d) G^T z moves with t2, so
+  /// every contact mode is bordered (the zero frequency's phase t2 by -1/t2), which makes it constant:
+  /// c^T b = -(G^T z)^T nu. Valid only where no tan(d_j t2) vanishes in [lo2, hi2] (and t2 > 0): valid() says.
+  BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2, Symmetry sym = Symmetry::Axial);
 
+  bool valid() const { return valid_; }
   int size() const { return static_cast<int>(flight_.size()); }
   int bordered() const { return size() - m_; }
   Eigen::MatrixXd matrix(double t1, double t2) const;
@@ -66,6 +74,8 @@ class BorderedForm {
 
  private:
   const ModalForm& md_;
+  Symmetry sym_ = Symmetry::Axial;
+  bool valid_ = true;
   int m_ = 0;
   std::vector<int> flight_modes_, contact_modes_;  // bordered, in border order (flight first)
   PhaseFamily flight_, contact_;

@@ -112,8 +112,8 @@ class CellTracer::Impl {
       double moves[3][2] = {{lam_err / (l1 + l2), lam_err / (l1 + l2)}, {lam_err / l1, 0.0}, {0.0, lam_err / l2}};
       // Far above rounding (next to a pole line, where H's eigenvalue error grows like 1 / distance): the same
       // distances from the bordered form, whose error stays at its O(1) scale; the smaller estimate is kept.
-      if (sym_ == Symmetry::Axial && p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
-        const BorderedOffset bo = bordered_offset(md_, q.t1, q.t2);
+      if (p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
+        const BorderedOffset bo = bordered_offset(md_, sym_, q.t1, q.t2);
         if (bo.valid) {
           const double via[3] = {bo.lam_err / (bo.l1 + bo.l2), bo.lam_err / bo.l1, bo.lam_err / bo.l2};
           for (int i = 0; i < 3; ++i)
@@ -278,10 +278,7 @@ class CellTracer::Impl {
     // line or a small gap (the zeroth-order and curvature bounds then shrink the step geometrically) while Hc stays
     // nonsingular on a much larger box: one long step (16x) is tried on the onset inertia first.
     double ref_h = h;
-    // Point symmetry has only the zeroth-order and curvature bounds (its onset direction moves with t2), which prove
-    // few steps next to contact pole lines at a large cost (31 s instead of 0.1 s on the chain's 6 x 6 window): its
-    // steps are taken by the midpoint check and counted as not proved.
-    bool prove = opt_.certify_steps && sym_ == Symmetry::Axial;
+    bool prove = opt_.certify_steps;
     int fallbacks = 0;  // steps of this piece the proofs left to the midpoint check
     // Root watch: certified steps that shrink while |g| falls (both 4x, kApproach times) approach a root that the
     // bounds only let a step cross late: one step of 3 |g / g'| is tried on the proofs; where they fail and half the

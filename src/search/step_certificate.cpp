@@ -353,10 +353,10 @@ Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, dou
           F.increment.maxCoeff() + C.increment.maxCoeff()};
 }
 
-BorderedOffset bordered_offset(const ModalForm& md, double t1, double t2) {
+BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, double t2) {
   BorderedOffset o;
-  const BorderedForm bf(md, t1, t1, t2, t2);
-  if (bf.bordered() == 0) return o;
+  const BorderedForm bf(md, t1, t1, t2, t2, sym);
+  if (!bf.valid() || bf.bordered() == 0) return o;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(t1, t2));
   if (es.info() != Eigen::Success) return o;
   const Eigen::VectorXd& lam = es.eigenvalues();
@@ -380,7 +380,6 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
     cert.end_sign = b.g > 0 ? 1 : -1;
     return cert;
   }
-  if (sym != Symmetry::Axial) return cert;
   // The true curve points of the step: within pos_err (twice, for safety) of the computed ends in t1 and t2, t1
   // non-increasing and t2 non-decreasing in s, and inside the cell (which keeps every phase function monotone).
   const double e = 2.0 * std::max(a.pos_err, b.pos_err);
@@ -397,7 +396,8 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
   // The bounds from each end in turn (a first: its eigenpairs are usually cached), in the bordered form of the step's
   // box. Each range holds on the whole step, so what one end proves (monotone g) combines with what the other adds (its
   // own end sign).
-  const BorderedForm bf(md, lo1, hi1, lo2, hi2);
+  const BorderedForm bf(md, lo1, hi1, lo2, hi2, sym);
+  if (!bf.valid()) return cert;
   int sign_a = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sign_b = sign_at(b);
   bool monotone = false;
   for (const StepEnd* x : {&a, &b}) {

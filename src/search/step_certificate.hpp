@@ -155,7 +155,7 @@ struct BorderedOffset {
   bool valid = false;
   double lam_err = 0, l1 = 0, l2 = 0;
 };
-BorderedOffset bordered_offset(const ModalForm& md, double t1, double t2);
+BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, double t2);
 
 /// Extreme values over t in [lo, hi] (inside one pole interval) of the phase functions of the flight (omega) or
 /// contact (d) frequencies: f = w tan(w t) (axial) or tan(w t)/w (point); increments |f(hi) - f(lo)| per mode,
