@@ -32,6 +32,15 @@ std::pair<double, double> interval(const std::vector<double>& poles, double x) {
   return {lo, hi};
 }
 
+SolveOptions window(double t1_min, double t1_max, double t2_min, double t2_max) {
+  SolveOptions o;
+  o.t1_min = t1_min;
+  o.t1_max = t1_max;
+  o.t2_min = t2_min;
+  o.t2_max = t2_max;
+  return o;
+}
+
 // Solves the window with the midpoint check and with certify_steps (the default): the certified run ends success with
 // every step proved (outside the axis bands) and the same roots as the midpoint trace. Returns the certified result.
 SolveResult expect_certified_with_default_roots(const System& s, SolveOptions o) {
@@ -297,12 +306,8 @@ TEST(CertifiedSearch, ProvesAStiffWindowWithTheSameRoots) {
   // of its steps could not be proved (they divide the stiff modes' part by the small gap); with the spectral bounds
   // every step is proved, and the 12 SPPs are the default trace's.
   const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/stiff4_spread1e5.json");
-  SolveOptions o;
-  o.t1_min = 0.00036243646429314516;
-  o.t1_max = 0.057989834286903234;
-  o.t2_min = 0.00037129305864861035;
-  o.t2_max = 0.05940688938379228;
-  const SolveResult r = expect_certified_with_default_roots(s, o);
+  const SolveResult r = expect_certified_with_default_roots(
+      s, window(0.00036243646429314516, 0.057989834286903234, 0.00037129305864861035, 0.05940688938379228));
   EXPECT_EQ(r.solutions.size(), 12u);
 }
 
@@ -313,11 +318,7 @@ TEST(CertifiedSearch, MonotoneRunsProveARootWhereTwoCurvesRunSideBySide) {
   // (293 steps left to the midpoint check in the whole box); chained, the run from the last point of proved sign to
   // the next proves the one root.
   const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/rchain10_seed2.json");
-  SolveOptions o;
-  o.t1_min = 20.80;
-  o.t1_max = 20.83;
-  o.t2_min = 1.52;
-  o.t2_max = 1.55;
+  SolveOptions o = window(20.80, 20.83, 1.52, 1.55);
   o.compute_return_error = false;
   const SolveResult r = expect_certified_with_default_roots(s, o);
   ASSERT_EQ(r.solutions.size(), 1u);
