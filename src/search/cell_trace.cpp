@@ -336,8 +336,9 @@ class CellTracer::Impl {
             !run.open && (onset_proved || (cert.verdict == StepVerdict::Uncertified && !onset_first && box_free()));
         if (by_onset) orient_like(p, cur);
         if (cert.verdict != StepVerdict::Uncertified || by_onset) {
-          // a certificate proves the sign of g at cur too (it keeps its sign, or changes it once, over the step)
-          if (run.open) close_run(r, k, run, cur.g > 0 ? 1 : -1, certified);
+          // a certificate proves the sign of g at cur too: g keeps its sign over the step, or changes it once
+          if (run.open)
+            close_run(r, k, run, cert.verdict == StepVerdict::NoRoot ? cert.end_sign : -cert.end_sign, certified);
           ++st_.certified_steps;
           halvings = 0;
           p.proved_sign = by_onset ? cur.proved_sign : cert.end_sign;
@@ -475,6 +476,7 @@ class CellTracer::Impl {
       return;
     }
     st_.certified_steps += run.steps;
+    // (b's orientation is proved continuous over the run by its bounds: locate_root's retrace verdict is not needed)
     if (sign1 != run.sign0) locate_root(r, k, run.flip_a, run.flip_b);
     run = MonotoneRun{};
   }
