@@ -40,6 +40,13 @@ const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const Borde
   return e.es;
 }
 
+namespace {
+// Error bound of a symmetric eigendecomposition with eigenvalues lam: |B - U diag(lam) U^T| (backward stable solver).
+double decomposition_error(const Eigen::VectorXd& lam) {
+  return 16.0 * static_cast<double>(lam.size()) * std::numeric_limits<double>::epsilon() * lam.cwiseAbs().maxCoeff();
+}
+}  // namespace
+
 // The derivation is in the header (spectral_bounds).
 SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double lo_s, double hi_s, double lo1,
                                double hi1, double lo2, double hi2, EigenCache* cache) {
@@ -60,7 +67,7 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   Vec bx = U.col(k);
   if (bx.dot(bf.extend(*x.b, x.t1, x.t2)) < 0) bx = -bx;
   const double eps = std::numeric_limits<double>::epsilon();
-  const double err = 16.0 * static_cast<double>(m) * eps * lam.cwiseAbs().maxCoeff();  // |H_x - U lam U^T|
+  const double err = decomposition_error(lam);  // |H_x - U lam U^T|
   double gap = std::numeric_limits<double>::infinity();
   Vec inv = Vec::Zero(m);
   for (Eigen::Index j = 0; j < m; ++j) {
@@ -363,8 +370,7 @@ BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, dou
   Eigen::Index k = 0;
   lam.cwiseAbs().minCoeff(&k);
   const Eigen::VectorXd x = es.eigenvectors().col(k);
-  const double err =
-      16.0 * static_cast<double>(lam.size()) * std::numeric_limits<double>::epsilon() * lam.cwiseAbs().maxCoeff();
+  const double err = decomposition_error(lam);
   const Eigen::VectorXd y = bf.Gx().transpose() * x;
   o.lam_err = std::abs(lam(k)) + err;
   o.l1 = bf.flight().d1(t1).dot(x.cwiseProduct(x));
