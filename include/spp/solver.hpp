@@ -115,8 +115,9 @@ struct SolveStats {
   /// Dismissed, not reported.
   long pole_line_artifacts = 0;
   // Causes of an Incomplete status, counted:
-  long uncertified_steps = 0;  ///< steps not proved: those the midpoint check took outside the axis bands, and
-                               ///< steps at the minimum length where g touches zero (near-double roots)
+  long uncertified_steps = 0;  ///< steps not proved: those the midpoint check took outside the axis bands, the
+                               ///< steps of monotone runs no point of proved sign closed, and steps at the minimum
+                               ///< length where g touches zero (near-double roots)
   long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces whose null vector could not be followed (budget, or turn at min step)

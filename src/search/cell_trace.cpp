@@ -481,10 +481,10 @@ class CellTracer::Impl {
     run = MonotoneRun{};
   }
   // A run no point of proved sign closes: its steps are not proved (g is still monotone over it: at most one root,
-  // located at the first sign change of the computed g).
+  // located at the first sign change of the computed g). Counted as unproved, not as midpoint steps (the midpoint
+  // check did not take them).
   void abandon_run(const Rect& r, int k, MonotoneRun& run, bool& certified) {
     st_.uncertified_steps += run.steps;
-    st_.heuristic_steps += run.steps;
     certified = false;
     if (run.flipped) locate_root(r, k, run.flip_a, run.flip_b);
     run = MonotoneRun{};
