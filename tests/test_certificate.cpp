@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "paper_reference.hpp"
 #include "search/evaluator.hpp"
 #include "search/step_certificate.hpp"
 #include "spp/io.hpp"
@@ -324,6 +325,30 @@ TEST(CertifiedSearch, MonotoneRunsProveARootWhereTwoCurvesRunSideBySide) {
   ASSERT_EQ(r.solutions.size(), 1u);
   EXPECT_NEAR(r.solutions[0].t1, 20.81549, 1e-5);
   EXPECT_NEAR(r.solutions[0].t2, 1.53669, 1e-5);
+}
+
+TEST(CertifiedSearch, FindsBothRootsOnTwoNearlyCoincidentCurvesOfAStiff7DofSystem) {
+  // The situation in which an earlier search missed two real SPPs of a random stiff 7-dof system: two zero curves of
+  // det H nearly coincide (two modes of frequencies 10 and 10 (1 + 1e-5) that barely see the contact; lambda_{k+1}
+  // ~ 1.6e-3 at the roots) and the onset function is small along both (tests/crosscheck/make_near_coincident.py).
+  // Each curve holds one SPP, 3.6e-6 apart in t1; the independent brute force (brute_force.py) finds only the first.
+  // The certified search proves the window and returns both, each a root of the paper's own 2n x 2n equations.
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json");
+  SolveOptions o = window(0.110, 0.113, 0.201, 0.204);
+  o.compute_return_error = false;
+  const SolveResult r = expect_certified_with_default_roots(s, o);
+  ASSERT_EQ(r.solutions.size(), 2u);
+  const double expected[2][2] = {{0.111823204333, 0.202333000865}, {0.111819649129, 0.202339666461}};
+  const ref::PaperForm pf(s);
+  for (const auto& e : expected) {
+    const auto it = std::find_if(r.solutions.begin(), r.solutions.end(), [&](const Solution& x) {
+      return std::abs(x.t1 - e[0]) < 1e-10 && std::abs(x.t2 - e[1]) < 1e-10;
+    });
+    ASSERT_NE(it, r.solutions.end()) << "missing (" << e[0] << ", " << e[1] << ")";
+    const auto [sv_rel, onset] = pf.residuals(it->t1, it->t2);
+    EXPECT_LT(sv_rel, 1e-12);
+    EXPECT_LT(onset, 1e-10);
+  }
 }
 
 TEST(CertifiedSearch, ProvesTheRodWindow) {
