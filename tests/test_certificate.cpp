@@ -302,6 +302,100 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
   }
 }
 
+TEST(AlongCurve, BoundsTheSampledPerturbationOfTheNullVectorAlongTheCurve) {
+  // Property: on random steps of random curves (the paper's chain and stiff 5- and 7-dof systems), E(s) = B(s) - B_x
+  // sampled on the true curve satisfies the signed bounds: |Hp E b_x| and |Gx^T Hp E b_x| componentwise, |Hp E| and
+  // |v_x^T E b_x|, with kappa taken at the largest sampled angle of b(s) to b_x, over boxes widened like certify_step's
+  // margins. (Mutation-checked: dropping the progress mismatch kappa fails it; dropping the phases' nonlinearity rho,
+  // a mean-value bound, is not detected on these samples, 1 500 steps per system either.)
+  const std::vector<std::string> files = {std::string(SPP_SOURCE_DIR) + "/examples/chain5.json",
+                                          std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_spread1e5.json",
+                                          std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json",
+                                          std::string(SPP_SOURCE_DIR) + "/tests/data/stiff7_axis_limit.json"};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const std::string& f : files) {
+    const ModalForm md(load_system(f));
+    const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
+    const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
+    int checked = 0, tighter = 0;
+    for (int trial = 0; trial < 4000 && checked < 120; ++trial) {
+      const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
+      const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
+      const double c1 = a1 + 1e-6 * (b1 - a1), d1 = std::min(b1, T1) - 1e-6 * (b1 - a1);
+      const double c2 = A + 1e-6 * (B - A), d2 = std::min(B, T2) - 1e-6 * (B - A);
+      const int k = static_cast<int>(u(rng) * md.m());
+      const double sa = (c2 - d1) + (d2 - c1 - (c2 - d1)) * u(rng);
+      const double h = (d2 - c1 - (c2 - d1)) * std::pow(10.0, -4.0 + 4.0 * u(rng));
+      CurvePoint pa, pb;
+      if (!curve_point(md, c1, d1, c2, d2, sa, k, pa) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb)) continue;
+      // the box of the step, widened on each side by up to 30% (as certify_step's margins for the ends' position
+      // errors do), inside the cell
+      auto widen = [&](double a, double b, double lo, double hi) {
+        const double w = b - a;
+        return std::pair{std::max(lo, a - 0.3 * w * u(rng)), std::min(hi, b + 0.3 * w * u(rng))};
+      };
+      const auto [lo1, hi1] = widen(std::min(pa.t1, pb.t1), std::max(pa.t1, pb.t1), c1, d1);
+      const auto [lo2, hi2] = widen(std::min(pa.t2, pb.t2), std::max(pa.t2, pb.t2), c2, d2);
+      const search::BorderedForm bf(md, lo1, hi1, lo2, hi2);
+      const search::PhaseBounds F = search::phase_bounds(bf.flight(), lo1, hi1);
+      const search::PhaseBounds C = search::phase_bounds(bf.contact(), lo2, hi2);
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(bf.size()), zeroC = Eigen::VectorXd::Zero(bf.Gx().cols());
+      const search::AlongCurve along(bf, F, C, h, hi1 - lo1, hi2 - lo2, zero, zeroC);
+      if (!along.valid()) continue;
+      // x = the step's start (on the curve), its pseudo-inverse from the full eigenpairs
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(pa.t1, pa.t2));
+      Eigen::Index kz = 0;
+      es.eigenvalues().cwiseAbs().minCoeff(&kz);
+      Eigen::VectorXd inv = es.eigenvalues().cwiseInverse();
+      inv(kz) = 0.0;
+      const Eigen::MatrixXd Hp = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
+      const Eigen::MatrixXd HpG = Hp * bf.Gx(), GHpG = bf.Gx().transpose() * HpG;
+      const Eigen::VectorXd bx = es.eigenvectors().col(kz), yb = bf.Gx().transpose() * bx;
+      const Eigen::VectorXd vx = Hp * bf.onset(), yv = bf.Gx().transpose() * vx;
+      // samples of the true curve, b oriented continuously from x
+      const Eigen::MatrixXd Bx = bf.matrix(pa.t1, pa.t2);
+      std::vector<Eigen::MatrixXd> Es;
+      double S = 0.0;
+      Eigen::VectorXd prev = bx;
+      bool ok = true;
+      for (int i = 1; i <= 30 && ok; ++i) {
+        CurvePoint q;
+        ok = curve_point(md, c1, d1, c2, d2, sa + h * i / 30.0, k, q);
+        if (!ok) break;
+        Eigen::VectorXd x = bf.extend(q.b, q.t1, q.t2).normalized();
+        if (x.dot(prev) < 0) x = -x;
+        prev = x;
+        S = std::max(S, std::sqrt(std::max(0.0, 1.0 - std::pow(x.dot(bx), 2))));
+        Es.push_back(bf.matrix(q.t1, q.t2) - Bx);
+      }
+      if (!ok || S > 0.5) continue;
+      ++checked;
+      const double kap = along.kappa(bx.cwiseAbs(), yb.cwiseAbs(), 1.01 * S + 1e-12);
+      const search::AlongCurve::FirstOrder t =
+          along.first_order(bx, yb, kap, Hp, HpG, Hp.cwiseAbs(), HpG.cwiseAbs(), GHpG.cwiseAbs());
+      const double k2 = along.k2(kap, Hp, HpG), bil = along.bilinear(vx, yv, bx, yb, kap);
+      const double unsigned_k1 = (Hp.cwiseAbs() * F.increment.cwiseProduct(bx.cwiseAbs()) +
+                                  HpG.cwiseAbs() * C.increment.cwiseProduct(yb.cwiseAbs()))
+                                     .norm();
+      tighter += t.F.norm() < 0.5 * unsigned_k1 ? 1 : 0;
+      const double tol = 1e-9 * (1.0 + Bx.norm()) * (Hp.norm() + 1.0);
+      for (const Eigen::MatrixXd& E : Es) {
+        const Eigen::VectorXd w = Hp * E * bx;
+        for (Eigen::Index i = 0; i < w.size(); ++i) EXPECT_LE(std::abs(w(i)), t.F(i) + tol) << f << " h " << h;
+        const Eigen::VectorXd wc = bf.Gx().transpose() * w;
+        for (Eigen::Index i = 0; i < wc.size(); ++i) EXPECT_LE(std::abs(wc(i)), t.C(i) + tol) << f << " h " << h;
+        EXPECT_LE((Hp * E).norm(), k2 + tol) << f << " h " << h;
+        EXPECT_LE(std::abs(vx.dot(E * bx)), bil + tol * (1.0 + vx.norm())) << f << " h " << h;
+      }
+    }
+    EXPECT_GE(checked, 60) << f;
+    EXPECT_GE(tighter, 1) << f;  // the signed bound is the one that matters somewhere (stiff modes moving together)
+    std::cout << f << ": " << checked << " steps checked, signed first-order bound < half the unsigned on " << tighter
+              << "\n";
+  }
+}
+
 TEST(CertifiedSearch, ProvesAStiffWindowWithTheSameRoots) {
   // A random 4-dof system with stiffness spread 1e5, 8 x 8 quarter periods: with the Davis-Kahan bounds alone, 1 092
   // of its steps could not be proved (they divide the stiff modes' part by the small gap); with the spectral bounds

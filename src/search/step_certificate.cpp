@@ -22,7 +22,7 @@ double weighted_norm(const Eigen::VectorXd& weights, const Eigen::VectorXd& v) {
 }  // namespace
 
 const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const BorderedForm& bf, double t1, double t2,
-                                                                      bool& computed) {
+                                                                     bool& computed) {
   const std::vector<int> key = bf.key();
   for (Entry& e : entries_)
     if (e.used && e.t1 == t1 && e.t2 == t2 && e.key == key) {
@@ -45,6 +45,10 @@ namespace {
 double decomposition_error(const Eigen::VectorXd& lam) {
   return 16.0 * static_cast<double>(lam.size()) * std::numeric_limits<double>::epsilon() * lam.cwiseAbs().maxCoeff();
 }
+
+// Bootstrap of AlongCurve's angle where the unsigned bound fails: the first assumed angle (sin), and the rounds.
+constexpr double kBootstrapAngle = 0.25;
+constexpr int kBootstrapRounds = 3;
 }  // namespace
 
 // The derivation is in the header (spectral_bounds).
@@ -107,8 +111,55 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
           iC.cwiseProduct(yv).norm() * r.sin + err * vx.norm();
     return r;
   };
-  const Reach R = reach_over(dF, dC);
-  const double k2 = R.k2, sin = R.sin, cos = R.cos;
+  Reach R = reach_over(dF, dC);
+  // First-order terms sup |Hp E b_x| (flight and contact bases) and sup |v_x^T E b_x| from the unsigned increments;
+  // the signed form below may tighten them.
+  Vec firstF = aHp * dF.cwiseProduct(abx) + aHpG * dC.cwiseProduct(ayb);
+  Vec firstC = aHpG.transpose() * dF.cwiseProduct(abx) + aGHpG * dC.cwiseProduct(ayb);
+  Vec firstvF = aHp * dF.cwiseProduct(avx) + aHpG * dC.cwiseProduct(ayv);
+  Vec firstvC = aHpG.transpose() * dF.cwiseProduct(avx) + aGHpG * dC.cwiseProduct(ayv);
+  double first_g = dF.cwiseProduct(avx).dot(abx) + dC.cwiseProduct(ayv).dot(ayb);
+  double k2 = R.k2;
+  {
+    // Along the curve (header): E(s) = u E_box + remainders, E_box the exact difference of the box's two corners.
+    const double ex1 = 2.0 * x.pos_err + 4.0 * eps * std::abs(x.t1), ex2 = 2.0 * x.pos_err + 4.0 * eps * std::abs(x.t2);
+    const AlongCurve along(bf, F, C, hi_s - lo_s, hi1 - lo1, hi2 - lo2,
+                           phase_bounds(bf.flight(), std::max(lo1, x.t1 - ex1), std::min(hi1, x.t1 + ex1)).increment,
+                           phase_bounds(bf.contact(), std::max(lo2, x.t2 - ex2), std::min(hi2, x.t2 + ex2)).increment);
+    if (along.valid()) {
+      // Bootstrap on the angle S of b(s) to b_x: from an assumed S (the unsigned bound where it holds) the signed
+      // bounds give S'; S' < S proves S' (by continuity from the true curve point at x, where u = v = 0), and a bound
+      // computed under a proved S is proved.
+      bool proved = R.k2 < 0.5;
+      double S = proved ? R.sin : kBootstrapAngle, kappa = 1.0;
+      for (int it = 0; it < kBootstrapRounds; ++it) {
+        const double kap = along.kappa(abx, ayb, S);
+        const AlongCurve::FirstOrder t = along.first_order(bx, yb, kap, Hp, HpG, aHp, aHpG, aGHpG);
+        const double k1s = t.F.norm() + e_gap, k2s = along.k2(kap, Hp, HpG) + e_gap;
+        if (!(k2s < 0.5)) break;
+        const double tt = k1s / (1.0 - k2s), Sn = tt / std::sqrt(1.0 + tt * tt);
+        if (!proved && !(Sn < S)) break;
+        proved = true;
+        kappa = std::min(kappa, kap);
+        k2 = std::min(k2, k2s);
+        firstF = firstF.cwiseMin(t.F);
+        firstC = firstC.cwiseMin(t.C);
+        if (!(R.k2 < 0.5) || Sn < R.sin) {
+          R.sin = Sn;
+          R.cos = 1.0 / std::sqrt(1.0 + tt * tt);
+        }
+        S = R.sin;
+      }
+      if (proved) {
+        const AlongCurve::FirstOrder tv = along.first_order(vx, yv, kappa, Hp, HpG, aHp, aHpG, aGHpG);
+        firstvF = firstvF.cwiseMin(tv.F);
+        firstvC = firstvC.cwiseMin(tv.C);
+        first_g = std::min(first_g, along.bilinear(vx, yv, bx, yb, kappa));
+      }
+    }
+  }
+  R.g = first_g + (dF.cwiseProduct(vx).norm() + dC.cwiseProduct(yv).norm()) * R.sin + err * vx.norm();
+  const double sin = R.sin, cos = R.cos;
   if (!(k2 < 0.5)) return sb;
   // g of the true curve point at s_x (within pos_err of x in t1 and t2; tan evaluated at a rounded t): the mean value
   // range below starts from it, not from g_x
@@ -122,9 +173,11 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   sb.g_x = gx;
   const double db_norm = std::sqrt(2.0 * (1.0 - cos));
   // componentwise |b(s) - b_x| (flight basis dbF, contact basis dbC)
-  const Vec eF = dF.cwiseProduct((abx.array() + sin).matrix()), eC = dC.cwiseProduct((ayb.array() + sin).matrix());
-  const Vec dbF = (aHp * eF + aHpG * eC + ((1.0 - cos) * abx.array() + e_gap).matrix()).cwiseMin(db_norm);
-  const Vec dbC = (aHpG.transpose() * eF + aGHpG * eC + ((1.0 - cos) * ayb.array() + e_gap).matrix()).cwiseMin(db_norm);
+  // (first order: E b_x; second: E (b(s) - b_x), |b(s) - b_x| <= sin per component)
+  const Vec dbF =
+      (firstF + sin * (aHp * dF + aHpG * dC) + ((1.0 - cos) * abx.array() + e_gap).matrix()).cwiseMin(db_norm);
+  const Vec dbC = (firstC + sin * (aHpG.transpose() * dF + aGHpG * dC) + ((1.0 - cos) * ayb.array() + e_gap).matrix())
+                      .cwiseMin(db_norm);
 
   // g over the step (g = alpha g_x - v_x^T E b(s) from the computed x itself: no end error)
   sb.g_lo = std::min(cos * gx, gx) - R.g;
@@ -136,12 +189,12 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   if (!(den > 0.1)) return sb;
   const double vmax = (vx.norm() + gmax * sin / gap) / den;
   const double dv_norm = k2 * vmax + gmax * sin / gap + sin * vmax / cos;
-  const Vec fF = dF.cwiseProduct((avx.array() + dv_norm).matrix()),
-            fC = dC.cwiseProduct((ayv.array() + dv_norm).matrix());
   const double dv_iso = err * vmax / gap + gmax * sin / gap;
-  const Vec dvF = (aHp * fF + aHpG * fC + (dv_iso + abx.array() * (sin * vmax / cos)).matrix()).cwiseMin(dv_norm);
+  const Vec dvF = (firstvF + dv_norm * (aHp * dF + aHpG * dC) + (dv_iso + abx.array() * (sin * vmax / cos)).matrix())
+                      .cwiseMin(dv_norm);
   const Vec dvC =
-      (aHpG.transpose() * fF + aGHpG * fC + (dv_iso + ayb.array() * (sin * vmax / cos)).matrix()).cwiseMin(dv_norm);
+      (firstvC + dv_norm * (aHpG.transpose() * dF + aGHpG * dC) + (dv_iso + ayb.array() * (sin * vmax / cos)).matrix())
+          .cwiseMin(dv_norm);
 
   // P = -v^T F' b (flight basis), Q = -v^T C' b (contact basis): value at x and the variation over the step
   auto part = [](const Vec& d1x, const PhaseBounds& B, const Vec& v, const Vec& b, const Vec& dv, const Vec& db,
@@ -205,6 +258,62 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   sb.g_hi = std::min(sb.g_hi, mhi + sb.g_err);
   sb.valid = std::isfinite(sb.g_lo) && std::isfinite(sb.g_hi) && std::isfinite(sb.dg_lo) && std::isfinite(sb.dg_hi);
   return sb;
+}
+
+AlongCurve::AlongCurve(const BorderedForm& bf, const PhaseBounds& F, const PhaseBounds& C, double length, double w1,
+                       double w2, Vec offset_F, Vec offset_C)
+    : G_(bf.Gx()), F_(F), C_(C), h_(length), w1_(w1), w2_(w2), iFx_(std::move(offset_F)), iCx_(std::move(offset_C)) {
+  rhoF_ = ratio_minus_one(F);
+  rhoC_ = ratio_minus_one(C);
+}
+
+bool AlongCurve::valid() const {
+  return w1_ > 0 && w2_ > 0 && h_ > 0 && rhoF_.allFinite() && rhoC_.allFinite();
+}
+
+double AlongCurve::kappa(const Vec& abx, const Vec& ayb, double S) const {
+  const double db = std::sqrt(2.0 * (1.0 - std::sqrt(std::max(0.0, 1.0 - S * S))));
+  auto form = [db](const Vec& w, const Vec& ab, bool upper) {
+    const Vec r = upper ? Vec(ab.array() + db) : Vec((ab.array() - db).cwiseMax(0.0));
+    return w.dot(r.cwiseProduct(r));
+  };
+  const double l1lo = form(F_.d1_min, abx, false), l1hi = form(F_.d1, abx, true);
+  const double l2lo = form(C_.d1_min, ayb, false), l2hi = form(C_.d1, ayb, true);
+  if (!(l1lo + l2hi > 0 && l1hi + l2lo > 0)) return 1.0;
+  const double p = l2lo / (l1hi + l2lo), q = l2hi / (l1lo + l2hi);  // |tau'| in [p, q]
+  return std::min(1.0, h_ * std::max({q / w1_ - (1.0 - q) / w2_, (1.0 - p) / w2_ - p / w1_, 0.0}));
+}
+
+AlongCurve::FirstOrder AlongCurve::first_order(const Vec& a, const Vec& ya, double kappa, const Mat& Hp, const Mat& HpG,
+                                               const Mat& aHp, const Mat& aHpG, const Mat& aGHpG) const {
+  const Vec w = Hp * (-F_.increment.cwiseProduct(a)) + HpG * C_.increment.cwiseProduct(ya);  // Hp E_box a
+  const Vec ra = weight_F().cwiseProduct(a.cwiseAbs()), rya = weight_C(kappa).cwiseProduct(ya.cwiseAbs());
+  return {w.cwiseAbs() + aHp * ra + aHpG * rya, (G_.transpose() * w).cwiseAbs() + aHpG.transpose() * ra + aGHpG * rya};
+}
+
+double AlongCurve::k2(double kappa, const Mat& Hp, const Mat& HpG) const {
+  const Mat HpE = -Hp * F_.increment.asDiagonal() + HpG * C_.increment.asDiagonal() * G_.transpose();
+  return HpE.norm() + (Hp * weight_F().asDiagonal()).norm() + (HpG * weight_C(kappa).asDiagonal()).norm();
+}
+
+double AlongCurve::bilinear(const Vec& v, const Vec& yv, const Vec& b, const Vec& yb, double kappa) const {
+  const double box = -v.dot(F_.increment.cwiseProduct(b)) + yv.dot(C_.increment.cwiseProduct(yb));
+  return std::abs(box) + weight_F().cwiseProduct(v.cwiseAbs()).dot(b.cwiseAbs()) +
+         weight_C(kappa).cwiseProduct(yv.cwiseAbs()).dot(yb.cwiseAbs());
+}
+
+Eigen::VectorXd AlongCurve::ratio_minus_one(const PhaseBounds& P) {
+  Vec r(P.d1.size());
+  for (Eigen::Index i = 0; i < r.size(); ++i) r(i) = P.d1_min(i) > 0 ? std::min(1.0, P.d1(i) / P.d1_min(i) - 1.0) : 1.0;
+  return r;
+}
+
+Eigen::VectorXd AlongCurve::weight_F() const {
+  return rhoF_.cwiseProduct(F_.increment) + iFx_;
+}
+
+Eigen::VectorXd AlongCurve::weight_C(double kappa) const {
+  return (rhoC_.array() + kappa).min(1.0).matrix().cwiseProduct(C_.increment) + iCx_;
 }
 
 PhaseBounds phase_bounds(const PhaseFamily& f, double lo, double hi) {
@@ -379,8 +488,8 @@ BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, dou
   return o;
 }
 
-StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
-                             const StepBox& cell, EigenCache* cache) {
+StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b, const StepBox& cell,
+                             EigenCache* cache) {
   StepCertificate cert = certify_step_weyl(md, sym, a, b);
   if (cert.verdict != StepVerdict::Uncertified) {  // each of its proofs needs |g_b| beyond its error
     cert.end_sign = b.g > 0 ? 1 : -1;

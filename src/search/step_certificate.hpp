@@ -100,8 +100,8 @@ class EigenCache {
 /// The bounds of the header comment, for the step a -> b of curve k (s_b > s_a) inside `cell`: the Weyl /
 /// Davis-Kahan bounds first (no evaluation of H), then, where they fail (axial symmetry), the spectral bounds from the
 /// full eigenpairs at b, then at a.
-StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b,
-                             const StepBox& cell, EigenCache* cache = nullptr);
+StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b, const StepBox& cell,
+                             EigenCache* cache = nullptr);
 
 // Spectrally weighted bounds of g and g' over a step, from the full eigenpairs at one end x (axial symmetry,
 // c = z / |z|). Notation: H_x = U diag(lam) U^T (lam_k ~ 0, b_x = u_k), Hp = U diag(1 / lam_j, j != k) U^T its
@@ -119,6 +119,9 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
 // the cancellation between P and Q exact at x, and the range of g through the mean value theorem with that range
 // (tighter where g stays small along a whole curve). No root on the step when the range of g excludes 0, or when g
 // is monotone and the ends' true signs agree; exactly one when g is monotone and they differ.
+// Along the curve: the bounds above take |E| entrywise, as if t1 and t2 could move independently over the box; on the
+// curve t1 falls while t2 rises, and the stiff modes' parts of E cancel on b (AlongCurve): the first-order terms are
+// also bounded through the exact corner difference E_box, with the smaller bound kept.
 // Written here because no library bounds eigenvector derivatives of a structured matrix family.
 struct SpectralBounds {
   bool valid = false;           ///< false when the perturbation is too large for the bounds (shorten the step)
@@ -167,5 +170,50 @@ struct PhaseBounds {
 PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi);
 /// The same for any family of phases a tan(w t + shift) (bordered_form.hpp).
 PhaseBounds phase_bounds(const PhaseFamily& phases, double lo, double hi);
+
+// The signed form of spectral_bounds' perturbation terms ("Along the curve" in the header). On the step the true curve
+// moves t1 down and t2 up, so with u = (t1(s_x) - t1(s)) / W1 and v = (t2(s) - t2(s_x)) / W2 (W1, W2 the box's
+// widths, u and v in [-1, 1] with the same sign)
+//     H(s) - H(s_x) = u E_box + (v - u) Gx diag(DC) Gx^T + R(s),   E_box = -diag(DF) + Gx diag(DC) Gx^T,
+// DF, DC the phases' increments over the box (E_box is the exact difference of its two corners along the step), and
+// R(s) diagonal in each basis with |R_i| <= rho_i DF_i, rho_i = max f_i' / min f_i' - 1 (mean value theorem), capped
+// at 1. Where b(s) stays within angle S of b_x, |tau'| = l2 / (l1 + l2) lies in [p, q] (l1, l2 bounded as in
+// spectral_bounds), so |v - u| <= kappa = h max(q / W1 - (1 - q) / W2, (1 - p) / W2 - p / W1, 0) for the step's
+// length h. Where a stiff flight mode and a stiff contact mode move together (a curve along which their entries cancel,
+// next to the axis limit points of a stiff system), E_box b_x is small while each increment alone is not: the
+// unsigned bounds add the two and shrink the provable step by the stiff frequency squared over the gap.
+class AlongCurve {
+ public:
+  using Vec = Eigen::VectorXd;
+  using Mat = Eigen::MatrixXd;
+  struct FirstOrder {
+    Vec F, C;  ///< componentwise bounds of |Hp E(s) a| in the flight basis and of |Gx^T Hp E(s) a|
+  };
+  /// F, C: the phases' bounds over the box [lo1, hi1] x [lo2, hi2] (kept by reference); length: the step's length in
+  /// s; w1, w2: the box's widths; offset_F, offset_C: the phases' increments between the computed x and the true
+  /// curve point it stands for (added unsigned).
+  AlongCurve(const BorderedForm& bf, const PhaseBounds& F, const PhaseBounds& C, double length, double w1, double w2,
+             Vec offset_F, Vec offset_C);
+  bool valid() const;
+  /// Bound of |v - u| over the step where b(s) stays within angle S (its sine) of b_x (|b_x|, |Gx^T b_x| given).
+  double kappa(const Vec& abx, const Vec& ayb, double S) const;
+  /// sup over the step of |Hp E(s) a|, componentwise in both bases (ya = Gx^T a; aHp = |Hp|, aHpG = |Hp Gx|, aGHpG =
+  /// |Gx^T Hp Gx| entrywise). E(s) = H(s) - H_x.
+  FirstOrder first_order(const Vec& a, const Vec& ya, double kappa, const Mat& Hp, const Mat& HpG, const Mat& aHp,
+                         const Mat& aHpG, const Mat& aGHpG) const;
+  /// sup over the step of |Hp E(s)| (Frobenius).
+  double k2(double kappa, const Mat& Hp, const Mat& HpG) const;
+  /// sup over the step of |v^T E(s) b|.
+  double bilinear(const Vec& v, const Vec& yv, const Vec& b, const Vec& yb, double kappa) const;
+
+ private:
+  static Vec ratio_minus_one(const PhaseBounds& P);
+  Vec weight_F() const;              // per unit |a_i|: the remainder R and the offset of x (flight basis)
+  Vec weight_C(double kappa) const;  // the same, contact basis, with the progress mismatch kappa
+  const Mat& G_;
+  const PhaseBounds &F_, &C_;
+  double h_, w1_, w2_;
+  Vec iFx_, iCx_, rhoF_, rhoC_;
+};
 
 }  // namespace spp::search
