@@ -379,9 +379,11 @@ TEST(Cli, InputThatCannotFoolIt) {
   // Found by fuzzing malformed inputs: each is refused with a message naming what is wrong, exit 1, no output file.
   const std::string deep = std::string(100000, '[') + "1" + std::string(100000, ']');
   expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,)" + deep + R"(], "g0": 1})",
-                  "field \"w\"[1] must be a number, got a list (1 entries)");  // was a segfault (json::dump recursion)
+                  "nested at most 64 levels deep");  // was a segfault (json::dump recursion)
   expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": )" + deep + "}",
-                  "field \"g0\" must be a number, got a list");
+                  "nested at most 64 levels deep");
+  expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": [[1]]})",
+                  "field \"g0\" must be a number, got a list (1 entries)");
   expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, "g0": 2})",
                   "the key \"g0\" appears twice");
   expect_rejected(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, "G0": 2})",

@@ -281,3 +281,37 @@ TEST(Io, ResultSolutionsOfTheWrongSizeOrSignAreRefused) {
   expect_refused(negative, "field \"solutions\"[0]: t1 and t2 must be positive and finite");
   fs::remove(p);
 }
+
+namespace {
+// load_system of `json` (written to bad.json) must throw std::invalid_argument containing `part`.
+void expect_load_refused(const std::string& json, const std::string& part) {
+  const fs::path p = tmpdir() / "bad.json";
+  write(p, json);
+  try {
+    load_system(p.string());
+    ADD_FAILURE() << "no error for " << json.substr(0, 200);
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+}  // namespace
+
+TEST(Io, DeeplyNestedJsonIsRefusedByTheParserWhereverItIs) {
+  // Found by fuzzing: a 100 000-deep array in "description" or "name" was read without complaint (and anywhere else
+  // it waits for the first recursive copy, comparison or dump to overflow the stack). Refused at the parser.
+  const std::string deep = std::string(100000, '[') + "1" + std::string(100000, ']');
+  const std::string message = "expected JSON nested at most 64 levels deep";
+  for (const char* field : {"description", "name", "w", "g0", "extra"})
+    expect_load_refused(std::string(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, ")") + field +
+                            "\": " + deep + "}",
+                        message);
+  expect_load_refused(std::string(100000, '{') + std::string(100000, '}'), "malformed JSON");  // an object needs keys
+  std::string objects;
+  for (int i = 0; i < 100000; ++i) objects += R"({"a": )";
+  expect_load_refused(objects + "1" + std::string(100000, '}'), message);
+  // 64 levels are read (a message about the content, not the depth)
+  expect_load_refused(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, "extra": )" +
+                          std::string(62, '[') + std::string(62, ']') + "}",
+                      "unknown field \"extra\"");
+}
+

@@ -37,11 +37,22 @@ void check_fields(const json& j, std::initializer_list<const char*> known, const
 
 json read_json_file(const std::string& path) { return parse_json_text(read_file(path), path); }
 
+namespace {
+// Deepest nesting of arrays and objects a file may have. spp's own files nest at most 5 deep (a result's
+// solutions[k].orbit.x0); nlohmann parses iteratively, but copying, comparing or dumping a value recurses once per
+// level, so a 100 000-deep array (fuzzing) must stop at the parser, not overflow the stack later.
+constexpr int kMaxJsonDepth = 64;
+struct TooDeep {};  // thrown out of the parser callback: stops the parse at the first level too deep
+}  // namespace
+
 json parse_json_text(const std::string& text, const std::string& path) {
   // Duplicate keys are refused (nlohmann keeps the last one silently): one set of keys per open object.
   std::vector<std::unordered_set<std::string>> keys;
   std::string duplicate;
-  const json::parser_callback_t seen = [&](int, json::parse_event_t event, json& parsed) {
+  const json::parser_callback_t seen = [&](int depth, json::parse_event_t event, json& parsed) {
+    if ((event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) &&
+        depth >= kMaxJsonDepth)
+      throw TooDeep{};
     if (event == json::parse_event_t::object_start) keys.emplace_back();
     if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
     if (event == json::parse_event_t::key && !keys.empty() && duplicate.empty()) {
@@ -55,6 +66,9 @@ json parse_json_text(const std::string& text, const std::string& path) {
     j = json::parse(text, seen);
   } catch (const json::exception& e) {
     invalid(path + ": malformed JSON: " + e.what());
+  } catch (const TooDeep&) {
+    invalid(path + ": expected JSON nested at most " + std::to_string(kMaxJsonDepth) +
+            " levels deep (lists in lists, objects in objects), got deeper");
   }
   if (!duplicate.empty()) invalid(path + ": the key \"" + duplicate + "\" appears twice in one object");
   return j;
