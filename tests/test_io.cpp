@@ -315,3 +315,11 @@ TEST(Io, DeeplyNestedJsonIsRefusedByTheParserWhereverItIs) {
                       "unknown field \"extra\"");
 }
 
+TEST(Io, NameOrDescriptionThatIsNotAStringIsRefused) {
+  // Was ignored silently (the name read as empty): a list or number there is named like any other wrong type.
+  expect_load_refused(R"({"name": [1], "M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "field \"name\" must be a string, got a list (1 entries)");
+  expect_load_refused(R"({"description": 3, "M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "field \"description\" must be a string, got 3");
+}
+

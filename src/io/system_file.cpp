@@ -15,8 +15,13 @@ double g0_field(const json& j, const std::string& where) {
   return j.at("g0").get<double>();
 }
 
-std::string name_field(const json& j) {
-  return j.contains("name") && j.at("name").is_string() ? j.at("name").get<std::string>() : "";
+// "name" and "description" are optional strings: any other value is refused, not ignored (a list there was taken
+// silently, however deep).
+std::string name_field(const json& j, const std::string& where) {
+  for (const char* k : {"name", "description"})
+    if (j.contains(k) && !j.at(k).is_string())
+      invalid(where + ": field \"" + k + "\" must be a string, got " + describe(j.at(k)));
+  return j.contains("name") ? j.at("name").get<std::string>() : "";
 }
 
 // {"constant": A, "<name>": B} -> (A, B); a plain value -> (value, empty).
@@ -48,7 +53,7 @@ System system_from_json(const json& j, const std::string& where, const std::stri
   Eigen::VectorXd w = vector_field(j, "w", where);
   const double g0 = g0_field(j, where);
   try {
-    return System(std::move(M), std::move(K), std::move(w), g0, name_field(j));
+    return System(std::move(M), std::move(K), std::move(w), g0, name_field(j, where));
   } catch (const std::invalid_argument& e) {
     invalid(where + ": " + e.what());
   }
@@ -94,7 +99,7 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   const double g0 = g0_field(j, where);
   try {
     return ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0), std::move(w1),
-                            g0, par, name_field(j));
+                            g0, par, name_field(j, where));
   } catch (const std::invalid_argument& e) {
     invalid(where + ": " + e.what());
   }
