@@ -323,3 +323,11 @@ TEST(Io, NameOrDescriptionThatIsNotAStringIsRefused) {
                       "field \"description\" must be a string, got 3");
 }
 
+TEST(Io, UnknownFieldBesideMatrixMarketIsNamed) {
+  // {"matrix_market": "M.mtx", "symmetric": true} read M.mtx and dropped the rest silently.
+  const fs::path d = tmpdir();
+  write(d / "I.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n0\n0\n1\n");
+  expect_load_refused(
+      R"({"M": {"matrix_market": "I.mtx", "symmetric": true}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+      "field \"M\": unknown field \"symmetric\" (expected: matrix_market)");
+}

@@ -93,6 +93,7 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
   if (v.is_object()) {
     if (!v.contains("matrix_market") || !v.at("matrix_market").is_string())
       invalid(where + ": field \"" + key + "\" must be a list of rows or {\"matrix_market\": \"file.mtx\"}");
+    check_fields(v, {"matrix_market"}, where + ": field \"" + key + "\"");
     fs::path p = v.at("matrix_market").get<std::string>();
     if (p.is_relative()) p = fs::path(dir) / p;
     try {
