@@ -331,3 +331,17 @@ TEST(Io, UnknownFieldBesideMatrixMarketIsNamed) {
       R"({"M": {"matrix_market": "I.mtx", "symmetric": true}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
       "field \"M\": unknown field \"symmetric\" (expected: matrix_market)");
 }
+
+TEST(Io, ParametricPartErrorsNameTheMatrixAndThePart) {
+  // An entry of K's "k2" part that is not a number was reported as field "k2"[1][1], without saying it is K's part.
+  const fs::path p = tmpdir() / "bad_param.json";
+  write(p, R"({"parameter": {"name": "k2", "min": 1, "max": 2}, "M": [[1,0],[0,1]],
+    "K": {"constant": [[1,0],[0,0]], "k2": [[1,-1],[-1,"x"]]}, "w": [0,-1], "g0": 1})");
+  try {
+    load_parametric_system(p.string());
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("field \"K\": field \"k2\"[1][1] must be a number"), std::string::npos)
+        << e.what();
+  }
+}

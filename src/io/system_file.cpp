@@ -27,7 +27,7 @@ std::string name_field(const json& j, const std::string& where) {
 // {"constant": A, "<name>": B} -> (A, B); a plain value -> (value, empty).
 template <typename Read>
 auto affine_field(const json& j, const char* key, const std::string& name, const std::string& where, Read read) {
-  using T = decltype(read(j, key));
+  using T = decltype(read(j, key, where));
   if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\"");
   const json& v = j.at(key);
   if (v.is_object() && v.contains("constant")) {
@@ -35,11 +35,12 @@ auto affine_field(const json& j, const char* key, const std::string& name, const
       if (k != "constant" && k != name)
         invalid(where + ": field \"" + key + "\" has a part \"" + k + "\": expected only \"constant\" and \"" + name +
              "\" (the declared parameter)");
-    T c = read(v, "constant");
-    T m = v.contains(name) ? read(v, name.c_str()) : T();
+    const std::string part = where + ": field \"" + key + "\"";  // errors name both, e.g. "K": "k2"[0][1]
+    T c = read(v, "constant", part);
+    T m = v.contains(name) ? read(v, name.c_str(), part) : T();
     return std::make_pair(std::move(c), std::move(m));
   }
-  return std::make_pair(read(j, key), T());
+  return std::make_pair(read(j, key, where), T());
 }
 
 }  // namespace
@@ -91,8 +92,8 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   par.min = p.at("min").get<double>();
   par.max = p.at("max").get<double>();
   if (par.name == "constant") invalid(where + ": the parameter cannot be named \"constant\"");
-  auto mat = [&](const json& o, const char* k) { return matrix_field(o, k, where, dir); };
-  auto vec = [&](const json& o, const char* k) { return vector_field(o, k, where); };
+  auto mat = [&](const json& o, const char* k, const std::string& at) { return matrix_field(o, k, at, dir); };
+  auto vec = [&](const json& o, const char* k, const std::string& at) { return vector_field(o, k, at); };
   auto [M0, M1] = affine_field(j, "M", par.name, where, mat);
   auto [K0, K1] = affine_field(j, "K", par.name, where, mat);
   auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
