@@ -519,3 +519,22 @@ TEST(Cli, TrajectoryFromAResultNeedsNoSystemFile) {
   EXPECT_NE(other.out.find("another system"), std::string::npos) << other.out;
   EXPECT_FALSE(fs::exists(c));
 }
+
+TEST(Cli, OutputEqualToAMatrixMarketInputIsRefused) {
+  // An output named like a Matrix Market file the system reads was written over it (only the JSON file was
+  // compared): the .mtx must be left as it was, with exit 1.
+  const std::string mtx_text = "%%MatrixMarket matrix array real general\n2 2\n1\n0\n0\n1\n";
+  const std::string mtx = write("M_in.mtx", mtx_text);
+  const std::string sys =
+      write("mm_in.json", R"({"M": {"matrix_market": "M_in.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})");
+  for (const std::string& cmd : {"solve " + sys + " --t1-max 5 --t2-max 5 --csv " + mtx,
+                                 "solve " + sys + " --t1-max 5 --t2-max 5 --json " + mtx,
+                                 "simulate " + sys + " --x0 0,0 --v0 0,1 --duration 1 --csv " + mtx}) {
+    const CliRun r = run(cmd);
+    EXPECT_EQ(r.code, 1) << cmd << ": " << r.out;
+    EXPECT_NE(r.out.find("M_in.mtx\" of this run"), std::string::npos) << r.out;
+    std::ifstream in(mtx);
+    const std::string now((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(now, mtx_text) << cmd << " wrote over its input";
+  }
+}

@@ -28,7 +28,7 @@ Subcommand add_generate(CLI::App& app);
 
 /// An output file named by option `opt`: refused before any work when it is one of the inputs or of the run's other
 /// outputs (it would be replaced) or when its directory does not exist (the work would be lost at the end).
-void check_output(const std::string& out, const std::string& opt, std::initializer_list<std::string> inputs);
+void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs);
 /// "1,2.5,3" -> {1, 2.5, 3}; anything else is refused naming the option.
 std::vector<double> parse_list(const std::string& s, const char* opt);
 

@@ -6,7 +6,7 @@
 
 namespace spp::cli {
 
-void check_output(const std::string& out, const std::string& opt, std::initializer_list<std::string> inputs) {
+void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs) {
   namespace fs = std::filesystem;
   if (out.empty()) return;
   std::error_code ec;

@@ -18,7 +18,7 @@ struct ContinueArgs {
 };
 
 int run(ContinueArgs& a) {
-  check_output(a.json, "--json", {a.system});
+  check_output(a.json, "--json", system_file_inputs(a.system));  // the system file and its Matrix Market files
   const ParametricSystem ps = load_parametric_system(a.system);
   a.options.symmetry = a.symmetry == "point" ? Symmetry::Point : Symmetry::Axial;
   const ContinuationResult cr = continue_branches(ps, a.options);

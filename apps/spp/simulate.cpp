@@ -17,8 +17,10 @@ struct SimulateArgs {
 };
 
 int run(SimulateArgs& a) {
-  check_output(a.csv, "--csv", {a.system});
-  check_output(a.events, "--events", {a.system, a.csv});
+  std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
+  check_output(a.csv, "--csv", inputs);
+  inputs.push_back(a.csv);
+  check_output(a.events, "--events", inputs);
   const System sys = load_system(a.system);
   const std::vector<double> x0 = parse_list(a.x0, "--x0"), v0 = parse_list(a.v0, "--v0");
   a.options.validate();

@@ -89,8 +89,10 @@ int run(SolveArgs& a) {
   if (!a.box && !(a.t1_max_given->count() > 0 && a.t2_max_given->count() > 0))
     throw std::invalid_argument("--t1-max and --t2-max are required (or --box: the fundamental box)");
   if (!a.box) a.options.validate();  // with --box, once the box is known (below)
-  check_output(a.json, "--json", {a.system});
-  check_output(a.csv, "--csv", {a.system, a.json});
+  std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
+  check_output(a.json, "--json", inputs);
+  inputs.push_back(a.json);
+  check_output(a.csv, "--csv", inputs);
   const bool parametric = file_declares_parameter(a.system);
   const bool at_given = a.at_given->count() > 0;
   if (!parametric && at_given)

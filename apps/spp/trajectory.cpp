@@ -20,7 +20,9 @@ struct TrajectoryArgs {
 };
 
 int run(TrajectoryArgs& a) {
-  check_output(a.csv, "--csv", {a.system, a.result});
+  std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
+  inputs.push_back(a.result);
+  check_output(a.csv, "--csv", inputs);
   if (a.system.empty() && a.result.empty())
     throw std::invalid_argument("trajectory: give SYSTEM.json with --t1 and --t2, or --result and --solution");
   // a result file holds the system it was solved for: SYSTEM.json is then optional, and must be that system

@@ -141,6 +141,27 @@ bool file_declares_parameter(const std::string& path) {
   return io::declares_parameter(io::read_json_file(path));
 }
 
+std::vector<std::string> system_file_inputs(const std::string& path) {
+  if (path.empty()) return {};
+  std::vector<std::string> files = {path};
+  const io::json j = io::read_json_file(path);
+  if (!j.is_object()) return files;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(path).parent_path();
+  auto add = [&](const io::json& v) {  // {"matrix_market": "file.mtx"}, relative to the system file
+    if (!v.is_object() || !v.contains("matrix_market") || !v.at("matrix_market").is_string()) return;
+    fs::path p = v.at("matrix_market").get<std::string>();
+    files.push_back((p.is_relative() ? dir / p : p).string());
+  };
+  for (const char* key : {"M", "K"}) {
+    if (!j.contains(key)) continue;
+    add(j.at(key));
+    if (j.at(key).is_object())  // the parts of a parametric matrix ({"constant": ..., "k2": ...})
+      for (const auto& [_, part] : j.at(key).items()) add(part);
+  }
+  return files;
+}
+
 std::string system_json(const System& system, int indent) {
   return io::system_to_json(system).dump(indent) + "\n";
 }

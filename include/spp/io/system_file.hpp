@@ -5,6 +5,7 @@
 // "k2": value}, affine in the parameter). Unknown fields and keys given twice are refused.
 
 #include <string>
+#include <vector>
 
 #include "spp/parametric.hpp"
 #include "spp/system.hpp"
@@ -18,6 +19,10 @@ System load_system(const std::string& path);
 ParametricSystem load_parametric_system(const std::string& path);
 /// True when the JSON file declares a "parameter" (read it with load_parametric_system).
 bool file_declares_parameter(const std::string& path);
+/// The files that loading the system file `path` reads: itself and each Matrix Market file it names, resolved as the
+/// loaders resolve them (an output must be none of them). Empty for an empty path; throws like load_system when the
+/// file cannot be read as JSON.
+std::vector<std::string> system_file_inputs(const std::string& path);
 
 /// The system file's text (load_system reads it back). indent < 0: one line.
 std::string system_json(const System& system, int indent = 2);
