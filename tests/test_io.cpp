@@ -345,3 +345,11 @@ TEST(Io, ParametricPartErrorsNameTheMatrixAndThePart) {
         << e.what();
   }
 }
+
+TEST(Io, MatrixMarketHexadecimalNumberIsRefused) {
+  // strtod read "0x1p1" as 2 (a C99 hexadecimal float); Matrix Market numbers are decimal.
+  const fs::path d = tmpdir();
+  write(d / "hex.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 0x1p1\n2 2 1\n");
+  expect_load_refused(R"({"M": {"matrix_market": "hex.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "bad entry \"1 1 0x1p1\"");
+}

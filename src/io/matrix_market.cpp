@@ -19,7 +19,8 @@ namespace {
 // Whole-token number parsing ("1.5xyz" is not 1.5). Written here: std::from_chars for double is not in g++ 12's
 // libstdc++ for every target, and strtod with an end check is the portable equivalent.
 bool parse_number(const std::string& token, double& v) {
-  if (token.empty()) return false;
+  // decimal only: strtod also reads hexadecimal ("0x1p3" = 8), which Matrix Market does not have
+  if (token.empty() || token.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
   char* end = nullptr;
   errno = 0;
   v = std::strtod(token.c_str(), &end);
