@@ -102,6 +102,13 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
     os << "system: g0 / |w| = " << g0 << " / " << nw << " overflows: rescale w and g0 by one factor";
     detail::invalid(os.str());
   }
+  // a non-zero gap that divides to 0 or a denormal would be taken for the zero-gap case, or lose its digits
+  if (g0 != 0.0 && std::abs(g0_) < std::numeric_limits<double>::min()) {
+    std::ostringstream os;
+    os << "system: g0 / |w| = " << g0 << " / " << nw
+       << " underflows (below the normal doubles): rescale w and g0 by one factor";
+    detail::invalid(os.str());
+  }
 }
 
 System System::normalized(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, double input_norm,

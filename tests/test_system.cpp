@@ -79,3 +79,12 @@ TEST(System, AcceptsSymmetryWithinRelativeTolerance) {
   K(0, 1) += 1e-6;  // relative 1e-12
   EXPECT_NO_THROW(System(I2(), K, w2(), 1));
 }
+
+TEST(System, GapThatUnderflowsWhenDividedByNormWIsRefused) {
+  // g0 = 1e-200 with |w| = 1e200 divided to 0 and was then refused as a zero-gap system ("g0 = 0 ... declare a
+  // parameter"), a message about another case; a denormal quotient kept a few digits of g0.
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1e200), 1e-200); }, "g0 / |w| = 1e-200 / 1e+200 underflows");
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1e10), 1e-300); }, "underflows");
+  EXPECT_EQ(System(I2(), K2(), Eigen::Vector2d(0, -1e200), 0.0).g0(), 0.0);  // a zero gap stays a zero gap
+  EXPECT_NEAR(System(I2(), K2(), Eigen::Vector2d(0, -1e200), 1e-100).g0(), 1e-300, 1e-314);
+}
