@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "spp/detail/out_of_memory.hpp"
+
 namespace spp {
 
 namespace {
@@ -34,7 +36,12 @@ System chain(int n, const std::vector<double>& masses, const std::vector<double>
          << k[i];
       throw std::invalid_argument(os.str());
     }
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd M, K;
+  detail::naming_allocation("chain: M and K of n = " + std::to_string(n) + " dofs, each " + detail::dense_size(n, n),
+                            [&] {
+                              M = Eigen::MatrixXd::Zero(n, n);
+                              K = Eigen::MatrixXd::Zero(n, n);
+                            });
   for (int i = 0; i < n; ++i) {
     M(i, i) = m[i];
     K(i, i) += k[i];

@@ -6,9 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "spp/detail/out_of_memory.hpp"
+
 namespace spp {
 
-ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) : n_(system.n()) {
+// (a function-try-block: the eigensolvers' n x n workspaces are what runs out first for a large n)
+ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) try : n_(system.n()) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(system.K(), system.M());
   Eigen::VectorXd omega_all = ges.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   Eigen::MatrixXd Phi_all = ges.eigenvectors();  // M-normalised
@@ -74,6 +77,10 @@ ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_
     if (g.dot(G_.col(0)) < 0) g = -g;
     G_.col(0) = g;
   }
+} catch (const std::bad_alloc&) {
+  const double n = static_cast<double>(system.n());
+  throw detail::OutOfMemory("out of memory: the modal form of n = " + std::to_string(system.n()) +
+                            " dofs (a few eigenvector matrices, each " + detail::dense_size(n, n) + ")");
 }
 
 const char* to_string(Symmetry s) {

@@ -1,5 +1,6 @@
 #include "spp/system.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/detail/out_of_memory.hpp"
 
 #include <cmath>
 #include <limits>
@@ -85,8 +86,13 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
     os << "system: g0 must be finite, got " << g0;
     detail::invalid(os.str());
   }
-  M_ = check_spd(M, "M");
-  K_ = check_spd(K, "K");
+  // the checks hold a few n x n copies (symmetrised, scaled, the eigensolver's)
+  detail::naming_allocation("system: checking M and K of n = " + std::to_string(n) + " dofs, each " +
+                                detail::dense_size(static_cast<double>(n), static_cast<double>(n)),
+                            [&] {
+                              M_ = check_spd(M, "M");
+                              K_ = check_spd(K, "K");
+                            });
   const double nw = w.stableNorm();  // no overflow for |w_i| ~ 1e200, no underflow for 1e-200
   if (!(nw > 0.0)) detail::invalid("system: w must be non-zero, got the zero vector");
   if (!std::isfinite(nw) || nw < std::numeric_limits<double>::min()) {

@@ -8,6 +8,7 @@
 #include <new>
 
 #include "command.hpp"
+#include "spp/detail/out_of_memory.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"spp: periodic orbits with one lasting contact phase per period (SPPs) of vibro-impact systems"};
@@ -34,6 +35,9 @@ int main(int argc, char** argv) {
   try {
     for (const spp::cli::Subcommand& c : commands)
       if (c.app->parsed()) return c.run();
+  } catch (const spp::detail::OutOfMemory& e) {  // names what was too large and its size
+    std::cerr << "spp: error: " << e.what() << "\n";
+    return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "spp: error: out of memory: the system or the window needs more memory than this machine gives "
                  "(a smaller window, or --max-cells, bounds the work)\n";

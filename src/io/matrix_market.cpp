@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/text.hpp"
+#include "spp/detail/out_of_memory.hpp"
 
 namespace spp {
 
@@ -83,7 +84,9 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
          " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) + " entries)");
   const bool sym = symmetry == "symmetric";
   if (sym && rows != cols) invalid(where() + ": a symmetric matrix must be square, got " + size[0] + " x " + size[1]);
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, cols);
+  Eigen::MatrixXd A;
+  detail::naming_allocation(where() + ": " + detail::dense_size(static_cast<double>(rows), static_cast<double>(cols)),
+                            [&] { A = Eigen::MatrixXd::Zero(rows, cols); });
   if (coordinate) {
     // Duplicate entries are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one
     // triangle: an entry given in both triangles is refused.
