@@ -341,3 +341,39 @@ def test_out_of_memory_raises_memory_error_naming_what_was_too_large():
     with pytest.raises(MemoryError, match=r"out of memory: chain: M and K of n = 1000000 dofs, each a 1000000 x "
                                           r"1000000 matrix of doubles \(8000 GB\)"):
         spp.chain(10**6)
+
+
+def test_input_that_cannot_fool_it_through_python(tmp_path):
+    # The fuzzing cases of issue 11 through the binding: each a ValueError naming what is wrong (a 100 000-deep list
+    # segfaulted the C++ reader; a list as "description", a field beside "matrix_market" were taken silently).
+    good = '"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1'
+    deep = "[" * 100000 + "1" + "]" * 100000
+    (tmp_path / "I.mtx").write_text("%%MatrixMarket matrix array real general\n2 2\n1\n0\n0\n1\n")
+    cases = {
+        '{%s, "description": %s}' % (good, deep): "nested at most 64 levels deep",
+        '{"name": [1], %s}' % good: 'field "name" must be a string',
+        '{%s, "g0": 2}' % good: 'the key "g0" appears twice',
+        '{%s, "G0": 2}' % good: 'unknown field "G0"',
+        '{"M": {"matrix_market": "I.mtx", "x": 1}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1}': 'unknown field "x"',
+    }
+    for text, message in cases.items():
+        (tmp_path / "s.json").write_text(text)
+        with pytest.raises(ValueError, match=message):
+            spp.System.from_json(str(tmp_path / "s.json"))
+    K = np.array([[2.0, -1.0], [-1.0, 1.0]])
+    with pytest.raises(ValueError, match="outside the range of normal doubles"):
+        spp.System(np.eye(2), K, np.array([0.0, -1e-310]), 1.0)
+    with pytest.raises(ValueError, match="overflows"):
+        spp.System(np.eye(2), K, np.array([0.0, -1e-300]), 1e10)
+    with pytest.raises(ValueError, match="underflows"):
+        spp.System(np.eye(2), K, np.array([0.0, -1e200]), 1e-200)
+
+
+def test_system_in_other_units_per_dof_is_accepted_through_python():
+    # x = diag(1e3, 1, 1e-3) x' (M' = D M D, K' = D K D, w' = D w): the same system, once refused with "K must be
+    # positive definite, got smallest eigenvalue 3.33e-07"; same frequencies as the unscaled one.
+    D = np.diag([1e3, 1.0, 1e-3])
+    M, K, w = np.eye(3), np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]), np.array([0.0, 0.0, -1.0])
+    a, b = spp.System(M, K, w, 1.0), spp.System(D @ M @ D, D @ K @ D, D @ w, 1.0)
+    fa, fb = spp.modal_frequencies(a), spp.modal_frequencies(b)
+    assert np.allclose(fa["flight"], fb["flight"], rtol=1e-9) and np.allclose(fa["contact"], fb["contact"], rtol=1e-9)
