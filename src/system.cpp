@@ -1,11 +1,12 @@
 #include "spp/system.hpp"
-#include "spp/detail/invalid.hpp"
-#include "spp/detail/out_of_memory.hpp"
 
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "spp/detail/invalid.hpp"
+#include "spp/detail/out_of_memory.hpp"
 
 namespace spp {
 namespace {

@@ -527,9 +527,9 @@ TEST(Cli, OutputEqualToAMatrixMarketInputIsRefused) {
   const std::string mtx = write("M_in.mtx", mtx_text);
   const std::string sys =
       write("mm_in.json", R"({"M": {"matrix_market": "M_in.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})");
-  for (const std::string& cmd : {"solve " + sys + " --t1-max 5 --t2-max 5 --csv " + mtx,
-                                 "solve " + sys + " --t1-max 5 --t2-max 5 --json " + mtx,
-                                 "simulate " + sys + " --x0 0,0 --v0 0,1 --duration 1 --csv " + mtx}) {
+  for (const std::string& cmd :
+       {"solve " + sys + " --t1-max 5 --t2-max 5 --csv " + mtx, "solve " + sys + " --t1-max 5 --t2-max 5 --json " + mtx,
+        "simulate " + sys + " --x0 0,0 --v0 0,1 --duration 1 --csv " + mtx}) {
     const CliRun r = run(cmd);
     EXPECT_EQ(r.code, 1) << cmd << ": " << r.out;
     EXPECT_NE(r.out.find("M_in.mtx\" of this run"), std::string::npos) << r.out;
