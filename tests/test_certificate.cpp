@@ -445,6 +445,24 @@ TEST(CertifiedSearch, FindsBothRootsOnTwoNearlyCoincidentCurvesOfAStiff7DofSyste
   }
 }
 
+TEST(CertifiedSearch, ProvesACurveReachingTheAxisLimitPointOfAStiffMode) {
+  // A random stiff 7-dof system (survey_status.py stiff7, seed 8): in its first column of cells a curve runs to the
+  // axis limit point (0, 4 pi / d_6) of the stiff contact mode d_6 = 433.42, next to the flight mode 433.91. Along it
+  // the two stiff entries of H move together and cancel on b; the entrywise bounds added them and proved steps of
+  // ~1e-7 only, so the step budget ran out (incomplete, 4 of the 40 systems). The signed bounds (AlongCurve) prove it.
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/stiff7_axis_limit.json");
+  SolveOptions o;
+  o.t1_max = 0.0037;
+  o.t2_min = 0.027;
+  o.t2_max = 0.0289935123210162;
+  o.compute_return_error = false;
+  const SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.stats.uncertified_steps, 0);
+  EXPECT_GT(r.stats.curve_pieces, 0);
+  EXPECT_TRUE(r.solutions.empty());
+}
+
 TEST(CertifiedSearch, ProvesTheRodWindow) {
   // The paper's rod (§5.3) in (0, 20]^2: 76 SPPs. Certified before the true-point errors, then incomplete (87 steps:
   // the offset of a point next to a pole line entered the Davis-Kahan numerator unweighted), certified again since.

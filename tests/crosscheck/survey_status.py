@@ -1,7 +1,8 @@
-"""Status survey (not a test): `SPP_CLI=build/spp /usr/bin/python3 tests/crosscheck/survey_status.py random|chains
-[extra solve flags, e.g. --certify-steps]` solves 35 random dense systems n = 2..8 (every third stiff, spread 1e5) in
-8 x 8 quarter periods from the axes, or six random-mass 10-dof chains in their fundamental box, and prints each
-status, root count and the counted causes. Results go to /tmp/survey."""
+"""Status survey (not a test): `SPP_CLI=build/spp /usr/bin/python3 tests/crosscheck/survey_status.py random|stiff7|chains
+[extra solve flags, e.g. --no-certify-steps]` solves 35 random dense systems n = 2..8 (every third stiff, spread 1e5)
+in 8 x 8 quarter periods from the axes, 40 random stiff 7-dof systems (spread 1e5) in the same windows, or six
+random-mass 10-dof chains in their fundamental box, and prints each status, root count and the counted causes.
+Results go to /tmp/survey."""
 import json, subprocess, sys, os, numpy as np, time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import compare_windows as cw
@@ -53,3 +54,9 @@ elif mode == "random":
         sy = cw.random_system(n, rng, stiff)
         q1, q2, (d1, d2) = cw.scales(sy)
         run(sy, [None, 8 * q1, None, 8 * q2], f"rand{seed}_n{n}{'s' if stiff else ''}")
+elif mode == "stiff7":
+    for seed in range(40):
+        rng = np.random.default_rng(7000 + seed)
+        sy = cw.random_system(7, rng, True)
+        q1, q2, _ = cw.scales(sy)
+        run(sy, [None, 8 * q1, None, 8 * q2], f"stiff7_{seed}")
