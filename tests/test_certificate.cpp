@@ -60,6 +60,13 @@ SolveResult expect_certified_with_default_roots(const System& s, SolveOptions o)
   return r;
 }
 
+// expect_certified_with_default_roots on a system of tests/data/ (without the return error, which these tests do not
+// check).
+SolveResult certified_data_window(const std::string& file, double t1_min, double t1_max, double t2_min, double t2_max) {
+  SolveOptions o = window(t1_min, t1_max, t2_min, t2_max);
+  o.compute_return_error = false;
+  return expect_certified_with_default_roots(load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/" + file), o);
+}
 }  // namespace
 
 TEST(OnsetInertia, SingularAtAnSppAndCountsItsCrossing) {
@@ -153,6 +160,32 @@ bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, 
   return true;
 }
 
+// A random step of a random curve in a random cell of (0, T1] x (0, T2] (cells shrunk by 1e-6 from their pole
+// lines): the cell, the curve's index, the step's start s and length h (10^lo_exp to 10^(lo_exp + 4) of the cell's
+// anti-diagonal range) and its two true curve points. False where either point is not on the curve.
+struct RandomStep {
+  double c1, d1, c2, d2;
+  int k;
+  double sa, h;
+  CurvePoint pa, pb;
+};
+bool random_step(const ModalForm& md, double T1, double T2, const std::vector<double>& p1,
+                 const std::vector<double>& p2, double lo_exp, Symmetry sym, std::mt19937& rng, RandomStep& st) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
+  const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
+  st.c1 = a1 + 1e-6 * (b1 - a1);
+  st.d1 = std::min(b1, T1) - 1e-6 * (b1 - a1);
+  st.c2 = A + 1e-6 * (B - A);
+  st.d2 = std::min(B, T2) - 1e-6 * (B - A);
+  st.k = static_cast<int>(u(rng) * md.m());
+  const double range = st.d2 - st.c1 - (st.c2 - st.d1);
+  st.sa = (st.c2 - st.d1) + range * u(rng);
+  st.h = range * std::pow(10.0, lo_exp + 4.0 * u(rng));
+  return curve_point(md, st.c1, st.d1, st.c2, st.d2, st.sa, st.k, st.pa, sym) &&
+         curve_point(md, st.c1, st.d1, st.c2, st.d2, st.sa + st.h, st.k, st.pb, sym);
+}
+
 }  // namespace
 
 TEST(BorderedForm, SameNullVectorsShiftedInertiaAndMonotoneThroughThePole) {
@@ -210,16 +243,10 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
     const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
     int valid = 0, deciding = 0, bordered = 0;
     for (int trial = 0; trial < 3000 && valid < 150; ++trial) {
-      const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
-      const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
-      const double c1 = a1 + 1e-6 * (b1 - a1), d1 = std::min(b1, T1) - 1e-6 * (b1 - a1);
-      const double c2 = A + 1e-6 * (B - A), d2 = std::min(B, T2) - 1e-6 * (B - A);
-      const int k = static_cast<int>(u(rng) * md.m());
-      const double sa = (c2 - d1) + (d2 - c1 - (c2 - d1)) * u(rng);
-      const double h = (d2 - c1 - (c2 - d1)) * std::pow(10.0, -5.0 + 4.0 * u(rng));
-      CurvePoint pa, pb;
-      if (!curve_point(md, c1, d1, c2, d2, sa, k, pa, sym) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb, sym))
-        continue;
+      RandomStep st;
+      if (!random_step(md, T1, T2, p1, p2, -5.0, sym, rng, st)) continue;
+      const auto& [c1, d1, c2, d2, k, sa, h, pa_, pb_] = st;
+      CurvePoint pa = pa_, pb = pb_;
       // The box the bounds are taken over (it holds the true curve and the computed ends), and its bordered form:
       // the bounds are those of g = c^T x / |x| for the bordered form's null vector x = [b; nu] (same sign as
       // zhat^T b), sampled here with their own derivative.
@@ -320,15 +347,9 @@ TEST(AlongCurve, BoundsTheSampledPerturbationOfTheNullVectorAlongTheCurve) {
     const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
     int checked = 0, tighter = 0;
     for (int trial = 0; trial < 4000 && checked < 120; ++trial) {
-      const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
-      const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
-      const double c1 = a1 + 1e-6 * (b1 - a1), d1 = std::min(b1, T1) - 1e-6 * (b1 - a1);
-      const double c2 = A + 1e-6 * (B - A), d2 = std::min(B, T2) - 1e-6 * (B - A);
-      const int k = static_cast<int>(u(rng) * md.m());
-      const double sa = (c2 - d1) + (d2 - c1 - (c2 - d1)) * u(rng);
-      const double h = (d2 - c1 - (c2 - d1)) * std::pow(10.0, -4.0 + 4.0 * u(rng));
-      CurvePoint pa, pb;
-      if (!curve_point(md, c1, d1, c2, d2, sa, k, pa) || !curve_point(md, c1, d1, c2, d2, sa + h, k, pb)) continue;
+      RandomStep st;
+      if (!random_step(md, T1, T2, p1, p2, -4.0, Symmetry::Axial, rng, st)) continue;
+      const auto& [c1, d1, c2, d2, k, sa, h, pa, pb] = st;
       // the box of the step, widened on each side by up to 30% (as certify_step's margins for the ends' position
       // errors do), inside the cell
       auto widen = [&](double a, double b, double lo, double hi) {
@@ -412,10 +433,7 @@ TEST(CertifiedSearch, MonotoneRunsProveARootWhereTwoCurvesRunSideBySide) {
   // bound (~2e-10) needs ~1e-7 to be passed: no single step both. Before monotone runs the window ended incomplete
   // (293 steps left to the midpoint check in the whole box); chained, the run from the last point of proved sign to
   // the next proves the one root.
-  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/rchain10_seed2.json");
-  SolveOptions o = window(20.80, 20.83, 1.52, 1.55);
-  o.compute_return_error = false;
-  const SolveResult r = expect_certified_with_default_roots(s, o);
+  const SolveResult r = certified_data_window("rchain10_seed2.json", 20.80, 20.83, 1.52, 1.55);
   ASSERT_EQ(r.solutions.size(), 1u);
   EXPECT_NEAR(r.solutions[0].t1, 20.81549, 1e-5);
   EXPECT_NEAR(r.solutions[0].t2, 1.53669, 1e-5);
@@ -427,13 +445,10 @@ TEST(CertifiedSearch, FindsBothRootsOnTwoNearlyCoincidentCurvesOfAStiff7DofSyste
   // ~ 1.6e-3 at the roots) and the onset function is small along both (tests/crosscheck/make_near_coincident.py).
   // Each curve holds one SPP, 3.6e-6 apart in t1; the independent brute force (brute_force.py) finds only the first.
   // The certified search proves the window and returns both, each a root of the paper's own 2n x 2n equations.
-  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json");
-  SolveOptions o = window(0.110, 0.113, 0.201, 0.204);
-  o.compute_return_error = false;
-  const SolveResult r = expect_certified_with_default_roots(s, o);
+  const SolveResult r = certified_data_window("near_coincident7.json", 0.110, 0.113, 0.201, 0.204);
   ASSERT_EQ(r.solutions.size(), 2u);
   const double expected[2][2] = {{0.111823204333, 0.202333000865}, {0.111819649129, 0.202339666461}};
-  const ref::PaperForm pf(s);
+  const ref::PaperForm pf(load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json"));
   for (const auto& e : expected) {
     const auto it = std::find_if(r.solutions.begin(), r.solutions.end(), [&](const Solution& x) {
       return std::abs(x.t1 - e[0]) < 1e-10 && std::abs(x.t2 - e[1]) < 1e-10;
@@ -451,10 +466,7 @@ TEST(CertifiedSearch, ProvesACurveReachingTheAxisLimitPointOfAStiffMode) {
   // the two stiff entries of H move together and cancel on b; the entrywise bounds added them and proved steps of
   // ~1e-7 only, so the step budget ran out (incomplete, 4 of the 40 systems). The signed bounds (AlongCurve) prove it.
   const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/stiff7_axis_limit.json");
-  SolveOptions o;
-  o.t1_max = 0.0037;
-  o.t2_min = 0.027;
-  o.t2_max = 0.0289935123210162;
+  SolveOptions o = window(0.0, 0.0037, 0.027, 0.0289935123210162);
   o.compute_return_error = false;
   const SolveResult r = solve(s, o);
   EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
