@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "spp/continuation.hpp"
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/modal.hpp"
 
 namespace {

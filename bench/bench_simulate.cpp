@@ -4,7 +4,7 @@
 // apart. Counters: events, impacts, seconds per event.
 #include <benchmark/benchmark.h>
 
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/simulator.hpp"
 
 namespace {

@@ -13,7 +13,7 @@
 #include <numbers>
 #include <random>
 
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/modal.hpp"
 #include "spp/solver.hpp"
 

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "spp/continuation.hpp"
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
 #include "spp/root_map.hpp"

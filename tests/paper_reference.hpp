@@ -8,7 +8,7 @@
 #include <complex>
 #include <random>
 
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp::ref {
 

@@ -5,7 +5,7 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp::ref {
 

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <random>
 
-#include "spp/generators.hpp"
 #include "io/json.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/solver.hpp"
 

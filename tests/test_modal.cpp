@@ -4,7 +4,7 @@
 #include <random>
 
 #include "paper_reference.hpp"
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/modal.hpp"
 
 using spp::ModalForm;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"

@@ -7,7 +7,7 @@
 
 #include "paper_reference.hpp"
 #include "physical_flow.hpp"
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
 #include "spp/orbit.hpp"

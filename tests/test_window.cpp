@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal.hpp"
 #include "spp/solver.hpp"

@@ -5,9 +5,9 @@
 #include <optional>
 
 #include "command.hpp"
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
+#include "spp/core/parametric.hpp"
 #include "spp/io.hpp"
-#include "spp/parametric.hpp"
 
 namespace spp::cli {
 

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "spp/core/parametric.hpp"
 #include "spp/modal.hpp"
-#include "spp/parametric.hpp"
 
 namespace spp {
 

@@ -10,7 +10,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp {
 

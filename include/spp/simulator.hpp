@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp {
 

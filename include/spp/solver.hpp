@@ -20,8 +20,8 @@
 #include <utility>
 #include <vector>
 
+#include "spp/core/system.hpp"
 #include "spp/orbit.hpp"
-#include "spp/system.hpp"
 
 namespace spp {
 

@@ -9,9 +9,9 @@
 
 #include "io/text.hpp"
 #include "spp/continuation.hpp"
-#include "spp/parametric.hpp"
+#include "spp/core/parametric.hpp"
+#include "spp/core/system.hpp"
 #include "spp/solver.hpp"
-#include "spp/system.hpp"
 #include "spp/verify.hpp"
 
 namespace spp::io {

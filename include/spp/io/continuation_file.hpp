@@ -7,7 +7,7 @@
 #include <string>
 
 #include "spp/continuation.hpp"
-#include "spp/parametric.hpp"
+#include "spp/core/parametric.hpp"
 
 namespace spp {
 

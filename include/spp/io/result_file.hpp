@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "spp/core/system.hpp"
 #include "spp/solver.hpp"
-#include "spp/system.hpp"
 #include "spp/verify.hpp"
 
 namespace spp {

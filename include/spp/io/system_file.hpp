@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "spp/parametric.hpp"
-#include "spp/system.hpp"
+#include "spp/core/parametric.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp {
 

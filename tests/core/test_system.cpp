@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 using spp::System;
 

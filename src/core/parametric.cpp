@@ -1,9 +1,10 @@
-#include "spp/parametric.hpp"
-#include "spp/detail/invalid.hpp"
+#include "spp/core/parametric.hpp"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 

@@ -1,4 +1,4 @@
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <string>
 
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp {
 

@@ -1,7 +1,7 @@
 // ParametricSystem: the affine family, validation at the ends of the range, errors naming the parameter.
 #include <gtest/gtest.h>
 
-#include "spp/parametric.hpp"
+#include "spp/core/parametric.hpp"
 
 using namespace spp;
 

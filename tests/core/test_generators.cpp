@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "spp/generators.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 
 using namespace spp;

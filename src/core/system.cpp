@@ -1,4 +1,4 @@
-#include "spp/system.hpp"
+#include "spp/core/system.hpp"
 
 #include <cmath>
 #include <limits>

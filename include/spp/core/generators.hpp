@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "spp/parametric.hpp"
-#include "spp/system.hpp"
+#include "spp/core/parametric.hpp"
+#include "spp/core/system.hpp"
 
 namespace spp {
 
