@@ -8,7 +8,7 @@
 
 #include "spp/continuation.hpp"
 #include "spp/core/generators.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace {
 

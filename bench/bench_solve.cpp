@@ -14,7 +14,7 @@
 #include <random>
 
 #include "spp/core/generators.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 
 namespace {

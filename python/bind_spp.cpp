@@ -11,7 +11,7 @@
 #include "spp/continuation.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/root_map.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "spp/detail/invalid.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/orbit.hpp"
 #include "spp/solver.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "spp/detail/invalid.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp {
 

@@ -19,7 +19,7 @@
 #include "search/tolerances.hpp"
 #include "search/window_plan.hpp"
 #include "spp/detail/invalid.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp {
 

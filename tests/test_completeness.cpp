@@ -9,7 +9,7 @@
 #include <random>
 
 #include "paper_reference.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 
 using namespace spp;

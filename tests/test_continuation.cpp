@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "spp/continuation.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/orbit.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"

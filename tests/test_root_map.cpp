@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "spp/io.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/root_map.hpp"
 #include "spp/solver.hpp"
 

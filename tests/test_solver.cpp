@@ -9,7 +9,7 @@
 #include "physical_flow.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/orbit.hpp"
 #include "spp/solver.hpp"
 

@@ -12,7 +12,7 @@
 
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 
 using namespace spp;

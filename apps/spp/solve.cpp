@@ -15,7 +15,7 @@
 #include "command.hpp"
 #include "spp/continuation.hpp"
 #include "spp/io.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 #include "tables.hpp"
 

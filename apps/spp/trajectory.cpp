@@ -5,7 +5,7 @@
 
 #include "command.hpp"
 #include "spp/io.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 
 namespace spp::cli {

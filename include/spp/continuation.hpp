@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "spp/core/parametric.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp {
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Dense>
 
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp {
 

@@ -21,7 +21,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp::search {
 

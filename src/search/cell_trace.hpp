@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "search/evaluator.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 
 namespace spp::search {

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "spp/detail/tridiagonal.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp::search {
 

@@ -33,7 +33,7 @@
 #include <Eigen/Dense>
 
 #include "search/bordered_form.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp::search {
 

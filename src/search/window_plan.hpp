@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/solver.hpp"
 
 namespace spp::search {

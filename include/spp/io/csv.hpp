@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/orbit.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"

@@ -1,4 +1,4 @@
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 
 #include "paper_reference.hpp"
 #include "spp/core/generators.hpp"
-#include "spp/modal.hpp"
+#include "spp/modal/modal.hpp"
 
 using spp::ModalForm;
 using spp::System;
