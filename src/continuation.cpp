@@ -14,7 +14,7 @@
 
 #include "spp/detail/invalid.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/orbit.hpp"
+#include "spp/orbit/orbit.hpp"
 #include "spp/solver.hpp"
 
 namespace spp {

@@ -7,7 +7,7 @@
 
 #include "spp/continuation.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/orbit.hpp"
+#include "spp/orbit/orbit.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"
 

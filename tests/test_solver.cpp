@@ -10,7 +10,7 @@
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/orbit.hpp"
+#include "spp/orbit/orbit.hpp"
 #include "spp/solver.hpp"
 
 using namespace spp;

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "spp/core/system.hpp"
-#include "spp/orbit.hpp"
+#include "spp/orbit/orbit.hpp"
 
 namespace spp {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "spp/modal/modal.hpp"
-#include "spp/orbit.hpp"
+#include "spp/orbit/orbit.hpp"
 #include "spp/simulator.hpp"
 #include "spp/solver.hpp"
 

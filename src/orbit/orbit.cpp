@@ -1,4 +1,4 @@
-#include "spp/orbit.hpp"
+#include "spp/orbit/orbit.hpp"
 
 #include <algorithm>
 #include <cmath>
