@@ -15,7 +15,7 @@
 
 #include "spp/core/generators.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 namespace {
 

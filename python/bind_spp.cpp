@@ -12,9 +12,9 @@
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/root_map.hpp"
+#include "spp/search/root_map.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/simulator.hpp"
-#include "spp/solver.hpp"
 #include "spp/verify.hpp"
 
 namespace py = pybind11;

@@ -15,7 +15,7 @@
 #include "spp/detail/invalid.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 namespace spp {
 

@@ -8,8 +8,8 @@
 #include "spp/continuation.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/simulator.hpp"
-#include "spp/solver.hpp"
 
 using namespace spp;
 

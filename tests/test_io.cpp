@@ -7,7 +7,7 @@
 #include "io/json.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 using namespace spp;
 namespace fs = std::filesystem;

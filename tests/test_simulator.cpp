@@ -6,8 +6,8 @@
 
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/simulator.hpp"
-#include "spp/solver.hpp"
 
 using namespace spp;
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "spp/io.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/verify.hpp"
 
 using namespace spp;

@@ -16,7 +16,7 @@
 #include "spp/continuation.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 #include "tables.hpp"
 
 namespace spp::cli {

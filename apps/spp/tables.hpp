@@ -4,7 +4,7 @@
 #include <string>
 
 #include "spp/continuation.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/verify.hpp"
 
 namespace spp::cli {

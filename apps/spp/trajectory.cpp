@@ -6,7 +6,7 @@
 #include "command.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 namespace spp::cli {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "spp/search/solver.hpp"
 #include "spp/simulator.hpp"
-#include "spp/solver.hpp"
 
 namespace spp {
 

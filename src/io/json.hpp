@@ -11,7 +11,7 @@
 #include "spp/continuation.hpp"
 #include "spp/core/parametric.hpp"
 #include "spp/core/system.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/verify.hpp"
 
 namespace spp::io {

@@ -14,7 +14,7 @@
 
 #include "search/evaluator.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 namespace spp::search {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 namespace spp::search {
 

@@ -5,8 +5,8 @@
 
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/simulator.hpp"
-#include "spp/solver.hpp"
 
 namespace spp {
 

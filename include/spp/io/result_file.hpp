@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "spp/core/system.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 #include "spp/verify.hpp"
 
 namespace spp {

@@ -1,4 +1,4 @@
-#include "spp/root_map.hpp"
+#include "spp/search/root_map.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 
 #include "paper_reference.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 using namespace spp;
 

@@ -11,7 +11,7 @@
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 using namespace spp;
 

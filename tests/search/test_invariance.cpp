@@ -6,7 +6,7 @@
 
 #include "paper_reference.hpp"
 #include "spp/io.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 using namespace spp;
 

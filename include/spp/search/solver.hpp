@@ -12,7 +12,7 @@
 //  - the thin strips left around pole lines are checked by pairing the curves across each line;
 //  - each root is polished by Newton on the pole-free bordered system N(t1,t2) a = 0, z^T cos(W t1) a = 0.
 // The steps, one file each: src/search/window_plan, evaluator, cell_trace, pole_pairing, polish (and
-// step_certificate); solve() in src/solver.cpp calls them in order.
+// step_certificate); solve() in src/search/solver.cpp calls them in order.
 
 #include <Eigen/Dense>
 #include <functional>

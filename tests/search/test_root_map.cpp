@@ -6,8 +6,8 @@
 
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/root_map.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/root_map.hpp"
+#include "spp/search/solver.hpp"
 
 using namespace spp;
 

@@ -13,7 +13,7 @@
 #include "search/step_certificate.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 using namespace spp;
 

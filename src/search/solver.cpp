@@ -1,4 +1,4 @@
-#include "spp/solver.hpp"
+#include "spp/search/solver.hpp"
 
 #include <algorithm>
 #include <atomic>
