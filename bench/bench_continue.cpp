@@ -6,7 +6,7 @@
 
 #include <numbers>
 
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/modal/modal.hpp"
 

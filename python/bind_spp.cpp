@@ -8,7 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"

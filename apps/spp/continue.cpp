@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "command.hpp"
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/io.hpp"
 #include "tables.hpp"
 

@@ -13,7 +13,7 @@
 #include <tuple>
 
 #include "command.hpp"
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"

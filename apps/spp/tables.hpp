@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/verify.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "io/text.hpp"
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/core/parametric.hpp"
 #include "spp/core/system.hpp"
 #include "spp/search/solver.hpp"

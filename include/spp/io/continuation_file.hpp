@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/core/parametric.hpp"
 
 namespace spp {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
 #include "spp/search/solver.hpp"

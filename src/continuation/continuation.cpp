@@ -1,4 +1,4 @@
-#include "spp/continuation.hpp"
+#include "spp/continuation/continuation.hpp"
 
 #include <algorithm>
 #include <array>
