@@ -5,7 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "spp/core/generators.hpp"
-#include "spp/simulator.hpp"
+#include "spp/simulation/simulator.hpp"
 
 namespace {
 

@@ -14,8 +14,8 @@
 #include "spp/modal/modal.hpp"
 #include "spp/search/root_map.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/simulator.hpp"
-#include "spp/verify.hpp"
+#include "spp/simulation/simulator.hpp"
+#include "spp/simulation/verify.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;

@@ -4,7 +4,7 @@
 
 #include "command.hpp"
 #include "spp/io.hpp"
-#include "spp/simulator.hpp"
+#include "spp/simulation/simulator.hpp"
 
 namespace spp::cli {
 

@@ -5,7 +5,7 @@
 
 #include "spp/continuation/continuation.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/verify.hpp"
+#include "spp/simulation/verify.hpp"
 
 namespace spp::cli {
 

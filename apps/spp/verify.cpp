@@ -4,7 +4,7 @@
 
 #include "command.hpp"
 #include "spp/io.hpp"
-#include "spp/verify.hpp"
+#include "spp/simulation/verify.hpp"
 #include "tables.hpp"
 
 namespace spp::cli {

@@ -12,7 +12,7 @@
 #include "spp/core/parametric.hpp"
 #include "spp/core/system.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/verify.hpp"
+#include "spp/simulation/verify.hpp"
 
 namespace spp::io {
 

@@ -9,7 +9,7 @@
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/simulator.hpp"
+#include "spp/simulation/simulator.hpp"
 
 using namespace spp;
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "spp/verify.hpp"
+#include "spp/simulation/verify.hpp"
 
 namespace spp {
 

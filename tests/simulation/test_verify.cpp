@@ -8,7 +8,7 @@
 
 #include "spp/io.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/verify.hpp"
+#include "spp/simulation/verify.hpp"
 
 using namespace spp;
 

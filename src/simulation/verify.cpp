@@ -1,4 +1,4 @@
-#include "spp/verify.hpp"
+#include "spp/simulation/verify.hpp"
 
 #include <algorithm>
 #include <cmath>

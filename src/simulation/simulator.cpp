@@ -1,4 +1,4 @@
-#include "spp/simulator.hpp"
+#include "spp/simulation/simulator.hpp"
 
 #include <algorithm>
 #include <cmath>

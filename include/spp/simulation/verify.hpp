@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "spp/search/solver.hpp"
-#include "spp/simulator.hpp"
+#include "spp/simulation/simulator.hpp"
 
 namespace spp {
 

@@ -7,7 +7,7 @@
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/simulator.hpp"
+#include "spp/simulation/simulator.hpp"
 
 using namespace spp;
 
