@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <iomanip>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <sstream>
@@ -161,8 +162,9 @@ std::pair<double, double> fundamental_box(const ModalForm& md) {
   for (Eigen::Index j = 0; j < md.d().size(); ++j)
     if (md.d()(j) > 0 && (dmin == 0.0 || md.d()(j) < dmin)) dmin = md.d()(j);
   if (md.m() == 0 || dmin == 0.0)
-    detail::invalid("fundamental box: the system has no contact-phase oscillation (one coupled mode or none), so "
-                    "no box: give the window's upper ends t1_max, t2_max");
+    detail::invalid(
+        "fundamental box: the system has no contact-phase oscillation (one coupled mode or none), so "
+        "no box: give the window's upper ends t1_max, t2_max");
   return {pi / md.omega().minCoeff(), pi / dmin};
 }
 
@@ -358,8 +360,15 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
   // the axis are not resolvable in double precision (an independent brute force sees rounding noise there) and are
   // not reported, whatever the window, so that tilings stay consistent (axis_band). Likewise for t2 -> 0.
   const auto [band1, band2] = axis_band(md);
+  const double lo1 = std::max(opt.t1_min, band1), lo2 = std::max(opt.t2_min, band2);
+  // a root within rounding of an edge is on it (search::kOnEdgeUlps): the half-open rule then gives it to one tile
+  auto on_edge = [](double t, double edge) {
+    return std::abs(t - edge) <= search::kOnEdgeUlps * std::numeric_limits<double>::epsilon() * std::abs(edge) ? edge
+                                                                                                               : t;
+  };
   auto inside = [&](double t1, double t2) {
-    return t1 > std::max(opt.t1_min, band1) && t1 <= opt.t1_max && t2 > std::max(opt.t2_min, band2) && t2 <= opt.t2_max;
+    const double s1 = on_edge(on_edge(t1, opt.t1_max), lo1), s2 = on_edge(on_edge(t2, opt.t2_max), lo2);
+    return s1 > lo1 && s1 <= opt.t1_max && s2 > lo2 && s2 <= opt.t2_max;
   };
   // The same place, at the rounding level of the roots: each root, unpolished sign change or artifact counts once.
   auto same_place = [&](double a1, double a2, double b1, double b2) {

@@ -27,6 +27,10 @@ inline constexpr double kClosureDegenerate = 1e-10;
 inline constexpr double kResonance = 1e-9;
 
 // ---- window ----
+/// A polished root within this many units of rounding (relative, of the edge) of a window edge is taken as on that
+/// edge, and the half-open rule decides: each tile's Newton lands a root that lies on a cut within an ulp or two of
+/// it, on either side, so without this a root on a shared edge was reported by both tiles or by neither.
+inline constexpr double kOnEdgeUlps = 8.0;
 /// Roots within this fraction of the fastest quarter period of each phase from the axes are not reported (axis_band:
 /// g = O(t^2) there while its rounding error grows like 1 / t; an independent brute force at 50 digits saw only
 /// rounding noise, up to 1.7% of that quarter period on a 30-dof chain).

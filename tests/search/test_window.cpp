@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -19,7 +20,9 @@ using namespace spp;
 
 namespace {
 
-System chain5() { return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"); }
+System chain5() {
+  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+}
 
 SolveResult solve_window(const System& s, double a1, double b1, double a2, double b2, bool certify = true) {
   SolveOptions o;
@@ -54,6 +57,32 @@ TEST(Window, PaperSppInAWindowAwayFromTheAxes) {
   EXPECT_TRUE(r.solutions[0].admissible);
 }
 
+TEST(Window, RootOnACutWithinRoundingIsInExactlyOneTile) {
+  // Found by an independent attack: with a cut exactly at a root's computed coordinate, each tile's Newton landed the
+  // root an ulp or two from the cut, on either side: both tiles reported it, or neither. Roots within
+  // search::kOnEdgeUlps of an edge are taken as on it, so the half-open rule gives each to one tile.
+  const System s = chain5();
+  const SolveResult whole = solve_window(s, 3.1, 3.3, 0.45, 0.6);
+  ASSERT_EQ(whole.solutions.size(), 1u) << whole.brief_report();
+  const double r1 = whole.solutions[0].t1, r2 = whole.solutions[0].t2;
+  for (const int ulps : {-3, -1, 0, 1, 3}) {
+    const double c1 = r1 + ulps * std::numeric_limits<double>::epsilon() * r1;
+    const double c2 = r2 + ulps * std::numeric_limits<double>::epsilon() * r2;
+    const size_t left = solve_window(s, 3.1, c1, 0.45, 0.6).solutions.size();
+    const size_t right = solve_window(s, c1, 3.3, 0.45, 0.6).solutions.size();
+    EXPECT_EQ(left + right, 1u) << "t1 cut " << ulps << " ulps from the root: " << left << " + " << right;
+    const size_t below = solve_window(s, 3.1, 3.3, 0.45, c2).solutions.size();
+    const size_t above = solve_window(s, 3.1, 3.3, c2, 0.6).solutions.size();
+    EXPECT_EQ(below + above, 1u) << "t2 cut " << ulps << " ulps from the root: " << below << " + " << above;
+    // the four tiles around a corner at the root
+    size_t corner = 0;
+    for (const auto& [a1, b1] : {std::pair{3.1, c1}, std::pair{c1, 3.3}})
+      for (const auto& [a2, b2] : {std::pair{0.45, c2}, std::pair{c2, 0.6}})
+        corner += solve_window(s, a1, b1, a2, b2).solutions.size();
+    EXPECT_EQ(corner, 1u) << "corner " << ulps << " ulps from the root";
+  }
+}
+
 TEST(Window, RandomTilingsOfThePapersChainWindowGiveTheWholeWindowsRoots) {
   // Tiles (a, b] x (c, d] of (0, 12]^2, cut at random positions and next to pole lines and roots: their union is the
   // whole window's result, each root in exactly one tile.
@@ -70,10 +99,10 @@ TEST(Window, RandomTilingsOfThePapersChainWindowGiveTheWholeWindowsRoots) {
     std::vector<double> c1{0.0, 12.0}, c2{0.0, 12.0};
     for (int i = 0; i < n1 - 1; ++i) c1.push_back(u(rng));
     for (int i = 0; i < n2 - 1; ++i) c2.push_back(u(rng));
-    if (trial == 1) c1.push_back(p1[p1.size() / 2] * (1 + 1e-10));         // next to a pole line
-    if (trial == 2) c2.push_back(p2[p2.size() / 3] * (1 - 1e-10));         // next to a pole line
-    if (trial == 3) c1.push_back(whole.solutions[10].t1 * (1 + 1e-7));     // next to a root
-    if (trial == 3) c2.push_back(whole.solutions[20].t2 * (1 - 1e-7));     // next to a root
+    if (trial == 1) c1.push_back(p1[p1.size() / 2] * (1 + 1e-10));      // next to a pole line
+    if (trial == 2) c2.push_back(p2[p2.size() / 3] * (1 - 1e-10));      // next to a pole line
+    if (trial == 3) c1.push_back(whole.solutions[10].t1 * (1 + 1e-7));  // next to a root
+    if (trial == 3) c2.push_back(whole.solutions[20].t2 * (1 - 1e-7));  // next to a root
     std::sort(c1.begin(), c1.end());
     std::sort(c2.begin(), c2.end());
     std::vector<Solution> uni;
@@ -163,10 +192,8 @@ TEST(Window, PairOfRootsHiddenInOneSmallTurnStepIsFound) {
   // (|g| much smaller than the turn), losing the SPP (0.00788137049781, 0.106633445732) (verified by the brute
   // force at 50 digits). Steps where g keeps its sign now turn less than (asin|g_A| + asin|g_B|) / 2.
   const System s(
-      (Eigen::Matrix2d() << 0.8008872524029951, 0.41573887331407317, 0.41573887331407317, 0.64514207494261)
-          .finished(),
-      (Eigen::Matrix2d() << 59088.85286319769, -49166.572409351524, -49166.572409351524, 40912.14713680231)
-          .finished(),
+      (Eigen::Matrix2d() << 0.8008872524029951, 0.41573887331407317, 0.41573887331407317, 0.64514207494261).finished(),
+      (Eigen::Matrix2d() << 59088.85286319769, -49166.572409351524, -49166.572409351524, 40912.14713680231).finished(),
       Eigen::Vector2d(0.3907743068107353, -0.9204865241471977), 1.0);
   const SolveResult r = solve_window(s, 0.005, 0.01, 0.105, 0.125);
   ASSERT_EQ(r.solutions.size(), 1u) << r.brief_report();
@@ -188,16 +215,16 @@ TEST(Window, PairOfRootsHiddenInOneSmallTurnStepIsFound) {
 }
 
 TEST(Window, RandomMassChainsPairEveryCurveAcrossPoleLineCrossings) {
-  // Chains of 10 masses drawn uniformly in [0.5, 2] (numpy default_rng seeds 1, 2, 3), unit springs, contact on the last
-  // mass, window t1 <= pi / omega_1, t2 <= pi / d_2. Two of the three ended incomplete: curves passing through the
+  // Chains of 10 masses drawn uniformly in [0.5, 2] (numpy default_rng seeds 1, 2, 3), unit springs, contact on the
+  // last mass, window t1 <= pi / omega_1, t2 <= pi / d_2. Two of the three ended incomplete: curves passing through the
   // square where a vertical and a horizontal pole line cross (diagonally, or straight up inside the vertical strip).
   // Traced by the midpoint check (the proofs take 115 s here, and leave steps of the second chain unproved where two
   // zero curves run side by side: README, tests/crosscheck/survey_status.py chains --certify-steps), so the status is
   // incomplete for that cause only: every crossing paired, every piece followed, every root polished.
   const std::vector<std::vector<double>> masses = {
-      {1.267732,1.925696,0.716239,1.922974,0.967747,1.134990,1.741554,1.113799,1.324391,0.541339},
-      {0.892418,0.947737,1.721339,0.637874,1.400151,1.592841,0.781852,0.582720,0.912454,1.486150},
-      {0.628474,0.855216,1.701912,1.373243,0.641193,1.149690,1.218577,0.739608,1.601866,0.670508}};
+      {1.267732, 1.925696, 0.716239, 1.922974, 0.967747, 1.134990, 1.741554, 1.113799, 1.324391, 0.541339},
+      {0.892418, 0.947737, 1.721339, 0.637874, 1.400151, 1.592841, 0.781852, 0.582720, 0.912454, 1.486150},
+      {0.628474, 0.855216, 1.701912, 1.373243, 0.641193, 1.149690, 1.218577, 0.739608, 1.601866, 0.670508}};
   const std::vector<size_t> roots = {247, 346, 244};
   for (size_t c = 0; c < masses.size(); ++c) {
     const System s = spp::chain(10, masses[c], {1.0}, 9, ContactSide::Upper, 1.0);
@@ -213,9 +240,9 @@ TEST(Window, RandomMassChainsPairEveryCurveAcrossPoleLineCrossings) {
 
 TEST(Window, SwingOfTheNullVectorInsideOneStepIsTracedAgain) {
   // Regression (random stiff 5-dof system, stiffness spread 1e5): next to a flight pole line an eigenvalue sweeps past
-  // lambda_k and b swings past 90 degrees inside one midpoint-checked step and back (end turn 0.09 rad): the sign change
-  // of g it leaves was located on a jump of g (|g| = 0.68) and reported as a root that did not polish (incomplete).
-  // The step is now traced again finer; the window ends success with the two SPPs the brute force finds.
+  // lambda_k and b swings past 90 degrees inside one midpoint-checked step and back (end turn 0.09 rad): the sign
+  // change of g it leaves was located on a jump of g (|g| = 0.68) and reported as a root that did not polish
+  // (incomplete). The step is now traced again finer; the window ends success with the two SPPs the brute force finds.
   Eigen::MatrixXd M(5, 5), K(5, 5);
   M << 0.7302547709435028, -0.4937304420004236, -0.28889372579631095, 0.05120677395772484, 0.3867094861218746,
       -0.4937304420004236, 1.7233595908002586, 0.23847664944006577, 0.0403427765321794, -0.3750012913655771,
