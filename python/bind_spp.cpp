@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "spp/continuation/continuation.hpp"
@@ -33,6 +34,41 @@ Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample
   for (size_t k = 0; k < r.samples.size(); ++k)
     out.row(static_cast<Eigen::Index>(k)) = (r.samples[k].*field).transpose();
   return out;
+}
+
+// The options (or their defaults) with the keyword arguments set on them, field by field: one mechanism for every
+// function that takes an Options struct. An unknown keyword is refused with the list of fields; the list is the bound
+// attributes (not the dunders nor validate), so it cannot drift from the binding.
+template <class Options>
+Options with_fields(const py::object& options, const py::kwargs& fields, const char* where, const char* type_name) {
+  py::object o = options.is_none() ? py::cast(Options{}) : py::cast(options.cast<Options>());
+  std::vector<std::string> known;
+  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
+    const std::string n = py::str(a);
+    if (n.rfind("_", 0) != 0 && n != "validate") known.push_back(n);
+  }
+  for (const auto& [key, value] : fields) {
+    const std::string name = py::str(key);
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+      throw std::invalid_argument(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
+                                  " fields: " + list + ")");
+    }
+    py::setattr(o, key, value);
+  }
+  return o.cast<Options>();
+}
+
+// "<spp.Name field=value ...>" of the bound fields (those of with_fields), for the options' __repr__.
+std::string fields_repr(const py::object& o, const char* type_name) {
+  std::string out = std::string("<spp.") + type_name;
+  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
+    const std::string n = py::str(a);
+    if (n.rfind("_", 0) == 0 || n == "validate") continue;
+    out += " " + n + "=" + py::repr(o.attr(a)).cast<std::string>();
+  }
+  return out + ">";
 }
 }  // namespace
 
@@ -311,27 +347,8 @@ PYBIND11_MODULE(_spp, m) {
            << ">";
         return os.str();
       });
-  // options (or defaults) with the keyword arguments set on it, field by field: one mechanism for every function that
-  // takes SolveOptions. An unknown keyword is refused with the list of fields.
-  auto solve_options = [](const py::object& options, const py::kwargs& fields, const char* where) {
-    py::object o = options.is_none() ? py::cast(spp::SolveOptions{}) : py::cast(options.cast<spp::SolveOptions>());
-    // the fields are the bound attributes (not the dunders nor validate): the list cannot drift from the binding
-    std::vector<std::string> known;
-    for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
-      const std::string n = py::str(a);
-      if (n.rfind("_", 0) != 0 && n != "validate") known.push_back(n);
-    }
-    for (const auto& [key, value] : fields) {
-      const std::string name = py::str(key);
-      if (std::find(known.begin(), known.end(), name) == known.end()) {
-        std::string list;
-        for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
-        throw std::invalid_argument(std::string(where) + ": unknown option \"" + name + "\" (SolveOptions fields: " +
-                                    list + ")");
-      }
-      py::setattr(o, key, value);
-    }
-    return o.cast<spp::SolveOptions>();
+  const auto solve_options = [](const py::object& options, const py::kwargs& fields, const char* where) {
+    return with_fields<spp::SolveOptions>(options, fields, where, "SolveOptions");
   };
   py::class_<spp::SolveProgress>(m, "SolveProgress",
                                  "What a running solve reports to its progress callback (solve(..., progress=f)).")
@@ -508,20 +525,45 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("impact_energy_loss", &spp::SimulationResult::impact_energy_loss)
       .def("brief_report", &spp::SimulationResult::brief_report);
 
+  py::class_<spp::SimulateOptions>(m, "SimulateOptions",
+                                   "Options of simulate (the C++ SimulateOptions, field by field; simulate(system, x0, "
+                                   "v0, duration, options=..., **fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("duration", &spp::SimulateOptions::duration,
+                     "simulated time T > 0; the last sample is at t = T exactly")
+      .def_readwrite("restitution", &spp::SimulateOptions::restitution,
+                     "Newton's coefficient e in [0, 1]: normal velocity after = -e * before")
+      .def_readwrite("sample_times", &spp::SimulateOptions::sample_times,
+                     "samples at these times (sorted, in [0, duration]); empty: samples_per_unit of simulate")
+      .def_readwrite("sample_events", &spp::SimulateOptions::sample_events,
+                     "add a sample with the state just after each event")
+      .def_readwrite("max_events", &spp::SimulateOptions::max_events)
+      .def_readwrite("event_rel_tol", &spp::SimulateOptions::event_rel_tol,
+                     "excursions below zero shallower than this (relative to the phase's amplitude) are not events")
+      .def_readwrite("rest_velocity_rel_tol", &spp::SimulateOptions::rest_velocity_rel_tol,
+                     "impacts slower than this (relative) are plastic: where chattering ends in lasting contact")
+      .def("validate", &spp::SimulateOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "SimulateOptions"); });
   m.def(
       "simulate",
-      [](const spp::System& s, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double duration,
-         double restitution, double samples_per_unit) {
-        spp::SimulateOptions o;
-        o.duration = duration;
-        o.restitution = restitution;
+      [](const spp::System& s, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, std::optional<double> duration,
+         std::optional<double> restitution, double samples_per_unit, const py::object& options,
+         const py::kwargs& fields) {
+        spp::SimulateOptions o = with_fields<spp::SimulateOptions>(options, fields, "simulate", "SimulateOptions");
+        if (duration) o.duration = *duration;
+        if (restitution) o.restitution = *restitution;
         o.validate();
-        o.sample_times = spp::uniform_times(duration, samples_per_unit);
+        if (!(samples_per_unit > 0.0))
+          throw std::invalid_argument("simulate: samples_per_unit must be > 0, got " + std::to_string(samples_per_unit));
+        if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
         py::gil_scoped_release release;
         return spp::simulate(s, x0, v0, o);
       },
-      "system"_a, "x0"_a, "v0"_a, "duration"_a, "restitution"_a = 0.0, "samples_per_unit"_a = 100.0,
-      "Exact event-driven simulation from (x0, v0), shapes (n,). Raises ValueError.");
+      "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(),
+      "samples_per_unit"_a = 100.0, "options"_a = py::none(),
+      "Exact event-driven simulation from (x0, v0), shapes (n,): simulate(system, x0, v0, duration, restitution=0, "
+      "samples_per_unit=100), or with a SimulateOptions and any field also as a keyword (sample_times=[...] replaces "
+      "the uniform samples). Raises ValueError.");
 
   py::class_<spp::SppCandidate>(m, "SppCandidate", "An SPP as stored in a result file (what verify and plots need)")
       .def_readonly("t1", &spp::SppCandidate::t1)
@@ -564,24 +606,37 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("contact_poles", &spp::RootMap::contact_poles, "pole lines t2 = (k + 1/2) pi / d_j")
       .def_readonly("cells", &spp::RootMap::cells)
       .def_readonly("evaluations", &spp::RootMap::evaluations);
+  py::class_<spp::RootMapOptions>(m, "RootMapOptions",
+                                  "Options of root_map (the C++ RootMapOptions, field by field; root_map(system, "
+                                  "t1_max, t2_max, options, **fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("t1_min", &spp::RootMapOptions::t1_min, "lower end of the window in t1 (>= 0)")
+      .def_readwrite("t1_max", &spp::RootMapOptions::t1_max, "upper end of the window in t1 (> t1_min)")
+      .def_readwrite("t2_min", &spp::RootMapOptions::t2_min, "lower end of the window in t2 (>= 0)")
+      .def_readwrite("t2_max", &spp::RootMapOptions::t2_max, "upper end of the window in t2 (> t2_min)")
+      .def_readwrite("t1_points", &spp::RootMapOptions::t1_points, "grid points across the window along t1 (>= 16)")
+      .def_readwrite("t2_points", &spp::RootMapOptions::t2_points, "grid points across the window along t2 (>= 16)")
+      .def_readwrite("min_cell_points", &spp::RootMapOptions::min_cell_points,
+                     "at least this many points per cell and axis (>= 2)")
+      .def_readwrite("pole_margin", &spp::RootMapOptions::pole_margin,
+                     "distance kept from pole lines, relative to the cell width (in [0, 0.25))")
+      .def("validate", &spp::RootMapOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "RootMapOptions"); });
   m.def(
       "root_map",
-      [](const spp::System& s, double t1_max, double t2_max, double t1_min, double t2_min, int t1_points,
-         int t2_points) {
-        spp::RootMapOptions o;
-        o.t1_min = t1_min;
-        o.t1_max = t1_max;
-        o.t2_min = t2_min;
-        o.t2_max = t2_max;
-        o.t1_points = t1_points;
-        o.t2_points = t2_points;
+      [](const spp::System& s, std::optional<double> t1_max, std::optional<double> t2_max, const py::object& options,
+         const py::kwargs& fields) {
+        spp::RootMapOptions o = with_fields<spp::RootMapOptions>(options, fields, "root_map", "RootMapOptions");
+        if (t1_max) o.t1_max = *t1_max;
+        if (t2_max) o.t2_max = *t2_max;
         o.validate();
         py::gil_scoped_release release;
         return spp::root_map(s, o);
       },
-      "system"_a, "t1_max"_a, "t2_max"_a, "t1_min"_a = 0.0, "t2_min"_a = 0.0, "t1_points"_a = 400, "t2_points"_a = 400,
-      "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4). "
-      "Raises ValueError.");
+      "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
+      "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4): "
+      "root_map(system, t1_max, t2_max, t1_points=400, ...) or root_map(system, options=RootMapOptions) with any "
+      "field also as a keyword. Raises ValueError.");
 
   py::class_<spp::ParametricSystem>(m, "ParametricSystem",
                                     "M(mu) = M_constant + mu M_mu, K(mu) likewise, w(mu) likewise, g0 fixed")
@@ -640,21 +695,47 @@ PYBIND11_MODULE(_spp, m) {
       .def(
           "gap_closures", [](const spp::ContinuationResult& r) { return spp::gap_closures(r); },
           "GapClosure events sorted by mu: with g0 = 0, the SPPs of paper §6.1");
+  py::class_<spp::ContinueOptions>(m, "ContinueOptions",
+                                   "Options of continue_branches (the C++ ContinueOptions, field by field; "
+                                   "continue_branches(system, t1_max, t2_max, options, **fields) also takes any field "
+                                   "as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("t1_max", &spp::ContinueOptions::t1_max, "upper end of the window in t1 (> 0)")
+      .def_readwrite("t2_max", &spp::ContinueOptions::t2_max, "upper end of the window in t2 (> 0)")
+      .def_readwrite("t1_min", &spp::ContinueOptions::t1_min, "lower end (0: as solve)")
+      .def_readwrite("t2_min", &spp::ContinueOptions::t2_min, "lower end (0: as solve)")
+      .def_readwrite("seeds", &spp::ContinueOptions::seeds,
+                     "parameter values (min, max and evenly between) where solve seeds branches")
+      .def_readwrite("max_step", &spp::ContinueOptions::max_step,
+                     "largest step, in arclength of (t1/t1_max, t2/t2_max, mu/(max - min))")
+      .def_readwrite("min_step", &spp::ContinueOptions::min_step,
+                     "a branch whose step falls below this stops with a \"stalled\" event")
+      .def_readwrite("max_turn", &spp::ContinueOptions::max_turn, "largest angle (rad) between successive tangents")
+      .def_readwrite("max_points", &spp::ContinueOptions::max_points, "per branch and direction")
+      .def_readwrite("locate_tol", &spp::ContinueOptions::locate_tol,
+                     "events located to this, in the same scaled arclength")
+      .def_readwrite("threads", &spp::ContinueOptions::threads, "for the seeding solves (0: all)")
+      .def_property(
+          "symmetry", [](const spp::ContinueOptions& o) { return o.symmetry; },
+          [symmetry_of](spp::ContinueOptions& o, const py::object& v) { o.symmetry = symmetry_of(v); },
+          "Symmetry.axial (default) or Symmetry.point (or their names)")
+      .def("validate", &spp::ContinueOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "ContinueOptions"); });
   m.def(
       "continue_branches",
-      [](const spp::ParametricSystem& s, double t1_max, double t2_max, int seeds, double max_step, int threads) {
-        spp::ContinueOptions o;
-        o.t1_max = t1_max;
-        o.t2_max = t2_max;
-        o.seeds = seeds;
-        o.max_step = max_step;
-        o.threads = threads;
+      [](const spp::ParametricSystem& s, std::optional<double> t1_max, std::optional<double> t2_max,
+         const py::object& options, const py::kwargs& fields) {
+        spp::ContinueOptions o =
+            with_fields<spp::ContinueOptions>(options, fields, "continue_branches", "ContinueOptions");
+        if (t1_max) o.t1_max = *t1_max;
+        if (t2_max) o.t2_max = *t2_max;
         o.validate();
         py::gil_scoped_release release;
         return spp::continue_branches(s, o);
       },
-      "system"_a, "t1_max"_a, "t2_max"_a, "seeds"_a = 9, "max_step"_a = 0.02, "threads"_a = 0,
-      "Every SPP of the window followed over the parameter's range. Raises ValueError.");
+      "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
+      "Every SPP of the window followed over the parameter's range: continue_branches(system, t1_max=3, t2_max=1, "
+      "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Raises ValueError.");
 
   py::class_<spp::SppCheck>(m, "SppCheck")
       .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.candidate.t1; })
@@ -678,16 +759,32 @@ PYBIND11_MODULE(_spp, m) {
       .def("all_consistent", &spp::VerifyResult::all_consistent)
       .def("brief_report", &spp::VerifyResult::brief_report);
 
+  py::class_<spp::VerifyOptions>(m, "VerifyOptions",
+                                 "Options of verify (the C++ VerifyOptions, field by field; verify(system, result, "
+                                 "options, **fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("periods", &spp::VerifyOptions::periods, "simulated periods (>= 1)")
+      .def_readwrite("perturbation", &spp::VerifyOptions::perturbation,
+                     "relative size of the perturbation of the mid-flight state; 0: none")
+      .def_readwrite("restitution", &spp::VerifyOptions::restitution,
+                     "Newton's e for the simulations (matters only once the orbit is left)")
+      .def_readwrite("return_tol", &spp::VerifyOptions::return_tol,
+                     "an admissible SPP must come back to this relative error after one period")
+      .def_readwrite("follow_tol", &spp::VerifyOptions::follow_tol,
+                     "later periods count as followed while the return error stays below this")
+      .def_readwrite("event_time_tol", &spp::VerifyOptions::event_time_tol,
+                     "relative to the period: events within it of the expected times match")
+      .def("validate", &spp::VerifyOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "VerifyOptions"); });
   m.def(
       "verify",
-      [](const spp::System& s, const spp::SolveResult& r, int periods, double perturbation, double restitution) {
-        spp::VerifyOptions o;
-        o.periods = periods;
-        o.perturbation = perturbation;
-        o.restitution = restitution;
+      [](const spp::System& s, const spp::SolveResult& r, const py::object& options, const py::kwargs& fields) {
+        const spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
+        o.validate();
         py::gil_scoped_release release;
         return spp::verify(s, spp::candidates(r), o);
       },
-      "system"_a, "result"_a, "periods"_a = 1, "perturbation"_a = 0.0, "restitution"_a = 0.0,
-      "Re-simulates every solution of a solve() result. Raises ValueError.");
+      "system"_a, "result"_a, "options"_a = py::none(),
+      "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "
+      "or with a VerifyOptions and any field also as a keyword. Raises ValueError.");
 }

@@ -153,7 +153,8 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
     touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that 4-tuple);
     points: grid points per axis; ax: axes to draw into (default a new figure)."""
     w = _window(window)
-    rm = root_map(system, w["t1_max"], w["t2_max"], w["t1_min"], w["t2_min"], points, points)
+    rm = root_map(system, w["t1_max"], w["t2_max"], t1_min=w["t1_min"], t2_min=w["t2_min"], t1_points=points,
+                  t2_points=points)
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
     for p in rm.flight_poles:
         ax.axvline(p, color="0.8", lw=0.5, zorder=0)

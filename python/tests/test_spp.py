@@ -169,6 +169,50 @@ def test_solve_options_as_an_object_or_as_keywords():
     assert near.found and abs(near.solution.t1 - 3.2160302) < 1e-6
 
 
+
+def test_every_function_takes_its_options_struct_or_its_fields_as_keywords():
+    s = spp.chain(5)
+    # root_map: the struct and the keywords give the same map; an unknown keyword names the fields
+    o = spp.RootMapOptions()
+    o.t1_max, o.t2_max, o.t1_points, o.t2_points = 6.0, 6.0, 40, 40
+    a = spp.root_map(s, options=o)
+    b = spp.root_map(s, 6.0, 6.0, t1_points=40, t2_points=40)
+    assert len(a.cells) == len(b.cells) > 1 and a.evaluations == b.evaluations
+    assert all(np.array_equal(x.symmetric, y.symmetric) for x, y in zip(a.cells, b.cells))
+    with pytest.raises(ValueError, match=r'unknown option "t1_point".*t1_points'):
+        spp.root_map(s, 6.0, 6.0, t1_point=40)
+    with pytest.raises(ValueError, match="t1_points"):
+        spp.root_map(s, 6.0, 6.0, t1_points=3)
+    assert "t1_points=40" in repr(o)
+    # verify: periods from the struct or a keyword
+    r = spp.solve(s, t1_max=3.3, t2_max=0.6, admissible_only=True)
+    v = spp.VerifyOptions()
+    v.periods = 2
+    assert spp.verify(s, r, v).checks[0].periods_followed == spp.verify(s, r, periods=2).checks[0].periods_followed
+    with pytest.raises(ValueError, match="periods"):
+        spp.verify(s, r, periods=0)
+    # simulate: the struct's own sample times replace the uniform ones
+    sol = r.solutions[0]
+    so = spp.SimulateOptions()
+    so.sample_times = [0.0, sol.period / 2]
+    so.sample_events = False
+    sim = spp.simulate(s, sol.x0, sol.v0, sol.period, options=so)
+    assert np.allclose(sim.t, [0.0, sol.period / 2, sol.period])
+    assert len(spp.simulate(s, sol.x0, sol.v0, sol.period, samples_per_unit=10).t) > 3
+    with pytest.raises(ValueError, match="restitution"):
+        spp.simulate(s, sol.x0, sol.v0, sol.period, restitution=2.0)
+    # continuation: the options struct, symmetry by enum or name
+    c = spp.ContinueOptions()
+    c.symmetry = "point"
+    assert c.symmetry == spp.Symmetry.point
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    c.symmetry = spp.Symmetry.axial
+    c.t1_max, c.t2_max = 3.0, 1.0
+    k2 = sorted(p.mu for p in spp.continue_branches(ps, options=c).gap_closures())
+    assert len(k2) == 2 and abs(k2[1] - 5.716265) < 1e-6
+    with pytest.raises(ValueError, match=r'unknown option "seed".*seeds'):
+        spp.continue_branches(ps, t1_max=3, t2_max=1, seed=3)
+
 def _chain5_result():
     import os
     src = os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
