@@ -1,7 +1,7 @@
 """Status survey (not a test): `SPP_CLI=build/spp /usr/bin/python3 tests/crosscheck/survey_status.py random|stiff7|chains
 [extra solve flags, e.g. --no-certify-steps]` solves 35 random dense systems n = 2..8 (every third stiff, spread 1e5)
 in 8 x 8 quarter periods from the axes, 40 random stiff 7-dof systems (spread 1e5) in the same windows, or six
-random-mass 10-dof chains in their fundamental box, and prints each status, root count and the counted causes.
+random-mass 10-dof chains in their fundamental box (chain20: one 20-dof chain, seed 20), and prints each status, root count and the counted causes.
 Results go to /tmp/survey."""
 import json, subprocess, sys, os, numpy as np, time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -17,13 +17,6 @@ def chain(n, rng):
         if i + 1 < n: K[i, i+1] = K[i+1, i] = -1
     w = np.zeros(n); w[-1] = -1
     return {"name": f"rchain{n}", "M": np.diag(m).tolist(), "K": K.tolist(), "w": w.tolist(), "g0": 1.0}
-def box(sy):
-    Mm, Kk = np.array(sy["M"]), np.array(sy["K"])
-    import scipy.linalg as sl
-    om = bf.om
-    # contact frequencies: K restricted
-    bf = cw.bf.SPPSystem(sy["M"], sy["K"], sy["w"], sy["g0"])
-    return om, bf
 def run(sy, window, tag):
     p = f"{out}/{tag}.json"; json.dump(sy, open(p, "w"))
     r = f"{out}/{tag}_res.json"
@@ -47,6 +40,11 @@ if mode == "chains":
         om = bf.om
         w1 = om.min(); d = np.sort(bf.dpos)
         run(sy, [None, np.pi / w1, None, np.pi / d[0]], f"rchain10_s{seed}")
+elif mode == "chain20":  # one random-mass 20-dof chain (seed 20) in its fundamental box: a long run (~1 h here)
+    rng = np.random.default_rng(20)
+    sy = chain(20, rng)
+    bf = cw.bf.SPPSystem(sy["M"], sy["K"], sy["w"], sy["g0"])
+    run(sy, [None, np.pi / bf.om.min(), None, np.pi / np.sort(bf.dpos)[0]], "rchain20_s20")
 elif mode == "random":
     for seed in range(1, 36):
         rng = np.random.default_rng(1000 + seed)
