@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
 from ._files import atomic_path
-from ._spp import root_map, trajectory
+from ._spp import root_map, simulate, trajectory
 
 COLUMN_WIDTH_IN = 3.5  # one journal column
 
@@ -75,15 +75,26 @@ def _dof_colors(n):
     return [plt.get_cmap("viridis")(i / (n - 1)) for i in range(n)]
 
 
+def _one_period(system, solution, samples):
+    """t (from contact onset), x, gap, force over one period: from the SPP's own equations (spp.trajectory), or, for a
+    zero-gap SPP of paper §6.1 (g0 = 0: it exists only at one parameter value, where trajectory cannot re-solve it),
+    from the exact simulator started at its onset state x0, v0 (it has one, as a BranchPoint or Solution)."""
+    if system.g0 != 0.0:
+        return trajectory(system, solution.t1, solution.t2, samples)
+    sim = simulate(system, solution.x0, solution.v0, solution.period, 0.0, samples / solution.period)
+    return {"t": sim.t, "x": sim.x, "gap": sim.gap, "force": sim.force}
+
+
 def spp_figure(system, solution, samples=2000, path=None, axes=None):
     """Top: gap (left axis) and normal contact force (right axis, its own scale) over one period, contact phase
     shaded, symmetry axes at -t1 (mid-flight) and t2 (mid-contact); bottom: every position (coloured by dof index
     past 10 dofs, with a colour bar instead of a legend). Time origin at contact onset: flight on [-2 t1, 0], contact
     on [0, 2 t2]. The curves come from spp.trajectory (the SPP's own equations, exact flows), so an inadmissible
-    SPP is drawn as the potential orbit it is (gap or force negative somewhere, marked), as spp trajectory writes it.
+    SPP is drawn as the potential orbit it is (gap or force negative somewhere, marked), as spp trajectory writes it;
+    a zero-gap SPP (g0 = 0, paper §6.1, e.g. a gap closure of continue_branches) from the exact simulator.
     axes: (top, bottom) to draw into; default a new figure."""
     T, t1, t2 = solution.period, solution.t1, solution.t2
-    tr = trajectory(system, t1, t2, samples)
+    tr = _one_period(system, solution, samples)
     t = np.where(tr["t"] > 2 * t2, tr["t"] - T, tr["t"])  # flight after the contact is the flight before it
     order = np.argsort(t, kind="stable")
     t, x, gap, force = t[order], tr["x"][order], tr["gap"][order], tr["force"][order]

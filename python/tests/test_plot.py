@@ -31,6 +31,19 @@ def test_spp_figure_png_and_svg(tmp_path):
     assert g.min() > -1e-9  # admissible: the gap never goes negative
 
 
+
+def test_spp_figure_draws_the_zero_gap_spp_of_section_6_1(tmp_path):
+    # README's Fig. 8 command failed with "g0 = 0 ..." once spp_figure took its curves from trajectory, which cannot
+    # re-solve a zero-gap SPP at one parameter value: those come from the simulator, started at the onset state
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    p = spp.continue_branches(ps, t1_max=3, t2_max=1).gap_closures()[1]
+    fig = plot.spp_figure(ps.at(p.mu), p, path=tmp_path / "fig8.png")
+    t, g = fig.axes[0].lines[2].get_data()
+    assert t.min() >= -2 * p.t1 - 1e-12 and t.max() <= 2 * p.t2 + 1e-12
+    assert g.min() > -1e-9 and abs(g[np.argmin(np.abs(t))]) < 1e-9  # admissible, gap closed at onset (g0 = 0)
+    contact = (t > 1e-9) & (t < 2 * p.t2 - 1e-9)
+    assert np.abs(g[contact]).max() < 1e-9  # and held closed through the contact phase
+
 def test_frequency_energy_marks_the_solutions(tmp_path):
     _, r = result()
     fig = plot.frequency_energy_figure(r.solutions, path=tmp_path / "fe.png")
