@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "search/bordered_form.hpp"
 #include "search/step_certificate.hpp"
 #include "search/tolerances.hpp"
 #include "spp/detail/brent.hpp"
+#include "spp/detail/tridiagonal.hpp"
 
 namespace spp::search {
 
@@ -196,34 +198,34 @@ class CellTracer::Impl {
                   std::vector<EdgeHit>& right_entries, std::vector<EdgeHit>& bottom_entries) {
     ++st_.rectangles;
     bool certified = true;
-    // Corner counts are exact only when no eigenvalue lies within its error bound of 0: otherwise the corner is
-    // moved outwards (into the pole margin or past the window edge, never leaving a gap) and counted again. Checked
-    // with certify_steps only: next to clustered pole lines |H| ~ 1 / margin makes the bound ~1e-3 and the check
-    // fails on windows the midpoint trace handles (Solver.TraceTerminatesOnClusteredPoleLines).
-    auto certain = [this](const std::shared_ptr<const HPoint>& T) {
-      if (!opt_.certify_steps) return true;
-      const double e = T->eigen_error();
-      return T->count_below(-e) == T->count_below(e);
-    };
+    // Corner counts are exact only when no eigenvalue lies within its error bound of 0: where H's bound (8 m eps |H|,
+    // large next to a pole line) does not prove the count, the bordered form's does (corner_count); where neither
+    // does, the corner is moved outwards (into the pole margin or past the window edge, never leaving a gap) and
+    // counted again. Checked with certify_steps only (the midpoint trace takes H's count as it is).
     std::shared_ptr<const HPoint> BLt = corner(r.a1, r.A), TRt = corner(r.b1, r.B);
-    for (int tries = 0; tries < 4 && !(certain(BLt) && certain(TRt)); ++tries) {
+    int nBL = corner_count(*BLt, r.a1, r.A), nTR = corner_count(*TRt, r.b1, r.B);
+    for (int tries = 0; tries < 4 && (nBL < 0 || nTR < 0); ++tries) {
       const double d1 = 1e-9 * (r.b1 - r.a1), d2 = 1e-9 * (r.B - r.A);
-      if (!certain(BLt)) {
+      if (nBL < 0) {
         r.a1 -= d1;
         r.A -= d2;
         BLt = corner(r.a1, r.A);
+        nBL = corner_count(*BLt, r.a1, r.A);
       }
-      if (!certain(TRt)) {
+      if (nTR < 0) {
         r.b1 += d1;
         r.B += d2;
         TRt = corner(r.b1, r.B);
+        nTR = corner_count(*TRt, r.b1, r.B);
       }
     }
-    if (!(certain(BLt) && certain(TRt))) {
+    if (nBL < 0 || nTR < 0) {
       ++st_.uncertified_corners;
       certified = false;
+      if (nBL < 0) nBL = BLt->count_below(0.0);
+      if (nTR < 0) nTR = TRt->count_below(0.0);
     }
-    const int kmin = TRt->count_below(0.0), kmax = BLt->count_below(0.0);  // curves k in [kmin, kmax)
+    const int kmin = nTR, kmax = nBL;  // curves k in [kmin, kmax)
     if (kmin >= kmax) return certified;
     const std::shared_ptr<const HPoint> BRt = corner(r.b1, r.A), TLt = corner(r.a1, r.B);
     const int nBR = BRt->count_below(0.0), nTL = TLt->count_below(0.0);
@@ -580,6 +582,29 @@ class CellTracer::Impl {
     p.g = -p.g;
     p.dg = -p.dg;
   }
+
+  // Number of eigenvalues of H below 0 at a corner (t1, t2), proved: from H's Sturm count where no eigenvalue lies
+  // within H's error bound of 0; else from the bordered form at that point, B = [[H', U], [U^T, -Lambda^-1]]
+  // (bordered_form.hpp), whose entries stay O(1) next to a pole line where H's grow like 1 / distance (clustered pole
+  // lines 1e-4 apart put every corner there): Haynsworth's inertia additivity, inertia(B) = inertia(H) +
+  // inertia(-Lambda^-1), gives H's count as B's minus the number of positive border values. -1 where neither proves
+  // it. Without certify_steps, H's count as it is.
+  int corner_count(const HPoint& T, double t1, double t2) const {
+    if (!opt_.certify_steps) return T.count_below(0.0);
+    const double e = T.eigen_error();
+    const int below = T.count_below(-e);
+    if (below == T.count_below(e)) return below;
+    const BorderedForm bf(md_, t1, t1, t2, t2, sym_);
+    if (!bf.valid() || bf.bordered() == 0) return -1;
+    const detail::SymmetricTridiagonal B(bf.matrix(t1, t2));
+    const double eb = 8.0 * B.size() * std::numeric_limits<double>::epsilon() * B.norm_bound();
+    const int below_b = B.count_below(-eb);
+    if (below_b != B.count_below(eb)) return -1;
+    const Eigen::VectorXd lam = bf.border_values(t1, t2);
+    if (!lam.allFinite()) return -1;
+    return below_b - static_cast<int>((lam.array() > 0.0).count());
+  }
+
 
   // True when no SPP lies in [t1lo, t1hi] x [t2lo, t2hi] (inside one cell), proved by the onset inertia: Hc grows
   // with t1 and t2 there (Loewner), so equal counts at the two extreme corners, both certain, leave no eigenvalue of
