@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "spp/detail/invalid.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
 #include "spp/search/solver.hpp"
@@ -118,6 +119,7 @@ class Tracer {
   struct Cached {
     System system;
     ModalForm modal;
+    std::unique_ptr<EquationSet> equations;  // on `modal` (the Cached is not moved once built)
   };
   const Cached& at(double mu) {
     for (auto it = cache_.begin(); it != cache_.end(); ++it)
@@ -127,7 +129,9 @@ class Tracer {
       }
     System s = ps_.at(mu);
     ModalForm md(s);
-    cache_.emplace_front(mu, std::make_unique<Cached>(Cached{std::move(s), std::move(md)}));
+    auto c = std::make_unique<Cached>(Cached{std::move(s), std::move(md), nullptr});
+    c->equations = make_equations(c->modal, o_.symmetry);
+    cache_.emplace_front(mu, std::move(c));
     if (cache_.size() > 6) cache_.pop_back();
     return *cache_.front().second;
   }
@@ -135,11 +139,12 @@ class Tracer {
   Eval eval(const V3& y, const Vec& xref) {
     const Cached& c = at(mu(y));
     const ModalForm& md = c.modal;
+    const EquationSet& eq = *c.equations;
     const int m = md.m();
     Vec b = md.omega().asDiagonal() * (md.Phi().transpose() * (c.system.M() * xref));
     b /= b.norm();
     Mat B = Mat::Zero(m + 1, m + 1);
-    B.topLeftCorner(m, m) = md.N(t1(y), t2(y), o_.symmetry);
+    B.topLeftCorner(m, m) = eq.N(t1(y), t2(y));
     B.topRightCorner(m, 1) = b;
     B.bottomLeftCorner(1, m) = b.transpose();
     Vec rhs = Vec::Zero(m + 1);
@@ -148,7 +153,7 @@ class Tracer {
     Eval e;
     e.a = sol.head(m);
     e.F(0) = sol(m);
-    e.F(1) = md.z().dot(md.onset_position(t1(y), e.a, o_.symmetry)) / md.z().norm();
+    e.F(1) = md.z().dot(eq.onset_position(t1(y), e.a)) / md.z().norm();
     return e;
   }
 
@@ -216,17 +221,16 @@ class Tracer {
     const Vec q0 = ((w * p.t1).cos() * e.a.array() / w).matrix();
     p.closure = md.u().dot(q0) / (e.a.array() / w).matrix().norm();
     p.margin = std::numeric_limits<double>::quiet_NaN();
-    const Symmetry sym = o_.symmetry;
+    const EquationSet& eq = *c.equations;
     try {
       const bool free_scale = md.g0() == 0.0;
-      const Orbit o =
-          free_scale ? make_unit_energy_orbit(md, p.t1, p.t2, e.a, sym) : make_orbit(md, p.t1, p.t2, e.a, sym);
+      const Orbit o = free_scale ? make_unit_energy_orbit(eq, p.t1, p.t2, e.a) : make_orbit(eq, p.t1, p.t2, e.a);
       p.energy = o.energy;
       p.x0 = o.x0;
       p.v0 = o.v0;
       // With g0 = 0 the orbit closes the gap only where closure = 0: the margin means nothing elsewhere; point
       // symmetric orbits are never admissible (no margin).
-      if (!free_scale && sym == Symmetry::Axial) p.margin = admissibility_margin(md, o);
+      if (!free_scale && eq.can_be_admissible()) p.margin = admissibility_margin(md, o);
     } catch (const std::invalid_argument&) {
     }
     p.admissible = p.margin >= 0.0;
@@ -237,9 +241,9 @@ class Tracer {
   void finish_closure(BranchPoint& p, const V3& y, const Eval& e) {
     const Cached& c = at(mu(y));
     const ModalForm& md = c.modal;
-    const Orbit o = make_unit_energy_orbit(md, p.t1, p.t2, e.a, o_.symmetry);
-    p.margin = md.g0() == 0.0 && o_.symmetry == Symmetry::Axial ? admissibility_margin(md, o)
-                                                                : std::numeric_limits<double>::quiet_NaN();
+    const Orbit o = make_unit_energy_orbit(*c.equations, p.t1, p.t2, e.a);
+    p.margin = md.g0() == 0.0 && c.equations->can_be_admissible() ? admissibility_margin(md, o)
+                                                                  : std::numeric_limits<double>::quiet_NaN();
     p.admissible = p.margin >= 0.0;
     p.energy = o.energy;
     // The closure is located to rounding: put x0 exactly on the obstacle (g0 = 0: w^T x0 = 0), a correction of

@@ -87,51 +87,6 @@ const char* to_string(Symmetry s) {
   return s == Symmetry::Axial ? "axial" : "point";
 }
 
-namespace {
-// tan(d t) / d, with its limit t at d = 0.
-double tan_over(double d, double t) {
-  return d > 0 ? std::tan(d * t) / d : t;
-}
-}  // namespace
-
-Eigen::VectorXd ModalForm::flight_part(double t1, Symmetry sym) const {
-  if (sym == Symmetry::Point) return ((omega_.array() * t1).tan() / omega_.array()).matrix();
-  return (omega_.array() * (omega_.array() * t1).tan()).matrix();
-}
-
-Eigen::VectorXd ModalForm::dflight_dt1(double t1, Symmetry sym) const {
-  const Eigen::ArrayXd sec2 = 1.0 / (omega_.array() * t1).cos().square();
-  if (sym == Symmetry::Point) return Eigen::VectorXd(sec2.matrix());
-  return Eigen::VectorXd((omega_.array().square() * sec2).matrix());
-}
-
-Eigen::VectorXd ModalForm::contact_eigs(double t2, Symmetry sym) const {
-  Eigen::VectorXd e(d_.size());
-  for (Eigen::Index j = 0; j < d_.size(); ++j)
-    e(j) = sym == Symmetry::Point ? tan_over(d_(j), t2) : d_(j) * std::tan(d_(j) * t2);
-  return e;
-}
-
-Eigen::MatrixXd ModalForm::contact_part(double t2, Symmetry sym) const {
-  return G_ * contact_eigs(t2, sym).asDiagonal() * G_.transpose();
-}
-
-Eigen::VectorXd ModalForm::dcontact_eigs(double t2, Symmetry sym) const {
-  const Eigen::ArrayXd sec2 = 1.0 / (d_.array() * t2).cos().square();
-  if (sym == Symmetry::Point) return Eigen::VectorXd(sec2.matrix());
-  return Eigen::VectorXd((d_.array().square() * sec2).matrix());
-}
-
-Eigen::MatrixXd ModalForm::dcontact_dt2(double t2, Symmetry sym) const {
-  return G_ * dcontact_eigs(t2, sym).asDiagonal() * G_.transpose();
-}
-
-Eigen::MatrixXd ModalForm::H(double t1, double t2, Symmetry sym) const {
-  Eigen::MatrixXd Hm = contact_part(t2, sym);
-  Hm.diagonal() += flight_part(t1, sym);
-  return Hm;
-}
-
 Eigen::MatrixXd ModalForm::contact_cos(double t) const {
   const Eigen::VectorXd e = (d_.array() * t).cos().matrix();
   return G_ * e.asDiagonal() * G_.transpose();
@@ -146,58 +101,6 @@ Eigen::MatrixXd ModalForm::contact_sinc(double t) const {
 Eigen::MatrixXd ModalForm::contact_msin(double t) const {
   const Eigen::VectorXd e = (d_.array() * (d_.array() * t).sin()).matrix();
   return G_ * e.asDiagonal() * G_.transpose();
-}
-
-Eigen::MatrixXd ModalForm::N(double t1, double t2, Symmetry sym) const {
-  const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
-  if (sym == Symmetry::Point)
-    return contact_cos(t2) * (s1 / omega_.array()).matrix().asDiagonal() + contact_sinc(t2) * c1.matrix().asDiagonal();
-  return contact_msin(t2) * c1.matrix().asDiagonal() + contact_cos(t2) * (omega_.array() * s1).matrix().asDiagonal();
-}
-
-Eigen::MatrixXd ModalForm::dN_dt1(double t1, double t2, Symmetry sym) const {
-  const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
-  if (sym == Symmetry::Point)
-    return contact_cos(t2) * c1.matrix().asDiagonal() - contact_sinc(t2) * (omega_.array() * s1).matrix().asDiagonal();
-  return -contact_msin(t2) * (omega_.array() * s1).matrix().asDiagonal() +
-         contact_cos(t2) * (omega_.array().square() * c1).matrix().asDiagonal();
-}
-
-Eigen::MatrixXd ModalForm::dN_dt2(double t1, double t2, Symmetry sym) const {
-  const Eigen::ArrayXd c1 = (omega_.array() * t1).cos(), s1 = (omega_.array() * t1).sin();
-  if (sym == Symmetry::Point)
-    return -contact_msin(t2) * (s1 / omega_.array()).matrix().asDiagonal() + contact_cos(t2) * c1.matrix().asDiagonal();
-  const Eigen::VectorXd e2 = (d_.array().square() * (d_.array() * t2).cos()).matrix();
-  const Eigen::MatrixXd SC = G_ * e2.asDiagonal() * G_.transpose();  // S cos(S^1/2 t2)
-  return SC * c1.matrix().asDiagonal() - contact_msin(t2) * (omega_.array() * s1).matrix().asDiagonal();
-}
-
-Eigen::VectorXd ModalForm::onset_position(double t1, const Eigen::VectorXd& a, Symmetry sym) const {
-  const Eigen::ArrayXd& w = omega_.array();
-  if (sym == Symmetry::Point) return Eigen::VectorXd(((w * t1).sin() / w * a.array()).matrix());
-  return Eigen::VectorXd(((w * t1).cos() * a.array()).matrix());
-}
-
-Eigen::VectorXd ModalForm::onset_velocity(double t1, const Eigen::VectorXd& a, Symmetry sym) const {
-  const Eigen::ArrayXd& w = omega_.array();
-  if (sym == Symmetry::Point) return Eigen::VectorXd(((w * t1).cos() * a.array()).matrix());
-  return Eigen::VectorXd((-w * (w * t1).sin() * a.array()).matrix());
-}
-
-Eigen::VectorXd ModalForm::onset_position_dt1(double t1, const Eigen::VectorXd& a, Symmetry sym) const {
-  const Eigen::ArrayXd& w = omega_.array();
-  if (sym == Symmetry::Point) return Eigen::VectorXd(((w * t1).cos() * a.array()).matrix());
-  return Eigen::VectorXd((-w * (w * t1).sin() * a.array()).matrix());
-}
-
-Eigen::VectorXd ModalForm::onset_direction(double t2, Symmetry sym) const {
-  if (sym == Symmetry::Axial) return z_;
-  return -(contact_part(t2, Symmetry::Point) * z_);
-}
-
-Eigen::VectorXd ModalForm::onset_direction_dt2(double t2, Symmetry sym) const {
-  if (sym == Symmetry::Axial) return Eigen::VectorXd::Zero(z_.size());
-  return -(dcontact_dt2(t2, Symmetry::Point) * z_);
 }
 
 namespace {

@@ -34,33 +34,35 @@ void flight_flow(const ModalForm& md, double t, const Eigen::VectorXd& p0, const
 
 namespace {
 // Every field of the orbit from the null vector a of N, given the factor that scales it.
-Orbit scaled_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a_in, double scale, Symmetry sym) {
+Orbit scaled_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a_in, double scale) {
+  const ModalForm& md = eq.modal();
   Orbit o;
   o.t1 = t1;
   o.t2 = t2;
-  o.symmetry = sym;
+  o.symmetry = eq.symmetry();
   const Eigen::ArrayXd& w = md.omega().array();
-  const Eigen::VectorXd q0 = (md.onset_position(t1, a_in, sym).array() / w).matrix();
+  const Eigen::VectorXd q0 = (eq.onset_position(t1, a_in).array() / w).matrix();
   o.closure_ratio = q0.norm() > 0 ? std::abs(md.u().dot(q0)) / q0.norm() : 0.0;
   o.a = scale * a_in;
-  o.p0 = md.onset_position(t1, o.a, sym);
-  o.p0dot = md.onset_velocity(t1, o.a, sym);  // axial: p'(0) = -W tan(W t1) p0, pole-free
+  o.p0 = eq.onset_position(t1, o.a);
+  o.p0dot = eq.onset_velocity(t1, o.a);  // axial: p'(0) = -W tan(W t1) p0, pole-free
   Eigen::VectorXd cd;
   contact_flow(md, t2, o.p0, o.p0dot, o.c, cd);  // point symmetry: c = p(t2) = 0
   o.x0 = md.Phi() * (o.p0.array() / w).matrix();
   o.v0 = md.Phi() * (o.p0dot.array() / w).matrix();
   o.energy = 0.5 * (o.p0dot.array() / w).matrix().squaredNorm() + 0.5 * o.p0.squaredNorm();
-  if (sym == Symmetry::Point) o.obstacle_velocity = md.beta() * md.u().dot((o.p0dot.array() / w).matrix());
+  if (eq.moving_obstacle()) o.obstacle_velocity = md.beta() * md.u().dot((o.p0dot.array() / w).matrix());
   return o;
 }
 }  // namespace
 
-Orbit make_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a_in, Symmetry sym) {
+Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a_in) {
+  const ModalForm& md = eq.modal();
   if (md.g0() == 0.0)
     throw std::invalid_argument("orbit: g0 = 0, the scale of the initial conditions (eq. 5.2) is undefined");
-  const double r = md.u().dot((md.onset_position(t1, a_in, sym).array() / md.omega().array()).matrix());
+  const double r = md.u().dot((eq.onset_position(t1, a_in).array() / md.omega().array()).matrix());
   if (r == 0.0) throw std::invalid_argument("orbit: u^T W^-1 p0 = 0, the gap cannot close (eq. 5.2)");
-  return scaled_orbit(md, t1, t2, a_in, -md.g0() / (md.beta() * r), sym);  // eq. (5.2): w^T x0 = -g0
+  return scaled_orbit(eq, t1, t2, a_in, -md.g0() / (md.beta() * r));  // eq. (5.2): w^T x0 = -g0
 }
 
 Admissibility check_point_admissibility(const ModalForm& md, const Orbit& o) {
@@ -85,13 +87,12 @@ Admissibility check_point_admissibility(const ModalForm& md, const Orbit& o) {
   return adm;
 }
 
-Orbit make_unit_energy_orbit(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a, Symmetry sym) {
-  const Orbit one = scaled_orbit(md, t1, t2, a, 1.0, sym);
+Orbit make_unit_energy_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a) {
+  const Orbit one = scaled_orbit(eq, t1, t2, a, 1.0);
   if (!(one.energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
   // The sign that makes the force >= 0 at mid-contact (axial) or at t2 / 2 (point: zero at t2).
-  const double probe = sym == Symmetry::Point ? 0.5 * t2 : t2;
-  const double sign = orbit_state(md, one, probe).force >= 0.0 ? 1.0 : -1.0;
-  return scaled_orbit(md, t1, t2, a, sign / std::sqrt(one.energy), sym);
+  const double sign = orbit_state(eq.modal(), one, eq.force_probe(t2)).force >= 0.0 ? 1.0 : -1.0;
+  return scaled_orbit(eq, t1, t2, a, sign / std::sqrt(one.energy));
 }
 
 OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {

@@ -29,14 +29,15 @@ Eigen::VectorXd PhaseFamily::d1(double t) const {
   return v;
 }
 
-PhaseFamily PhaseFamily::of_modes(const Eigen::VectorXd& freqs, Symmetry sym) {
+PhaseFamily PhaseFamily::of_modes(const Eigen::VectorXd& freqs, PhaseShape shape) {
   const Eigen::Index m = freqs.size();
   PhaseFamily p{Eigen::VectorXd(m), freqs, Eigen::VectorXd::Zero(m), Eigen::Array<bool, Eigen::Dynamic, 1>(m),
                 Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(m, false)};
   for (Eigen::Index k = 0; k < m; ++k) {
     const double f = freqs(k);
-    p.linear(k) = sym == Symmetry::Point && f == 0.0;
-    p.amp(k) = sym == Symmetry::Point ? (f == 0.0 ? 1.0 : 1.0 / f) : f;
+    const bool over = shape == PhaseShape::TanOverF;
+    p.linear(k) = over && f == 0.0;
+    p.amp(k) = over ? (f == 0.0 ? 1.0 : 1.0 / f) : f;
   }
   return p;
 }
@@ -48,7 +49,8 @@ PhaseFamily PhaseFamily::zeros(Eigen::Index size) {
 }
 
 namespace {
-// tan(f t) (t itself for f = 0) has no zero in [lo, hi] (a point symmetric contact border -1/phase stays finite).
+// tan(f t) (t itself for f = 0) has no zero in [lo, hi] (a border -1/phase of a contact phase tan(f t) / f stays
+// finite).
 bool no_zero_of_tan(double f, double lo, double hi) {
   if (!(f > 0)) return lo > 0;
   return std::floor(f * hi / std::numbers::pi) < f * lo / std::numbers::pi;
@@ -63,26 +65,29 @@ bool next_to_pole(double f, double lo, double hi) {
 }
 }  // namespace
 
-BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2, Symmetry sym)
-    : md_(md), sym_(sym) {
+BorderedForm::BorderedForm(const EquationSet& eq, double lo1, double hi1, double lo2, double hi2) : eq_(eq) {
+  const ModalForm& md = eq.modal();
   const Eigen::VectorXd& w = md.omega();
   const Eigen::VectorXd& d = md.d();
-  const bool point = sym == Symmetry::Point;
+  // the onset direction -contact_part(t2) z moves with t2: every contact mode bordered (see the header)
+  const bool moving = !eq.onset_direction_fixed();
+  // a border -1/phase of a phase tan(f t) / f is f tan(f t - pi/2), of f tan(f t) it is tan(f t - pi/2) / f
+  const bool over = eq.phase_shape() == PhaseShape::TanOverF;
   m_ = static_cast<int>(w.size());
   for (int i = 0; i < m_; ++i)
     if (next_to_pole(w(i), lo1, hi1)) flight_modes_.push_back(i);
   for (int j = 0; j < static_cast<int>(d.size()); ++j) {
-    if (point && !no_zero_of_tan(d(j), lo2, hi2)) valid_ = false;
-    if (point || next_to_pole(d(j), lo2, hi2)) contact_modes_.push_back(j);
+    if (moving && !no_zero_of_tan(d(j), lo2, hi2)) valid_ = false;
+    if (moving || next_to_pole(d(j), lo2, hi2)) contact_modes_.push_back(j);
   }
   const int nf = static_cast<int>(flight_modes_.size()), nc = static_cast<int>(contact_modes_.size());
   const int size = m_ + nf + nc;
   const double half_pi = 0.5 * std::numbers::pi;
 
-  // flight phases, one per coordinate: plain modes omega tan(omega t1) (point: tan(omega t1) / omega); a bordered
-  // mode's own coordinate 0 and its border coordinate -1/f = tan(omega t1 - pi/2) / omega (point: omega tan(omega t1 -
-  // pi/2)); contact border coordinates 0
-  const PhaseFamily plain_f = PhaseFamily::of_modes(w, sym);
+  // flight phases, one per coordinate: plain modes omega tan(omega t1) (TanOverF: tan(omega t1) / omega); a bordered
+  // mode's own coordinate 0 and its border coordinate -1/f = tan(omega t1 - pi/2) / omega (TanOverF: omega tan(omega t1
+  // - pi/2)); contact border coordinates 0
+  const PhaseFamily plain_f = PhaseFamily::of_modes(w, eq.phase_shape());
   flight_ = PhaseFamily::zeros(size);
   flight_.amp.head(m_) = plain_f.amp;
   flight_.freq.head(m_) = w;
@@ -92,7 +97,7 @@ BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double l
     const int i = flight_modes_[p], q = m_ + p;
     flight_.amp(i) = 0.0;
     flight_.linear(i) = false;
-    flight_.amp(q) = point ? w(i) : 1.0 / w(i);
+    flight_.amp(q) = over ? w(i) : 1.0 / w(i);
     flight_.freq(q) = w(i);
     flight_.shift(q) = -half_pi;
     K0_(i, q) = K0_(q, i) = 1.0;
@@ -102,7 +107,7 @@ BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double l
   const int plain_c = static_cast<int>(d.size()) - nc;
   Gx_ = Eigen::MatrixXd::Zero(size, plain_c + nc);
   contact_ = PhaseFamily::zeros(plain_c + nc);
-  const PhaseFamily plain_c_phase = PhaseFamily::of_modes(d, sym);
+  const PhaseFamily plain_c_phase = PhaseFamily::of_modes(d, eq.phase_shape());
   int col = 0;
   for (int j = 0; j < static_cast<int>(d.size()); ++j) {
     if (std::find(contact_modes_.begin(), contact_modes_.end(), j) != contact_modes_.end()) continue;
@@ -113,24 +118,24 @@ BorderedForm::BorderedForm(const ModalForm& md, double lo1, double hi1, double l
     ++col;
   }
   c_ = Eigen::VectorXd::Zero(size);
-  if (!point) c_.head(m_) = md.z().normalized();
+  if (!moving) c_.head(m_) = md.z().normalized();
   for (int p = 0; p < nc; ++p, ++col) {
     const int j = contact_modes_[p], q = m_ + nf + p;
     Gx_(q, col) = 1.0;
     contact_.freq(col) = d(j);
     if (d(j) > 0) {
-      contact_.amp(col) = point ? d(j) : 1.0 / d(j);
+      contact_.amp(col) = over ? d(j) : 1.0 / d(j);
       contact_.shift(col) = -half_pi;
-    } else {  // point symmetry's zero frequency: phase t2, border -1 / t2
+    } else {  // the zero frequency of a TanOverF phase (bordered only when the onset moves): phase t2, border -1 / t2
       contact_.amp(col) = 1.0;
       contact_.reciprocal(col) = true;
     }
     K0_.col(q).head(m_) = md.G().col(j);
     K0_.row(q).head(m_) = md.G().col(j).transpose();
     // c(t2)^T b = -sum_j (g_j^T z) tan(d_j t2) / d_j (g_j^T b) = -sum_j (g_j^T z) nu_j
-    if (point) c_(q) = -md.G().col(j).dot(md.z());
+    if (moving) c_(q) = -md.G().col(j).dot(md.z());
   }
-  if (point && c_.norm() > 0) c_.normalize();  // only its sign is used
+  if (moving && c_.norm() > 0) c_.normalize();  // only its sign is used
 }
 
 Eigen::MatrixXd BorderedForm::matrix(double t1, double t2) const {
@@ -148,7 +153,7 @@ std::vector<int> BorderedForm::key() const {
 Eigen::VectorXd BorderedForm::border_values(double t1, double t2) const {
   Eigen::VectorXd v(bordered());
   const size_t nf = flight_modes_.size();
-  const Eigen::VectorXd f = md_.flight_part(t1, sym_), c = md_.contact_eigs(t2, sym_);
+  const Eigen::VectorXd f = eq_.flight_part(t1), c = eq_.contact_eigs(t2);
   for (size_t p = 0; p < nf; ++p) v(p) = f(flight_modes_[p]);
   for (size_t p = 0; p < contact_modes_.size(); ++p) v(nf + p) = c(contact_modes_[p]);
   return v;
@@ -161,7 +166,7 @@ Eigen::VectorXd BorderedForm::extend(const Eigen::VectorXd& b, double t1, double
   const size_t nf = flight_modes_.size();
   for (size_t p = 0; p < nf; ++p) x(m_ + p) = lam(p) * b(flight_modes_[p]);
   for (size_t p = 0; p < contact_modes_.size(); ++p)
-    x(m_ + nf + p) = lam(nf + p) * md_.G().col(contact_modes_[p]).dot(b);
+    x(m_ + nf + p) = lam(nf + p) * eq_.modal().G().col(contact_modes_[p]).dot(b);
   return x;
 }
 

@@ -21,7 +21,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "spp/modal/modal.hpp"
+#include "spp/modal/equation_set.hpp"
 
 namespace spp::search {
 
@@ -40,10 +40,10 @@ struct PhaseFamily {
   Point at(Eigen::Index k, double t) const;
   Eigen::VectorXd value(double t) const;
   Eigen::VectorXd d1(double t) const;  ///< first derivative
-  /// The phases of H itself: omega tan(omega t) (axial) or tan(omega t) / omega (point).
   /// A family of `size` constant zero phases.
   static PhaseFamily zeros(Eigen::Index size);
-  static PhaseFamily of_modes(const Eigen::VectorXd& freqs, Symmetry sym);
+  /// The phases of H itself: omega tan(omega t) (PhaseShape::FTan) or tan(omega t) / omega (TanOverF).
+  static PhaseFamily of_modes(const Eigen::VectorXd& freqs, PhaseShape shape);
 };
 
 class BorderedForm {
@@ -51,10 +51,11 @@ class BorderedForm {
   /// Borders the modes that stay next to their pole over [lo1, hi1] x [lo2, hi2] (|tan| >= 1 at both ends of the
   /// box's interval, no zero of tan between): there -1/f is bounded by the mode's own scale, and f is not. The box
   /// holds no pole line.
-  /// Point symmetry (H_T, paper §6.2): its onset direction c(t2) = -G diag(tan(d t2) / d) G^T z moves with t2, so
-  /// every contact mode is bordered (the zero frequency's phase t2 by -1/t2), which makes it constant:
-  /// c^T b = -(G^T z)^T nu. Valid only where no tan(d_j t2) vanishes in [lo2, hi2] (and t2 > 0): valid() says.
-  BorderedForm(const ModalForm& md, double lo1, double hi1, double lo2, double hi2, Symmetry sym = Symmetry::Axial);
+  /// Where the onset direction moves with t2 (EquationSet::onset_direction_fixed false, e.g. point symmetry's
+  /// c(t2) = -G diag(tan(d t2) / d) G^T z), every contact mode is bordered (the zero frequency's phase t2 by -1/t2),
+  /// which makes it constant: c^T b = -(G^T z)^T nu. Valid only where no tan(d_j t2) vanishes in [lo2, hi2] (and
+  /// t2 > 0): valid() says.
+  BorderedForm(const EquationSet& eq, double lo1, double hi1, double lo2, double hi2);
 
   bool valid() const { return valid_; }
   int size() const { return static_cast<int>(flight_.size()); }
@@ -73,8 +74,7 @@ class BorderedForm {
   Eigen::VectorXd extend(const Eigen::VectorXd& b, double t1, double t2) const;
 
  private:
-  const ModalForm& md_;
-  Symmetry sym_ = Symmetry::Axial;
+  const EquationSet& eq_;
   bool valid_ = true;
   int m_ = 0;
   std::vector<int> flight_modes_, contact_modes_;  // bordered, in border order (flight first)

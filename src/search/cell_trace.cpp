@@ -38,24 +38,24 @@ StepEnd step_end(const TracePoint& p) {
 
 class CellTracer::Impl {
  public:
-  Impl(const ModalForm& md, const SolveOptions& opt, SolveStats& st, Evaluator& ev)
-      : md_(md),
+  Impl(const EquationSet& eq, const SolveOptions& opt, SolveStats& st, Evaluator& ev)
+      : eq_(eq),
+        md_(eq.modal()),
         ev_(ev),
         opt_(opt),
         st_(st),
         hmin_(opt.min_step * (opt.t1_max + opt.t2_max)),
-        sym_(opt.symmetry),
-        zhat_(md.z().normalized()) {}
+        zhat_(md_.z().normalized()) {}
 
-  // g = c^T b with c the onset direction, and dg/ds given db/ds and dt2/ds. Axial: c = z / |z| (z^T p0 = 0 with p0
-  // along b), constant, computed once (this runs at every trace point). Point: c(t2), not normalised.
+  // g = c^T b with c the onset direction, and dg/ds given db/ds and dt2/ds. Fixed (axial): c = z / |z| (z^T p0 = 0
+  // with p0 along b), computed once (this runs at every trace point). Moving (point): c(t2), not normalised.
   std::pair<double, double> onset_g(const Vec& b, double t2, const Vec* db = nullptr, double dt2_ds = 0.0) const {
-    if (sym_ == Symmetry::Axial) return {zhat_.dot(b), db ? zhat_.dot(*db) : 0.0};
-    // Point symmetry: c(t2) is not normalised (its sign is all that matters, and the certificate bounds c^T b).
-    const Vec c = md_.onset_direction(t2, sym_);
+    if (eq_.onset_direction_fixed()) return {zhat_.dot(b), db ? zhat_.dot(*db) : 0.0};
+    // c(t2) is not normalised (its sign is all that matters, and the certificate bounds c^T b).
+    const Vec c = eq_.onset_direction(t2);
     const double g = c.dot(b);
     if (!db) return {g, 0.0};
-    const Vec dc = md_.onset_direction_dt2(t2, sym_) * dt2_ds;
+    const Vec dc = eq_.onset_direction_dt2(t2) * dt2_ds;
     return {g, c.dot(*db) + dc.dot(b)};
   }
 
@@ -79,9 +79,9 @@ class CellTracer::Impl {
 
   // b^T dH/dt1 b and b^T dH/dt2 b (both >= 0).
   std::pair<double, double> grads(const Vec& b, double t1, double t2) const {
-    const double l1 = (md_.dflight_dt1(t1, sym_).array() * b.array().square()).sum();
+    const double l1 = (eq_.dflight_dt1(t1).array() * b.array().square()).sum();
     const Vec y = md_.G().transpose() * b;
-    const double l2 = (md_.dcontact_eigs(t2, sym_).array() * y.array().square()).sum();
+    const double l2 = (eq_.dcontact_eigs(t2).array() * y.array().square()).sum();
     return {l1, l2};
   }
 
@@ -97,8 +97,8 @@ class CellTracer::Impl {
     const auto [l1, l2] = grads(b0, q.t1, q.t2);
     const double tp = -l2 / (l1 + l2);  // dtau/ds on the curve
     const Vec y = md_.G().transpose() * b0;
-    const Vec e2 = md_.dcontact_eigs(q.t2, sym_);
-    const Vec dHb = tp * md_.dflight_dt1(q.t1, sym_).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
+    const Vec e2 = eq_.dcontact_eigs(q.t2);
+    const Vec dHb = tp * eq_.dflight_dt1(q.t1).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
     const Vec dbh = q.at->solve_bordered(q.lam, b0, -(dHb - b0.dot(dHb) * b0));
     p.slope_sum = l1 + l2;
     p.pos_err = (std::abs(q.lam) + q.at->eigen_error()) / (l1 + l2);
@@ -115,7 +115,7 @@ class CellTracer::Impl {
       // Far above rounding (next to a pole line, where H's eigenvalue error grows like 1 / distance): the same
       // distances from the bordered form, whose error stays at its O(1) scale; the smaller estimate is kept.
       if (p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
-        const BorderedOffset bo = bordered_offset(md_, sym_, q.t1, q.t2);
+        const BorderedOffset bo = bordered_offset(eq_, q.t1, q.t2);
         if (bo.valid) {
           const double via[3] = {bo.lam_err / (bo.l1 + bo.l2), bo.lam_err / bo.l1, bo.lam_err / bo.l2};
           for (int i = 0; i < 3; ++i)
@@ -126,7 +126,7 @@ class CellTracer::Impl {
       for (const auto& mv : moves) {
         const double e1 = 2.0 * mv[0] + rounding, e2 = 2.0 * mv[1] + rounding;
         if (!std::isfinite(e1) || !std::isfinite(e2)) continue;
-        const Offset o = offset_bound(md_, sym_, q.t1, q.t2, e1, e2, b0);
+        const Offset o = offset_bound(eq_, q.t1, q.t2, e1, e2, b0);
         if (o.residual < off.residual) {
           off = o;
           p.pos_err = 0.5 * std::max(e1, e2);
@@ -329,7 +329,7 @@ class CellTracer::Impl {
         const bool onset_proved = onset_first && box_free();
         const StepCertificate cert =
             onset_proved ? StepCertificate{}
-                         : certify_step(md_, sym_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B}, &eigen_cache_);
+                         : certify_step(eq_, step_end(cur), step_end(p), {r.a1, r.b1, r.A, r.B}, &eigen_cache_);
         st_.evaluations += cert.evaluations;
         // Where the curvature bound is too weak (next to pole lines, mostly), the step's box may still be proved
         // root-free by the onset inertia at its two Loewner corners; g keeps its sign then, which orients p.
@@ -608,9 +608,10 @@ class CellTracer::Impl {
 
   // True when no SPP lies in [t1lo, t1hi] x [t2lo, t2hi] (inside one cell), proved by the onset inertia: Hc grows
   // with t1 and t2 there (Loewner), so equal counts at the two extreme corners, both certain, leave no eigenvalue of
-  // any Hc in the box at 0, and an SPP makes Hc singular. Axial symmetry only (c = z / |z| is constant).
+  // any Hc in the box at 0, and an SPP makes Hc singular. Only where c is constant (onset_direction_fixed): with c(t2)
+  // moving, Hc is not monotone.
   bool onset_free(double t1lo, double t2lo, double t1hi, double t2hi) {
-    if (sym_ != Symmetry::Axial) return false;
+    if (!eq_.onset_direction_fixed()) return false;
     const int lo = ev_.onset_inertia(t1lo, t2lo);
     return lo >= 0 && lo == ev_.onset_inertia(t1hi, t2hi);
   }
@@ -621,7 +622,7 @@ class CellTracer::Impl {
 
   // Angle of b to the hyperplane c^T b = 0 at a trace point.
   double reach(const TracePoint& p) const {
-    const double cn = sym_ == Symmetry::Axial ? 1.0 : md_.onset_direction(p.t2, sym_).norm();
+    const double cn = eq_.onset_direction_fixed() ? 1.0 : eq_.onset_direction(p.t2).norm();  // zhat_ is a unit
     return std::asin(std::min(1.0, std::abs(p.g) / cn));
   }
   // (asin|g_A| + asin|g_B|) / (2 turn) for the turn of b from A to B, where g keeps its sign (>= 1: no pair of roots
@@ -659,7 +660,8 @@ class CellTracer::Impl {
   std::vector<Candidate> candidates_;
 
  private:
-  const ModalForm& md_;
+  const EquationSet& eq_;
+  const ModalForm& md_;  // eq_'s
   Evaluator& ev_;
   const SolveOptions& opt_;
   SolveStats& st_;
@@ -677,12 +679,12 @@ class CellTracer::Impl {
   static constexpr int kRetraceDepth = 4;   // nested retraces at most
   static constexpr int kApproach = 3;       // 4x falls of |g| and of the step towards a root before one step crosses it
   static constexpr int kNewtonSteps = 12;   // plain Newton steps of a 1-D root before every other one bisects
-  Symmetry sym_;
   Vec zhat_;
 };
 
-CellTracer::CellTracer(const ModalForm& modal, const SolveOptions& options, SolveStats& stats, Evaluator& evaluator)
-    : impl_(std::make_unique<Impl>(modal, options, stats, evaluator)) {}
+CellTracer::CellTracer(const EquationSet& equations, const SolveOptions& options, SolveStats& stats,
+                       Evaluator& evaluator)
+    : impl_(std::make_unique<Impl>(equations, options, stats, evaluator)) {}
 CellTracer::~CellTracer() = default;
 
 bool CellTracer::trace_cell(const Cell& cell, size_t column, std::vector<EdgeHit>& left_exits,

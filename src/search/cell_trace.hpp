@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "search/evaluator.hpp"
-#include "spp/modal/modal.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/search/solver.hpp"
 
 namespace spp::search {
@@ -42,7 +42,7 @@ struct Cell {
 /// Traces the cells of one strip (one thread): candidates and the hits on pole lines for pairing.
 class CellTracer {
  public:
-  CellTracer(const ModalForm& modal, const SolveOptions& options, SolveStats& stats, Evaluator& evaluator);
+  CellTracer(const EquationSet& equations, const SolveOptions& options, SolveStats& stats, Evaluator& evaluator);
   ~CellTracer();
   CellTracer(const CellTracer&) = delete;
   CellTracer& operator=(const CellTracer&) = delete;

@@ -40,36 +40,35 @@ class DenseHPoint final : public HPoint {
 
 std::shared_ptr<const HPoint> DenseEvaluator::at(double t1, double t2) {
   if (t2 != cached_t2_) {
-    C_ = md_.contact_part(t2, sym_);
+    C_ = eq_.contact_part(t2);
     cached_t2_ = t2;
   }
   Eigen::MatrixXd H = C_;
-  H.diagonal() += md_.flight_part(t1, sym_);
+  H.diagonal() += eq_.flight_part(t1);
   ++evaluations_;
   return std::make_shared<DenseHPoint>(std::move(H));
 }
 
 int DenseEvaluator::onset_inertia(double t1, double t2) {
   ++evaluations_;
-  const Eigen::Index m = md_.m();
-  const Eigen::VectorXd f = md_.flight_part(t1, Symmetry::Axial);
-  Eigen::VectorXd e(m);
-  for (Eigen::Index j = 0; j < m; ++j) e(j) = md_.d()(j) * std::tan(md_.d()(j) * t2);
-  const Eigen::VectorXd zhat = md_.z().normalized();
+  const ModalForm& md = eq_.modal();
+  const Eigen::Index m = md.m();
+  const Eigen::VectorXd f = eq_.flight_part(t1), e = eq_.contact_eigs(t2);
+  const Eigen::VectorXd chat = eq_.onset_direction(t2).normalized();
   Eigen::MatrixXd A(m + 1, m + 1);
   if (e.cwiseAbs().maxCoeff() <= f.cwiseAbs().maxCoeff()) {  // modal basis
-    A.topLeftCorner(m, m) = md_.G() * e.asDiagonal() * md_.G().transpose();
+    A.topLeftCorner(m, m) = md.G() * e.asDiagonal() * md.G().transpose();
     A.topLeftCorner(m, m).diagonal() += f;
-    A.col(m).head(m) = zhat;
+    A.col(m).head(m) = chat;
   } else {  // contact basis: G^T H G = G^T F G + D tan(D t2)
-    A.topLeftCorner(m, m) = md_.G().transpose() * f.asDiagonal() * md_.G();
+    A.topLeftCorner(m, m) = md.G().transpose() * f.asDiagonal() * md.G();
     A.topLeftCorner(m, m).diagonal() += e;
-    A.col(m).head(m) = md_.G().transpose() * zhat;
+    A.col(m).head(m) = md.G().transpose() * chat;
   }
   A.row(m).head(m) = A.col(m).head(m).transpose();
   A(m, m) = 0.0;
   // Diagonal congruence: rows with a large diagonal (a pole mode) scaled to O(1) against the non-pole scale.
-  const double ref = std::max(md_.omega().maxCoeff(), std::numeric_limits<double>::min());
+  const double ref = std::max(md.omega().maxCoeff(), std::numeric_limits<double>::min());
   Eigen::VectorXd s(m + 1);
   for (Eigen::Index i = 0; i < m; ++i) s(i) = 1.0 / std::sqrt(std::max(std::abs(A(i, i)), ref));
   s(m) = std::sqrt(ref);

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "spp/detail/tridiagonal.hpp"
-#include "spp/modal/modal.hpp"
+#include "spp/modal/equation_set.hpp"
 
 namespace spp::search {
 
@@ -32,9 +32,10 @@ class Evaluator {
  public:
   virtual ~Evaluator() = default;
   virtual std::shared_ptr<const HPoint> at(double t1, double t2) = 0;
-  /// Inertia of H compressed to the onset hyperplane, Hc = P^T H P with P an orthonormal basis of z^perp (axial
-  /// symmetry): its number of negative eigenvalues, or -1 when an eigenvalue lies within its error bound of 0.
-  /// An SPP at (t1, t2) makes Hc singular (H b = 0 with z^T b = 0); Hc grows with t1 and t2 between pole lines.
+  /// Inertia of H compressed to the onset hyperplane, Hc = P^T H P with P an orthonormal basis of c(t2)^perp (c the
+  /// equation set's onset_direction): its number of negative eigenvalues, or -1 when an eigenvalue lies within its
+  /// error bound of 0. An SPP at (t1, t2) makes Hc singular (H b = 0 with c^T b = 0); Hc grows with t1 and t2 between
+  /// pole lines when c is fixed (EquationSet::onset_direction_fixed).
   virtual int onset_inertia(double t1, double t2) = 0;
   long evaluations() const { return evaluations_; }
 
@@ -47,17 +48,16 @@ class Evaluator {
 /// by LU of the (m + 1)-square bordered matrix.
 class DenseEvaluator final : public Evaluator {
  public:
-  DenseEvaluator(const ModalForm& modal, Symmetry symmetry) : md_(modal), sym_(symmetry) {}
+  explicit DenseEvaluator(const EquationSet& equations) : eq_(equations) {}
   std::shared_ptr<const HPoint> at(double t1, double t2) override;
-  /// Sturm count of the bordered matrix [[H, zhat], [zhat^T, 0]] (inertia of Hc plus one negative eigenvalue),
-  /// formed in the modal basis or, when the contact part dominates (next to a contact pole line), in the contact
-  /// basis G, and scaled by the size of its diagonal (Sylvester: the inertia is unchanged) so that the error bound
-  /// 8 (m + 1) eps |A| stays O(eps) next to a pole line.
+  /// Sturm count of the bordered matrix [[H, chat], [chat^T, 0]], chat = c / |c| (inertia of Hc plus one negative
+  /// eigenvalue), formed in the modal basis or, when the contact part dominates (next to a contact pole line), in the
+  /// contact basis G, and scaled by the size of its diagonal (Sylvester: the inertia is unchanged) so that the error
+  /// bound 8 (m + 1) eps |A| stays O(eps) next to a pole line.
   int onset_inertia(double t1, double t2) override;
 
  private:
-  const ModalForm& md_;
-  Symmetry sym_;
+  const EquationSet& eq_;
   double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
   Eigen::MatrixXd C_;
 };

@@ -10,9 +10,10 @@ namespace spp::search {
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 
-double residual_of(const ModalForm& md, double t1, double t2, const Vec& a, Symmetry sym) {
-  const Mat N = md.N(t1, t2, sym);
-  const Vec p0 = md.onset_position(t1, a, sym);
+double residual_of(const EquationSet& eq, double t1, double t2, const Vec& a) {
+  const ModalForm& md = eq.modal();
+  const Mat N = eq.N(t1, t2);
+  const Vec p0 = eq.onset_position(t1, a);
   const double r1 = (N * a).norm() / (N.norm() * a.norm());
   const double r2 = std::abs(md.z().dot(p0)) / (md.z().norm() * std::max(p0.norm(), 1e-300));
   return std::max(r1, r2);
@@ -20,7 +21,8 @@ double residual_of(const ModalForm& md, double t1, double t2, const Vec& a, Symm
 
 // Starting vector: a = p0 ./ cos(W t1) from the traced null vector p0 of H when the cosines are not small
 // (near the axis t1 = 0, N has two small singular values and its SVD may pick the wrong one), else the SVD.
-Polished polish(const ModalForm& md, double t1, double t2, const Vec& b, Symmetry sym) {
+Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
+  const ModalForm& md = eq.modal();
   const int m = md.m();
   Polished out;
   Vec a;
@@ -28,25 +30,25 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b, Symmetr
   if (b.size() == m && c1.abs().minCoeff() > 1e-3) {
     a = (b.array() / c1).matrix().normalized();
   } else {
-    Eigen::JacobiSVD<Mat> svd(md.N(t1, t2, sym), Eigen::ComputeFullV);
+    Eigen::JacobiSVD<Mat> svd(eq.N(t1, t2), Eigen::ComputeFullV);
     a = svd.matrixV().col(m - 1);
   }
   const Vec aref = a;
   const double t1_start = t1, t2_start = t2;
-  double best = residual_of(md, t1, t2, a, sym);
+  double best = residual_of(eq, t1, t2, a);
   out = {false, t1, t2, best, a};
   for (int it = 0; it < 12; ++it) {
-    const Mat N = md.N(t1, t2, sym);
+    const Mat N = eq.N(t1, t2);
     Vec F(m + 2);
     F.head(m) = N * a;
-    F(m) = md.z().dot(md.onset_position(t1, a, sym));
+    F(m) = md.z().dot(eq.onset_position(t1, a));
     F(m + 1) = aref.dot(a) - 1.0;
     Mat J = Mat::Zero(m + 2, m + 2);
-    J.block(0, 0, m, 1) = md.dN_dt1(t1, t2, sym) * a;
-    J.block(0, 1, m, 1) = md.dN_dt2(t1, t2, sym) * a;
+    J.block(0, 0, m, 1) = eq.dN_dt1(t1, t2) * a;
+    J.block(0, 1, m, 1) = eq.dN_dt2(t1, t2) * a;
     J.block(0, 2, m, m) = N;
-    J(m, 0) = md.z().dot(md.onset_position_dt1(t1, a, sym));
-    J.block(m, 2, 1, m) = md.onset_position(t1, md.z(), sym).transpose();  // a diagonal map: its row is z's image
+    J(m, 0) = md.z().dot(eq.onset_position_dt1(t1, a));
+    J.block(m, 2, 1, m) = eq.onset_position(t1, md.z()).transpose();  // a diagonal map: its row is z's image
     J.block(m + 1, 2, 1, m) = aref.transpose();
     Vec dx = J.fullPivLu().solve(-F);
     // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0
@@ -59,7 +61,7 @@ Polished polish(const ModalForm& md, double t1, double t2, const Vec& b, Symmetr
     t1 += dx(0);
     t2 += dx(1);
     a += dx.tail(m);
-    const double res = residual_of(md, t1, t2, a, sym);
+    const double res = residual_of(eq, t1, t2, a);
     if (res < best) {
       best = res;
       out = {false, t1, t2, res, a};

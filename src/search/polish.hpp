@@ -4,7 +4,7 @@
 
 #include <Eigen/Dense>
 
-#include "spp/modal/modal.hpp"
+#include "spp/modal/equation_set.hpp"
 
 namespace spp::search {
 
@@ -15,11 +15,10 @@ struct Polished {
 };
 
 /// Relative residual of N a = 0 and z^T p0 = 0 at (t1, t2).
-double residual_of(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& a, Symmetry sym);
+double residual_of(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a);
 
 /// Newton with a trust region (stays within 1e-3 (t1 + t2) of the start and keeps t1, t2 > 0); b: the traced null
 /// vector of H, or empty (then the SVD of N). 12 iterations at most, O(m^3) each.
-Polished polish(const ModalForm& md, double t1, double t2, const Eigen::VectorXd& b = Eigen::VectorXd(),
-                Symmetry sym = Symmetry::Axial);
+Polished polish(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& b = Eigen::VectorXd());
 
 }  // namespace spp::search

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "spp/detail/invalid.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 
 namespace spp {
@@ -67,6 +68,7 @@ Eigen::VectorXd cell_grid(double a, double b, bool pole_at_a, bool pole_at_b, co
 RootMap root_map(const System& system, const RootMapOptions& options) {
   options.validate();
   const ModalForm modal(system);
+  const std::unique_ptr<EquationSet> eq = make_equations(modal, Symmetry::Axial);  // eqs. (5.1a-b)
   RootMap map;
   map.flight_poles = modal.flight_poles(options.t1_min, options.t1_max);
   map.contact_poles = modal.contact_poles(options.t2_min, options.t2_max);
@@ -96,10 +98,10 @@ RootMap root_map(const System& system, const RootMapOptions& options) {
       cell.symmetric.resize(t2.size(), cell.t1.size());
       cell.onset.resize(t2.size(), cell.t1.size());
       for (Eigen::Index i = 0; i < t2.size(); ++i) {
-        const Eigen::MatrixXd C = modal.contact_part(t2(i));
+        const Eigen::MatrixXd C = eq->contact_part(t2(i));
         for (Eigen::Index j = 0; j < cell.t1.size(); ++j) {
           Eigen::MatrixXd H = C;
-          H.diagonal() += modal.flight_part(cell.t1(j));
+          H.diagonal() += eq->flight_part(cell.t1(j));
           cell.symmetric(i, j) = signed_min_eigenvalue(H);
           cell.onset(i, j) = signed_min_eigenvalue(P.transpose() * H * P);
         }

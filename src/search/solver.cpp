@@ -20,6 +20,7 @@
 #include "search/tolerances.hpp"
 #include "search/window_plan.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 
 namespace spp {
@@ -119,20 +120,20 @@ void require_nonzero_gap(const System& system) {
         "continue_branches() and gap_closures().");
 }
 
-Solution build_solution(const System& system, const ModalForm& md, const Polished& p, const SolveOptions& opt,
+Solution build_solution(const System& system, const EquationSet& eq, const Polished& p, const SolveOptions& opt,
                         bool with_return_error) {
+  const ModalForm& md = eq.modal();
   Solution s;
   s.t1 = p.t1;
   s.t2 = p.t2;
   s.period = 2.0 * (p.t1 + p.t2);
   s.residual = p.residual;
-  s.orbit = make_orbit(md, p.t1, p.t2, p.a, opt.symmetry);
-  if (opt.symmetry == Symmetry::Point) {
-    s.admissibility = check_point_admissibility(md, s.orbit);
-    s.flags.push_back("point_symmetric");
-  } else {
+  s.orbit = make_orbit(eq, p.t1, p.t2, p.a);
+  if (eq.can_be_admissible())
     s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
-  }
+  else  // the verdict is structural (point symmetry: an odd force); the minima only sampled
+    s.admissibility = check_point_admissibility(md, s.orbit);
+  if (const char* flag = eq.solution_flag()) s.flags.push_back(flag);
   if (s.orbit.closure_ratio < search::kClosureDegenerate) s.flags.push_back("gap_closure_degenerate");
   s.admissible = s.admissibility.admissible;
   s.min_gap = s.admissibility.min_gap;
@@ -184,14 +185,15 @@ Solution solution_at(const System& system, const ModalForm& md, double t1, doubl
   require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
   require_modal_of(system, md, "solution_at");
-  const Polished p = polish(md, t1, t2, Vec(), options.symmetry);
+  const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
+  const Polished p = polish(*eq, t1, t2);
   if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > search::kPolishReach * (t1 + t2)) {
     std::ostringstream os;
     os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual " << p.residual
        << " at (" << p.t1 << ", " << p.t2 << ")";
     throw std::invalid_argument(os.str());
   }
-  return build_solution(system, md, p, options, options.compute_return_error);
+  return build_solution(system, *eq, p, options, options.compute_return_error);
 }
 
 namespace {
@@ -204,7 +206,7 @@ struct TracedWindow {
   search::PoleHits hits;
 };
 
-TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, SolveResult& res) {
+TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, SolveResult& res) {
   const SolveOptions& opt = plan.options;
   const search::AxisPlan &a1 = plan.t1, &a2 = plan.t2;
   const size_t I = a1.cells(), J = a2.cells();
@@ -230,8 +232,8 @@ TracedWindow trace_cells(const ModalForm& md, const search::WindowPlan& plan, So
     try {
       for (size_t j = next_strip++; j < J; j = next_strip++) {
         StripOut& out = strips[j];
-        search::DenseEvaluator evaluator(md, opt.symmetry);
-        search::CellTracer tracer(md, opt, out.stats, evaluator);
+        search::DenseEvaluator evaluator(eq);
+        search::CellTracer tracer(eq, opt, out.stats, evaluator);
         for (size_t i = 0; i < I; ++i) {
           if (stop) {  // stopped: the rest of the strip is listed as not searched
             out.stats.unsearched_cells += static_cast<long>(I - i);
@@ -350,8 +352,9 @@ bool on_pole_line(const ModalForm& md, double t1, double t2) {
 }
 
 // Step 5: polish every candidate, keep the roots inside the half-open window, deduplicate, build orbits.
-void polish_candidates(const System& system, const ModalForm& md, const search::WindowPlan& plan,
+void polish_candidates(const System& system, const EquationSet& eq, const search::WindowPlan& plan,
                        const std::vector<Candidate>& candidates, bool with_return_error, SolveResult& res) {
+  const ModalForm& md = eq.modal();
   const SolveOptions& opt = plan.options;
   const double window_scale = opt.t1_max + opt.t2_max;
   // The axes are lines of limits: each point (0, m pi / d_j) where a curve leaves the axis t1 = 0 satisfies both
@@ -376,7 +379,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
   };
   std::vector<std::pair<double, double>> artifacts;  // places of the pole-line artifacts dismissed so far
   for (const Candidate& c : candidates) {
-    const Polished p = polish(md, c.t1, c.t2, c.b, opt.symmetry);
+    const Polished p = polish(eq, c.t1, c.t2, c.b);
     // A candidate that does not polish is not reported as an SPP. Where Newton stalls with a small residual next to a
     // pole line, it stalled on the pole line's artifact of the pole-free form (stats.pole_line_artifacts): dismissed.
     // Anywhere else it is a gap in the search (seen only on such artifacts so far: a stiff 5-dof and the 30-mass
@@ -416,7 +419,7 @@ void polish_candidates(const System& system, const ModalForm& md, const search::
       continue;
     Solution s;
     try {
-      s = build_solution(system, md, p, opt, with_return_error);
+      s = build_solution(system, eq, p, opt, with_return_error);
     } catch (const std::invalid_argument& e) {
       res.warnings.push_back(std::string("root skipped: ") + e.what());
       continue;
@@ -482,6 +485,7 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
   res.repeated_groups = md.repeated_groups();
   res.symmetry = options.symmetry;
+  const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
 
   // 1. plan the window: search region, pole lines, cells (refused if too many) before any evaluation
   const auto [band1, band2] = axis_band(md);
@@ -493,13 +497,13 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   res.stats.flight_pole_lines = plan.t1.poles();
   res.stats.contact_pole_lines = plan.t2.poles();
   // 2-3. count at the corners and trace the pieces, cell by cell
-  TracedWindow traced = trace_cells(md, plan, res);
+  TracedWindow traced = trace_cells(*eq, plan, res);
   // 4. pair the curves across the thin strips around pole lines (a stopped search has no hits from the cells it
   // skipped: its strips are left unpaired, and the status says that the search was stopped)
   if (res.stats.unsearched_cells == 0)
     search::pair_across_pole_lines(traced.hits, plan.t1, plan.t2, res.stats, res.uncertified, traced.candidates);
   // 5. polish into roots, keep those of the window
-  polish_candidates(system, md, plan, traced.candidates, options.compute_return_error, res);
+  polish_candidates(system, *eq, plan, traced.candidates, options.compute_return_error, res);
   // 6. finalize
   finalize(options, res);
   res.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -521,7 +525,8 @@ WindowEstimate estimate_window(const System& system, const ModalForm& md, const 
   e.contact_pole_lines = plan.t2.poles();
   e.cells = static_cast<long>(plan.t1.cells() * plan.t2.cells());
   // one evaluation as the trace makes it: H, its inertia, the eigenpair nearest the middle of the spectrum
-  search::DenseEvaluator ev(md, options.symmetry);
+  const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
+  search::DenseEvaluator ev(*eq);
   constexpr int kSamples = 8;
   const auto t0 = std::chrono::steady_clock::now();
   for (int i = 0; i < kSamples; ++i) {

@@ -336,17 +336,19 @@ PhaseBounds phase_bounds(const PhaseFamily& f, double lo, double hi) {
   return pb;
 }
 
-PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi) {
-  return phase_bounds(PhaseFamily::of_modes(freqs, sym), lo, hi);
+PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, PhaseShape shape, double lo, double hi) {
+  return phase_bounds(PhaseFamily::of_modes(freqs, shape), lo, hi);
 }
 
 namespace {
-StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b) {
+StepCertificate certify_step_weyl(const EquationSet& eq, const StepEnd& a, const StepEnd& b) {
+  const ModalForm& md = eq.modal();
+  const PhaseShape shape = eq.phase_shape();
   StepCertificate cert;
   // the s-interval between the true curve points of the ends (each within pos_err of its end in t1 and t2)
   const double h = b.s - a.s + 2.0 * (a.pos_err + b.pos_err);
-  const PhaseBounds F = phase_bounds(md.omega(), sym, std::min(a.t1, b.t1), std::max(a.t1, b.t1));
-  const PhaseBounds C = phase_bounds(md.d(), sym, std::min(a.t2, b.t2), std::max(a.t2, b.t2));
+  const PhaseBounds F = phase_bounds(md.omega(), shape, std::min(a.t1, b.t1), std::max(a.t1, b.t1));
+  const PhaseBounds C = phase_bounds(md.d(), shape, std::min(a.t2, b.t2), std::max(a.t2, b.t2));
   const double dF = F.increment.maxCoeff(), dC = C.increment.maxCoeff();
   const double eig_err = std::max(a.eig_error, b.eig_error);
   const double gap_err = eig_err + std::max(a.offset_norm, b.offset_norm);  // eigenvalues at the true curve points
@@ -381,10 +383,10 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
   double zeroth_length = 0.0;
   if ((a.g > 0) == (b.g > 0)) {
     double dc = 0.0, ca = 1.0, cb = 1.0;
-    if (sym == Symmetry::Point) {
+    if (!eq.onset_direction_fixed()) {  // c(t2) = -contact_part(t2) z moves, and is not normalised
       dc = weighted_norm(C.increment, md.G().transpose() * md.z());
-      ca = md.onset_direction(a.t2, sym).norm();
-      cb = md.onset_direction(b.t2, sym).norm();
+      ca = eq.onset_direction(a.t2).norm();
+      cb = eq.onset_direction(b.t2).norm();
     }
     const double ga = std::abs(a.g) - ca * (a.residual + eig_err) / gamma;
     const double gb = std::abs(b.g) - cb * (b.residual + eig_err) / gamma;
@@ -419,14 +421,14 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
   // Curvature: tau'' = (-l2' - tau' (l1' + l2')) / (l1 + l2), l1 + l2 bounded below from its end values and
   // its rate (and by min f' >= w^2), then b'' = -H^+ (H'' b + 2 H' b') - |b'|^2 b, then g''.
   const double dl1 = 2.0 * A1 * L1 + form_bound(F.d2, false), dl2 = 2.0 * A2 * L1 + form_bound(C.d2, true);
-  const double lcrude = sym == Symmetry::Point ? 1.0 : md.omega().cwiseProduct(md.omega()).minCoeff();
+  const double lcrude = eq.min_flight_slope();
   const double lsum = std::max(lcrude, 0.5 * (a.slope_sum + b.slope_sum - (dl1 + dl2) * h));
   const double tau2 = (dl1 + 2.0 * dl2) / lsum;
   const double Hppb = tau2 * (A1 + A2) + std::max(norm_bound(F.d2, false), norm_bound(C.d2, true));
   const double bpp = (Hppb + 2.0 * P * L1) / gamma + L1 * L1;
   double L2 = bpp;
   double cnorm = 1.0;
-  if (sym == Symmetry::Point) {  // g = c(t2)^T b, c = -G tan(D t2) D^-1 G^T z
+  if (!eq.onset_direction_fixed()) {  // g = c(t2)^T b, c = -contact_part(t2) z (point: -G tan(D t2) D^-1 G^T z)
     const double zn = md.z().norm();
     cnorm = C.value.maxCoeff() * zn;
     const double c1 = P2 * zn, c2 = (C.d2.cwiseAbs().maxCoeff() + P2 * tau2) * zn;
@@ -458,20 +460,20 @@ StepCertificate certify_step_weyl(const ModalForm& md, Symmetry sym, const StepE
 
 }  // namespace
 
-Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e1, double e2,
-                    const Eigen::VectorXd& b) {
+Offset offset_bound(const EquationSet& eq, double t1, double t2, double e1, double e2, const Eigen::VectorXd& b) {
+  const ModalForm& md = eq.modal();
   const double inf = std::numeric_limits<double>::infinity();
   if (count_tangent_poles(md.omega(), t1 - e1, t1 + e1) > 0 || count_tangent_poles(md.d(), t2 - e2, t2 + e2) > 0)
     return {inf, inf};
-  const PhaseBounds F = phase_bounds(md.omega(), sym, t1 - e1, t1 + e1),
-                    C = phase_bounds(md.d(), sym, t2 - e2, t2 + e2);
+  const PhaseBounds F = phase_bounds(md.omega(), eq.phase_shape(), t1 - e1, t1 + e1),
+                    C = phase_bounds(md.d(), eq.phase_shape(), t2 - e2, t2 + e2);
   return {weighted_norm(F.increment, b) + weighted_norm(C.increment, md.G().transpose() * b),
           F.increment.maxCoeff() + C.increment.maxCoeff()};
 }
 
-BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, double t2) {
+BorderedOffset bordered_offset(const EquationSet& eq, double t1, double t2) {
   BorderedOffset o;
-  const BorderedForm bf(md, t1, t1, t2, t2, sym);
+  const BorderedForm bf(eq, t1, t1, t2, t2);
   if (!bf.valid() || bf.bordered() == 0) return o;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(t1, t2));
   if (es.info() != Eigen::Success) return o;
@@ -488,9 +490,9 @@ BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, dou
   return o;
 }
 
-StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b, const StepBox& cell,
+StepCertificate certify_step(const EquationSet& eq, const StepEnd& a, const StepEnd& b, const StepBox& cell,
                              EigenCache* cache) {
-  StepCertificate cert = certify_step_weyl(md, sym, a, b);
+  StepCertificate cert = certify_step_weyl(eq, a, b);
   if (cert.verdict != StepVerdict::Uncertified) {  // each of its proofs needs |g_b| beyond its error
     cert.end_sign = b.g > 0 ? 1 : -1;
     return cert;
@@ -511,7 +513,7 @@ StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a
   // The bounds from each end in turn (a first: its eigenpairs are usually cached), in the bordered form of the step's
   // box. Each range holds on the whole step, so what one end proves (monotone g) combines with what the other adds (its
   // own end sign).
-  const BorderedForm bf(md, lo1, hi1, lo2, hi2, sym);
+  const BorderedForm bf(eq, lo1, hi1, lo2, hi2);
   if (!bf.valid()) return cert;
   int sign_a = a.proved_sign != 0 ? a.proved_sign : sign_at(a), sign_b = sign_at(b);
   bool monotone = false;

@@ -33,7 +33,7 @@
 #include <Eigen/Dense>
 
 #include "search/bordered_form.hpp"
-#include "spp/modal/modal.hpp"
+#include "spp/modal/equation_set.hpp"
 
 namespace spp::search {
 
@@ -100,7 +100,7 @@ class EigenCache {
 /// The bounds of the header comment, for the step a -> b of curve k (s_b > s_a) inside `cell`: the Weyl /
 /// Davis-Kahan bounds first (no evaluation of H), then, where they fail (axial symmetry), the spectral bounds from the
 /// full eigenpairs at b, then at a.
-StepCertificate certify_step(const ModalForm& md, Symmetry sym, const StepEnd& a, const StepEnd& b, const StepBox& cell,
+StepCertificate certify_step(const EquationSet& eq, const StepEnd& a, const StepEnd& b, const StepBox& cell,
                              EigenCache* cache = nullptr);
 
 // Spectrally weighted bounds of g and g' over a step, from the full eigenpairs at one end x (axial symmetry,
@@ -146,8 +146,7 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
 struct Offset {
   double residual, norm;
 };
-Offset offset_bound(const ModalForm& md, Symmetry sym, double t1, double t2, double e1, double e2,
-                    const Eigen::VectorXd& b);
+Offset offset_bound(const EquationSet& eq, double t1, double t2, double e1, double e2, const Eigen::VectorXd& b);
 
 /// The eigenvalue of the bordered form at (t1, t2) nearest 0 with its error bound (lam_err = |lambda| + error) and its
 /// derivatives along t1 and t2 (l1, l2 >= 0): the distance to the zero curve of det H the point stands for, estimated
@@ -158,16 +157,16 @@ struct BorderedOffset {
   bool valid = false;
   double lam_err = 0, l1 = 0, l2 = 0;
 };
-BorderedOffset bordered_offset(const ModalForm& md, Symmetry sym, double t1, double t2);
+BorderedOffset bordered_offset(const EquationSet& eq, double t1, double t2);
 
 /// Extreme values over t in [lo, hi] (inside one pole interval) of the phase functions of the flight (omega) or
-/// contact (d) frequencies: f = w tan(w t) (axial) or tan(w t)/w (point); increments |f(hi) - f(lo)| per mode,
-/// max f', max |f''| per mode, max |f| per mode and min f' per mode.
+/// contact (d) frequencies: f = w tan(w t) (PhaseShape::FTan) or tan(w t)/w (TanOverF); increments |f(hi) - f(lo)| per
+/// mode, max f', max |f''| per mode, max |f| per mode and min f' per mode.
 struct PhaseBounds {
   Eigen::VectorXd increment, d1, d2, value;
   Eigen::VectorXd d1_min;  ///< min f' per mode over [lo, hi]
 };
-PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, Symmetry sym, double lo, double hi);
+PhaseBounds phase_bounds(const Eigen::VectorXd& freqs, PhaseShape shape, double lo, double hi);
 /// The same for any family of phases a tan(w t + shift) (bordered_form.hpp).
 PhaseBounds phase_bounds(const PhaseFamily& phases, double lo, double hi);
 

@@ -5,21 +5,14 @@
 
 #include "paper_reference.hpp"
 #include "spp/core/generators.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 
 using spp::ModalForm;
 using spp::System;
+using spp::ref::random_system;
 
 namespace {
-System random_system(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> nd;
-  Eigen::VectorXd w(n);
-  for (int i = 0; i < n; ++i) w(i) = nd(rng);
-  const Eigen::MatrixXd K = spp::ref::random_spd(n, rng);  // explicit order: K, then M
-  const Eigen::MatrixXd M = spp::ref::random_spd(n, rng);
-  return System(M, K, w, 0.7);
-}
 int negatives(const Eigen::MatrixXd& H) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H, Eigen::EigenvaluesOnly);
   return static_cast<int>((es.eigenvalues().array() < 0).count());
@@ -65,39 +58,44 @@ TEST(Modal, ContactPhaseMatchesTheoremTwoPointOne) {
 
 TEST(Modal, HIsSymmetricWithPositiveSemidefiniteDerivatives) {
   const ModalForm md(random_system(5, 4));
+  const auto eq = spp::make_equations(md, spp::Symmetry::Axial);
   const double t1 = 0.83, t2 = 1.27, h = 1e-6;
-  const Eigen::MatrixXd H = md.H(t1, t2);
+  const Eigen::MatrixXd H = eq->H(t1, t2);
   EXPECT_LT((H - H.transpose()).norm(), 1e-14 * H.norm());
-  const Eigen::MatrixXd D1 = (md.H(t1 + h, t2) - md.H(t1 - h, t2)) / (2 * h);
-  const Eigen::MatrixXd D2 = (md.H(t1, t2 + h) - md.H(t1, t2 - h)) / (2 * h);
-  EXPECT_LT((D1 - Eigen::MatrixXd(md.dflight_dt1(t1).asDiagonal())).norm(), 1e-6 * D1.norm());
-  EXPECT_LT((D2 - md.dcontact_dt2(t2)).norm(), 1e-6 * D2.norm());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> e2(md.dcontact_dt2(t2));
+  const Eigen::MatrixXd D1 = (eq->H(t1 + h, t2) - eq->H(t1 - h, t2)) / (2 * h);
+  const Eigen::MatrixXd D2 = (eq->H(t1, t2 + h) - eq->H(t1, t2 - h)) / (2 * h);
+  EXPECT_LT((D1 - Eigen::MatrixXd(eq->dflight_dt1(t1).asDiagonal())).norm(), 1e-6 * D1.norm());
+  EXPECT_LT((D2 - eq->dcontact_dt2(t2)).norm(), 1e-6 * D2.norm());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> e2(eq->dcontact_dt2(t2));
   EXPECT_GT(e2.eigenvalues().minCoeff(), -1e-12 * e2.eigenvalues().maxCoeff());
 }
 
 TEST(Modal, PoleFreeFormIsCongruentToH) {
   // N = cos(S^1/2 t2) H cos(W t1) (shared design note §2), and its derivatives match finite differences.
   const ModalForm md(random_system(4, 5));
+  const auto eq = spp::make_equations(md, spp::Symmetry::Axial);
   const double t1 = 0.61, t2 = 2.3, h = 1e-6;
   const Eigen::MatrixXd cosW = (md.omega().array() * t1).cos().matrix().asDiagonal();
-  const Eigen::MatrixXd expected = md.contact_cos(t2) * md.H(t1, t2) * cosW;
-  EXPECT_LT((md.N(t1, t2) - expected).norm(), 1e-12 * expected.norm());
-  EXPECT_LT(((md.N(t1 + h, t2) - md.N(t1 - h, t2)) / (2 * h) - md.dN_dt1(t1, t2)).norm(), 1e-7 * md.N(t1, t2).norm());
-  EXPECT_LT(((md.N(t1, t2 + h) - md.N(t1, t2 - h)) / (2 * h) - md.dN_dt2(t1, t2)).norm(), 1e-7 * md.N(t1, t2).norm());
+  const Eigen::MatrixXd expected = md.contact_cos(t2) * eq->H(t1, t2) * cosW;
+  EXPECT_LT((eq->N(t1, t2) - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LT(((eq->N(t1 + h, t2) - eq->N(t1 - h, t2)) / (2 * h) - eq->dN_dt1(t1, t2)).norm(),
+            1e-7 * eq->N(t1, t2).norm());
+  EXPECT_LT(((eq->N(t1, t2 + h) - eq->N(t1, t2 - h)) / (2 * h) - eq->dN_dt2(t1, t2)).norm(),
+            1e-7 * eq->N(t1, t2).norm());
 }
 
 TEST(Modal, DetNIsPaperDetR2UpToNonZeroFactor) {
   // det N vanishes exactly where det R2 does (Lemma A.1): compare the relative smallest singular values.
   const System s = random_system(3, 6);
   const ModalForm md(s);
+  const auto eq = spp::make_equations(md, spp::Symmetry::Axial);
   const spp::ref::PaperForm pf(s);
   // walk along t1 at fixed t2 and compare sign changes of det N and det R2
   int changes_n = 0, changes_r = 0;
   double prev_n = 0, prev_r = 0;
   for (int i = 0; i <= 4000; ++i) {
     const double t1 = 0.01 + 6.0 * i / 4000.0;
-    const double dn = md.N(t1, 1.1).determinant(), dr = pf.R2(t1, 1.1).determinant();
+    const double dn = eq->N(t1, 1.1).determinant(), dr = pf.R2(t1, 1.1).determinant();
     if (i > 0) {
       changes_n += (dn > 0) != (prev_n > 0);
       changes_r += (dr > 0) != (prev_r > 0);
@@ -114,13 +112,14 @@ TEST(Modal, InertiaCountMatchesSignChangesOnChain5) {
   // changes sign 20 times on a grid of 20,000 points.
   const System s = spp::chain(5, {1.0}, {1.0}, 4, spp::ContactSide::Upper, 1.0);
   const ModalForm md(s);
+  const auto eq = spp::make_equations(md, spp::Symmetry::Axial);
   const double t1 = 1.2345, a = 1e-9, b = 12.0;
-  const int count = negatives(md.H(t1, a)) - negatives(md.H(t1, b)) + static_cast<int>(md.contact_poles(a, b).size());
+  const int count = negatives(eq->H(t1, a)) - negatives(eq->H(t1, b)) + static_cast<int>(md.contact_poles(a, b).size());
   EXPECT_EQ(count, 20);
   int changes = 0;
-  double prev = md.N(t1, a).determinant();
+  double prev = eq->N(t1, a).determinant();
   for (int i = 1; i <= 20000; ++i) {
-    const double d = md.N(t1, a + (b - a) * i / 20000.0).determinant();
+    const double d = eq->N(t1, a + (b - a) * i / 20000.0).determinant();
     changes += (d > 0) != (prev > 0);
     prev = d;
   }

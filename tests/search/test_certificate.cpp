@@ -13,6 +13,7 @@
 #include "search/step_certificate.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"
 
@@ -74,7 +75,8 @@ TEST(OnsetInertia, SingularAtAnSppAndCountsItsCrossing) {
   // Hc is singular at the paper's SPP: the count is uncertain there, and a small box around it has different counts
   // at its two Loewner corners.
   const ModalForm md(chain5());
-  search::DenseEvaluator ev(md, Symmetry::Axial);
+  const auto eq = make_equations(md, Symmetry::Axial);
+  search::DenseEvaluator ev(*eq);
   const double t1 = 3.2160302, t2 = 0.52773599;
   const int lo = ev.onset_inertia(t1 - 1e-3, t2 - 1e-3), hi = ev.onset_inertia(t1 + 1e-3, t2 + 1e-3);
   ASSERT_GE(lo, 0);
@@ -93,7 +95,8 @@ TEST(OnsetInertia, BoxesProvedFreeHoldNoSpp) {
   const SolveResult ref = solve(s, o);
   ASSERT_EQ(ref.solutions.size(), 64u);
   const std::vector<double> p1 = md.flight_poles(0.0, 13.0), p2 = md.contact_poles(0.0, 13.0);
-  search::DenseEvaluator ev(md, Symmetry::Axial);
+  const auto eq = make_equations(md, Symmetry::Axial);
+  search::DenseEvaluator ev(*eq);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int free_boxes = 0;
@@ -140,12 +143,11 @@ struct CurvePoint {
   Eigen::VectorXd b;
   Eigen::VectorXd lam;
 };
-bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, double s, int k, CurvePoint& p,
-                 Symmetry sym = Symmetry::Axial) {
+bool curve_point(const EquationSet& eq, double a1, double b1, double A, double B, double s, int k, CurvePoint& p) {
   double lo = std::max(a1, A - s), hi = std::min(b1, B - s);
   if (!(lo < hi)) return false;
   auto lam_k = [&](double t1) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(t1, t1 + s, sym));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(eq.H(t1, t1 + s));
     return es.eigenvalues()(k);
   };
   if (!(lam_k(lo) < 0 && lam_k(hi) > 0)) return false;
@@ -155,7 +157,7 @@ bool curve_point(const ModalForm& md, double a1, double b1, double A, double B, 
   }
   p.t1 = 0.5 * (lo + hi);
   p.t2 = p.t1 + s;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2, sym));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(eq.H(p.t1, p.t2));
   p.b = es.eigenvectors().col(k);
   p.lam = es.eigenvalues();
   return true;
@@ -170,8 +172,8 @@ struct RandomStep {
   double sa, h;
   CurvePoint pa, pb;
 };
-bool random_step(const ModalForm& md, double T1, double T2, const std::vector<double>& p1,
-                 const std::vector<double>& p2, double lo_exp, Symmetry sym, std::mt19937& rng, RandomStep& st) {
+bool random_step(const EquationSet& eq, double T1, double T2, const std::vector<double>& p1,
+                 const std::vector<double>& p2, double lo_exp, std::mt19937& rng, RandomStep& st) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const auto [a1, b1] = interval(p1, T1 * (0.02 + 0.96 * u(rng)));
   const auto [A, B] = interval(p2, T2 * (0.02 + 0.96 * u(rng)));
@@ -179,12 +181,12 @@ bool random_step(const ModalForm& md, double T1, double T2, const std::vector<do
   st.d1 = std::min(b1, T1) - 1e-6 * (b1 - a1);
   st.c2 = A + 1e-6 * (B - A);
   st.d2 = std::min(B, T2) - 1e-6 * (B - A);
-  st.k = static_cast<int>(u(rng) * md.m());
+  st.k = static_cast<int>(u(rng) * eq.modal().m());
   const double range = st.d2 - st.c1 - (st.c2 - st.d1);
   st.sa = (st.c2 - st.d1) + range * u(rng);
   st.h = range * std::pow(10.0, lo_exp + 4.0 * u(rng));
-  return curve_point(md, st.c1, st.d1, st.c2, st.d2, st.sa, st.k, st.pa, sym) &&
-         curve_point(md, st.c1, st.d1, st.c2, st.d2, st.sa + st.h, st.k, st.pb, sym);
+  return curve_point(eq, st.c1, st.d1, st.c2, st.d2, st.sa, st.k, st.pa) &&
+         curve_point(eq, st.c1, st.d1, st.c2, st.d2, st.sa + st.h, st.k, st.pb);
 }
 
 }  // namespace
@@ -195,12 +197,13 @@ TEST(BorderedForm, SameNullVectorsShiftedInertiaAndMonotoneThroughThePole) {
   // (Haynsworth), its entries stay bounded where H's grow like 1 / distance, and it grows with t1 and t2 (Loewner).
   const ModalForm md(load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"));
   const double P1 = M_PI / (2.0 * md.omega()(2)), P2 = 3.0 * M_PI / (2.0 * md.d()(3));
+  const auto eq = make_equations(md, Symmetry::Axial);
   for (const double dist : {1e-2, 1e-5, 1e-8}) {
     const double lo1 = P1 - 2 * dist, hi1 = P1 - dist, lo2 = P2 + dist, hi2 = P2 + 2 * dist;
-    const search::BorderedForm bf(md, lo1, hi1, lo2, hi2);
+    const search::BorderedForm bf(*eq, lo1, hi1, lo2, hi2);
     EXPECT_GE(bf.bordered(), 2) << dist;
     const double t1 = 0.5 * (lo1 + hi1), t2 = 0.5 * (lo2 + hi2);
-    const Eigen::MatrixXd H = md.H(t1, t2), B = bf.matrix(t1, t2);
+    const Eigen::MatrixXd H = eq->H(t1, t2), B = bf.matrix(t1, t2);
     EXPECT_LT(B.cwiseAbs().maxCoeff(), 10.0 * md.omega().maxCoeff()) << dist;
     EXPECT_GT(H.cwiseAbs().maxCoeff(), 0.1 / dist) << dist;
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eh(H), eb(B);
@@ -239,13 +242,14 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
     for (const std::string& f : files) cases.emplace_back(sym, f);
   for (const auto& [sym, f] : cases) {
     const ModalForm md(load_system(f));
+    const auto eq = make_equations(md, sym);
     const Eigen::VectorXd zhat = md.z().normalized();
     const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
     const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
     int valid = 0, deciding = 0, bordered = 0;
     for (int trial = 0; trial < 3000 && valid < 150; ++trial) {
       RandomStep st;
-      if (!random_step(md, T1, T2, p1, p2, -5.0, sym, rng, st)) continue;
+      if (!random_step(*eq, T1, T2, p1, p2, -5.0, rng, st)) continue;
       const auto& [c1, d1, c2, d2, k, sa, h, pa_, pb_] = st;
       CurvePoint pa = pa_, pb = pb_;
       // The box the bounds are taken over (it holds the true curve and the computed ends), and its bordered form:
@@ -255,7 +259,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       const double e = 2.0 * std::abs(off);
       const double lo1 = std::max(c1, std::min(pa.t1, pb.t1) - e), hi1 = std::min(d1, std::max(pa.t1, pb.t1) + e);
       const double lo2 = std::max(c2, std::min(pa.t2, pb.t2) - e), hi2 = std::min(d2, std::max(pa.t2, pb.t2) + e);
-      const search::BorderedForm bf(md, lo1, hi1, lo2, hi2, sym);
+      const search::BorderedForm bf(*eq, lo1, hi1, lo2, hi2);
       if (!bf.valid()) continue;  // point symmetry: a zero of tan(d t2) in the box
       bordered += bf.bordered() > 0 ? 1 : 0;
       // samples of the true curve on [sa, sa + h], b oriented continuously from pa
@@ -266,14 +270,14 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       for (int i = 0; i <= ns && ok; ++i) {
         const double s = sa + h * i / ns;
         CurvePoint q;
-        ok = curve_point(md, c1, d1, c2, d2, s, k, q, sym);
+        ok = curve_point(*eq, c1, d1, c2, d2, s, k, q);
         if (!ok) break;
         const Eigen::VectorXd b = q.b.dot(prev) < 0 ? Eigen::VectorXd(-q.b) : q.b;
         prev = b;
         const Eigen::VectorXd x = bf.extend(b, q.t1, q.t2).normalized();
         gs.push_back(bf.onset().dot(x));
         // the bordered form's g has the sign of the onset condition itself (point: c(t2)^T b, c moving with t2)
-        const Eigen::VectorXd c = sym == Symmetry::Axial ? zhat : Eigen::VectorXd(md.onset_direction(q.t2, sym));
+        const Eigen::VectorXd c = sym == Symmetry::Axial ? zhat : eq->onset_direction(q.t2);
         if (std::abs(c.dot(b)) > 1e-8 * c.norm()) EXPECT_EQ(c.dot(b) > 0, gs.back() > 0) << to_string(sym) << " " << f;
         // dg/ds = -(B^+ c)^T B' x, B' = tau' dB/dt1 + (1 + tau') dB/dt2, tau' = -l2 / (l1 + l2) (first-order
         // perturbation of the null vector along the curve), with the pseudo-inverse from the full eigenpairs
@@ -295,7 +299,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
       auto end = [&](CurvePoint& p, double s, const Eigen::VectorXd& ref) {
         p.t1 += off;
         p.t2 += off;
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(md.H(p.t1, p.t2, sym));
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(eq->H(p.t1, p.t2));
         p.b = es.eigenvectors().col(k);
         if (p.b.dot(ref) < 0) p.b = -p.b;
         search::StepEnd x;
@@ -303,7 +307,7 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
         x.t1 = p.t1;
         x.t2 = p.t2;
         x.b = &p.b;
-        x.g = (sym == Symmetry::Axial ? zhat : md.onset_direction(p.t2, sym)).dot(p.b);
+        x.g = (sym == Symmetry::Axial ? zhat : eq->onset_direction(p.t2)).dot(p.b);
         x.pos_err = std::abs(off);
         return x;
       };
@@ -344,12 +348,13 @@ TEST(AlongCurve, BoundsTheSampledPerturbationOfTheNullVectorAlongTheCurve) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (const std::string& f : files) {
     const ModalForm md(load_system(f));
+    const auto eq = make_equations(md, Symmetry::Axial);
     const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
     const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
     int checked = 0, tighter = 0;
     for (int trial = 0; trial < 4000 && checked < 120; ++trial) {
       RandomStep st;
-      if (!random_step(md, T1, T2, p1, p2, -4.0, Symmetry::Axial, rng, st)) continue;
+      if (!random_step(*eq, T1, T2, p1, p2, -4.0, rng, st)) continue;
       const auto& [c1, d1, c2, d2, k, sa, h, pa, pb] = st;
       // the box of the step, widened on each side by up to 30% (as certify_step's margins for the ends' position
       // errors do), inside the cell
@@ -359,7 +364,7 @@ TEST(AlongCurve, BoundsTheSampledPerturbationOfTheNullVectorAlongTheCurve) {
       };
       const auto [lo1, hi1] = widen(std::min(pa.t1, pb.t1), std::max(pa.t1, pb.t1), c1, d1);
       const auto [lo2, hi2] = widen(std::min(pa.t2, pb.t2), std::max(pa.t2, pb.t2), c2, d2);
-      const search::BorderedForm bf(md, lo1, hi1, lo2, hi2);
+      const search::BorderedForm bf(*eq, lo1, hi1, lo2, hi2);
       const search::PhaseBounds F = search::phase_bounds(bf.flight(), lo1, hi1);
       const search::PhaseBounds C = search::phase_bounds(bf.contact(), lo2, hi2);
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(bf.size()), zeroC = Eigen::VectorXd::Zero(bf.Gx().cols());
@@ -383,7 +388,7 @@ TEST(AlongCurve, BoundsTheSampledPerturbationOfTheNullVectorAlongTheCurve) {
       bool ok = true;
       for (int i = 1; i <= 30 && ok; ++i) {
         CurvePoint q;
-        ok = curve_point(md, c1, d1, c2, d2, sa + h * i / 30.0, k, q);
+        ok = curve_point(*eq, c1, d1, c2, d2, sa + h * i / 30.0, k, q);
         if (!ok) break;
         Eigen::VectorXd x = bf.extend(q.b, q.t1, q.t2).normalized();
         if (x.dot(prev) < 0) x = -x;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "spp/io.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/root_map.hpp"
 #include "spp/search/solver.hpp"
@@ -75,6 +76,7 @@ TEST(RootMap, SignChangesAlongALineAreTheCountedRoots) {
   // Design note §3: on t1 = c the zeros of det H(c, .) in a cell of t2 are nu(bottom) - nu(top) (no pole inside).
   const System s = chain5();
   const ModalForm modal(s);
+  const auto eq = spp::make_equations(modal, spp::Symmetry::Axial);
   RootMapOptions o;
   o.t1_min = 1.2345;
   o.t1_max = 1.2345 + 1e-3;
@@ -84,7 +86,7 @@ TEST(RootMap, SignChangesAlongALineAreTheCountedRoots) {
   o.min_cell_points = 2;
   const RootMap map = root_map(s, o);
   auto negatives = [&](double t1, double t2) {
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(modal.H(t1, t2), Eigen::EigenvaluesOnly);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(eq->H(t1, t2), Eigen::EigenvaluesOnly);
     return static_cast<int>((es.eigenvalues().array() < 0).count());
   };
   int changes = 0, counted = 0;

@@ -9,6 +9,7 @@
 #include "physical_flow.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
 #include "spp/search/solver.hpp"
@@ -312,8 +313,9 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
   // Brute force in the paper's style (its fig. 4 trick), independent of the search: on a 240 x 240 grid, cells
   // where det N_T and two adjugate conditions z^T W^-1 sin(W t1) adj(N_T) e_i all change sign, refined by Newton
   // on (det, condition 1); each root where condition 2 vanishes too must be in the list.
+  const auto point = make_equations(md, Symmetry::Point);
   auto conditions = [&](double t1, double t2) {
-    const Eigen::MatrixXd N = md.N(t1, t2, Symmetry::Point);
+    const Eigen::MatrixXd N = point->N(t1, t2);
     const int m = static_cast<int>(N.rows());
     Eigen::MatrixXd adj(m, m);
     for (int r = 0; r < m; ++r)
@@ -329,7 +331,7 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
         }
         adj(c, r) = ((r + c) % 2 ? -1.0 : 1.0) * minor.determinant();
       }
-    const Eigen::VectorXd zs = md.onset_position(t1, md.z(), Symmetry::Point);  // z^T W^-1 sin(W t1) (diagonal)
+    const Eigen::VectorXd zs = point->onset_position(t1, md.z());  // z^T W^-1 sin(W t1) (diagonal)
     return Eigen::Vector3d(N.determinant(), zs.dot(adj.col(0)), zs.dot(adj.col(1)));
   };
   const int G = 240;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 
 namespace spp {
@@ -24,18 +25,16 @@ struct Orbit {
   double period() const { return 2.0 * (t1 + t2); }
 };
 
-/// Builds the orbit from the null vector a of N(t1, t2) (of N_T for Symmetry::Point); a's scale is irrelevant:
+/// Builds the orbit from the null vector a of eq's N(t1, t2) (N_T for point symmetry); a's scale is irrelevant:
 /// it is scaled so that w^T x0 = -g0 (eq. 5.2). Point symmetry (paper §6.2): x(-t1) = 0, x(t2) = 0, and the
 /// obstacle moves at obstacle_velocity during contact. Throws std::invalid_argument if the gap cannot be closed
 /// (u^T W^-1 p0 = 0 exactly) or g0 = 0.
-Orbit make_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a,
-                 Symmetry sym = Symmetry::Axial);
+Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a);
 
 /// The orbit when its scale is free (g0 = 0, paper §6.1: eq. 5.2 does not fix it): scaled to unit energy, its
-/// sign chosen so that the contact force is >= 0 at mid-contact (axial: the only sign that can be admissible)
-/// or at t2 / 2 (point symmetry, where the force vanishes at t2).
-Orbit make_unit_energy_orbit(const ModalForm& modal, double t1, double t2, const Eigen::VectorXd& a,
-                             Symmetry sym = Symmetry::Axial);
+/// sign chosen so that the contact force is >= 0 at eq.force_probe(t2): mid-contact (axial: the only sign that can
+/// be admissible) or t2 / 2 (point symmetry, where the force vanishes at t2).
+Orbit make_unit_energy_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a);
 
 struct OrbitState {
   Eigen::VectorXd x, v;
