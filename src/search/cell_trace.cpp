@@ -594,7 +594,7 @@ class CellTracer::Impl {
     const double e = T.eigen_error();
     const int below = T.count_below(-e);
     if (below == T.count_below(e)) return below;
-    const BorderedForm bf(md_, t1, t1, t2, t2, sym_);
+    const BorderedForm bf(eq_, t1, t1, t2, t2);
     if (!bf.valid() || bf.bordered() == 0) return -1;
     const detail::SymmetricTridiagonal B(bf.matrix(t1, t2));
     const double eb = 8.0 * B.size() * std::numeric_limits<double>::epsilon() * B.norm_bound();

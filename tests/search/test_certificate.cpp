@@ -278,7 +278,9 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
         gs.push_back(bf.onset().dot(x));
         // the bordered form's g has the sign of the onset condition itself (point: c(t2)^T b, c moving with t2)
         const Eigen::VectorXd c = sym == Symmetry::Axial ? zhat : eq->onset_direction(q.t2);
-        if (std::abs(c.dot(b)) > 1e-8 * c.norm()) EXPECT_EQ(c.dot(b) > 0, gs.back() > 0) << to_string(sym) << " " << f;
+        if (std::abs(c.dot(b)) > 1e-8 * c.norm()) {
+          EXPECT_EQ(c.dot(b) > 0, gs.back() > 0) << to_string(sym) << " " << f;
+        }
         // dg/ds = -(B^+ c)^T B' x, B' = tau' dB/dt1 + (1 + tau') dB/dt2, tau' = -l2 / (l1 + l2) (first-order
         // perturbation of the null vector along the curve), with the pseudo-inverse from the full eigenpairs
         const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(q.t1, q.t2));
