@@ -98,8 +98,8 @@ PYBIND11_MODULE(_spp, m) {
                  throw std::invalid_argument(std::string("System: ") + what + " must be a square matrix, got shape " +
                                              py::str(arr.attr("shape")).cast<std::string>());
              const py::tuple shape = v.attr("shape").cast<py::tuple>();
-             const bool vector_like = shape.size() == 1 || (shape.size() == 2 && (shape[0].cast<long>() == 1 ||
-                                                                                  shape[1].cast<long>() == 1));
+             const bool vector_like =
+                 shape.size() == 1 || (shape.size() == 2 && (shape[0].cast<long>() == 1 || shape[1].cast<long>() == 1));
              if (!vector_like)
                throw std::invalid_argument("System: w must be a vector, (n,), (1, n) or (n, 1), got shape " +
                                            py::str(py::object(shape)).cast<std::string>());
@@ -114,8 +114,8 @@ PYBIND11_MODULE(_spp, m) {
           [](const spp::System& s) { return py::make_tuple(s.M(), s.K(), s.w(), s.g0(), s.name()); },
           [](const py::tuple& t) {
             if (t.size() != 5) throw std::invalid_argument("System pickle: expected (M, K, w, g0, name)");
-            return spp::System(t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(),
-                               t[2].cast<Eigen::VectorXd>(), t[3].cast<double>(), t[4].cast<std::string>());
+            return spp::System(t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(), t[2].cast<Eigen::VectorXd>(),
+                               t[3].cast<double>(), t[4].cast<std::string>());
           }))
       .def_property_readonly("n", &spp::System::n)
       .def_property_readonly("M", &spp::System::M, "(n, n) mass matrix")
@@ -241,40 +241,38 @@ PYBIND11_MODULE(_spp, m) {
               for (const std::string& s : x.flags) f += (f.empty() ? "" : ",") + s;
               flags.append(f);
             }
-            return pd.attr("DataFrame")(py::dict("t1"_a = t1, "t2"_a = t2, "period"_a = period,
-                                                 "admissible"_a = admissible, "min_gap"_a = min_gap,
-                                                 "min_force"_a = min_force, "energy"_a = energy,
-                                                 "residual"_a = residual, "return_error"_a = return_error,
-                                                 "flags"_a = flags));
+            return pd.attr("DataFrame")(
+                py::dict("t1"_a = t1, "t2"_a = t2, "period"_a = period, "admissible"_a = admissible,
+                         "min_gap"_a = min_gap, "min_force"_a = min_force, "energy"_a = energy, "residual"_a = residual,
+                         "return_error"_a = return_error, "flags"_a = flags));
           },
           "One row per SPP (t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags), in "
           "the result's order (by period); needs pandas.")
-      .def("__repr__",
-           [](const spp::SolveResult& r) { return "<spp.SolveResult " + r.brief_report().substr(5) + ">"; })
-      .def(
-          "_repr_html_",
-          [](const spp::SolveResult& r) {
-            std::ostringstream h;
-            h << "<p><b>spp.SolveResult</b>: " << r.brief_report().substr(5) << "</p>";
-            h << "<table><tr><th>#</th><th>t1</th><th>t2</th><th>period</th><th>admissible</th><th>min gap</th>"
-                 "<th>min force</th><th>energy</th></tr>";
-            const size_t shown = std::min<size_t>(r.solutions.size(), 20);
-            h << std::setprecision(8);
-            for (size_t i = 0; i < shown; ++i) {
-              const spp::Solution& x = r.solutions[i];
-              h << "<tr><td>" << i << "</td><td>" << x.t1 << "</td><td>" << x.t2 << "</td><td>" << x.period
-                << "</td><td>" << (x.admissible ? "yes" : "no") << "</td><td>" << x.min_gap << "</td><td>"
-                << x.min_force << "</td><td>" << x.energy << "</td></tr>";
-            }
-            h << "</table>";
-            if (shown < r.solutions.size()) h << "<p>(" << r.solutions.size() - shown << " more: to_dataframe())</p>";
-            return h.str();
-          })
+      .def("__repr__", [](const spp::SolveResult& r) { return "<spp.SolveResult " + r.brief_report().substr(5) + ">"; })
+      .def("_repr_html_",
+           [](const spp::SolveResult& r) {
+             std::ostringstream h;
+             h << "<p><b>spp.SolveResult</b>: " << r.brief_report().substr(5) << "</p>";
+             h << "<table><tr><th>#</th><th>t1</th><th>t2</th><th>period</th><th>admissible</th><th>min gap</th>"
+                  "<th>min force</th><th>energy</th></tr>";
+             const size_t shown = std::min<size_t>(r.solutions.size(), 20);
+             h << std::setprecision(8);
+             for (size_t i = 0; i < shown; ++i) {
+               const spp::Solution& x = r.solutions[i];
+               h << "<tr><td>" << i << "</td><td>" << x.t1 << "</td><td>" << x.t2 << "</td><td>" << x.period
+                 << "</td><td>" << (x.admissible ? "yes" : "no") << "</td><td>" << x.min_gap << "</td><td>"
+                 << x.min_force << "</td><td>" << x.energy << "</td></tr>";
+             }
+             h << "</table>";
+             if (shown < r.solutions.size()) h << "<p>(" << r.solutions.size() - shown << " more: to_dataframe())</p>";
+             return h.str();
+           })
       .def(py::pickle(
           [](const py::object& self) {
             if (!py::hasattr(self, "system") || !py::isinstance<spp::System>(self.attr("system")))
-              throw std::invalid_argument("SolveResult pickle: its attribute system must be the spp.System it was "
-                                          "solved for (results of solve() have it)");
+              throw std::invalid_argument(
+                  "SolveResult pickle: its attribute system must be the spp.System it was "
+                  "solved for (results of solve() have it)");
             const spp::System sys = self.attr("system").cast<spp::System>();
             const spp::SolveResult& r = self.cast<const spp::SolveResult&>();
             for (const spp::Solution& x : r.solutions)
@@ -303,8 +301,9 @@ PYBIND11_MODULE(_spp, m) {
           "system: the status, solutions, stats, uncertified regions and warnings that were written. Raises "
           "ValueError naming the file and the field.");
 
-  py::enum_<spp::Symmetry>(m, "Symmetry", "Which equations: the SPPs (axial) or the point-symmetric potential SPPs "
-                                           "of det T2 = 0 (point, paper §6.2)")
+  py::enum_<spp::Symmetry>(m, "Symmetry",
+                           "Which equations: the SPPs (axial) or the point-symmetric potential SPPs "
+                           "of det T2 = 0 (point, paper §6.2)")
       .value("axial", spp::Symmetry::Axial)
       .value("point", spp::Symmetry::Point);
   // The symmetry from the enum or its name ("axial", "point").
@@ -343,8 +342,8 @@ PYBIND11_MODULE(_spp, m) {
       .def("__repr__", [](const spp::SolveOptions& o) {
         std::ostringstream os;
         os << "<spp.SolveOptions t1 in (" << o.t1_min << ", " << o.t1_max << "], t2 in (" << o.t2_min << ", "
-           << o.t2_max << "], symmetry " << spp::to_string(o.symmetry) << (o.certify_steps ? "" : ", certify_steps=False")
-           << ">";
+           << o.t2_max << "], symmetry " << spp::to_string(o.symmetry)
+           << (o.certify_steps ? "" : ", certify_steps=False") << ">";
         return os.str();
       });
   const auto solve_options = [](const py::object& options, const py::kwargs& fields, const char* where) {
@@ -427,7 +426,8 @@ PYBIND11_MODULE(_spp, m) {
       "system"_a, "options"_a = py::none(),
       "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
       "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
-      "potential SPPs of paper §6.2; certify_steps=False: the faster midpoint check, a heuristic, status incomplete). progress=True prints the cells traced on "
+      "potential SPPs of paper §6.2; certify_steps=False: the faster midpoint check, a heuristic, status incomplete). "
+      "progress=True prints the cells traced on "
       "stderr; progress=f calls f(SolveProgress) every 0.2 s (returning False stops the search). Ctrl-C stops it "
       "too: the result then holds what was found (status incomplete, stats['unsearched_cells'] > 0) and a "
       "RuntimeWarning says so. Raises ValueError.");
@@ -477,9 +477,8 @@ PYBIND11_MODULE(_spp, m) {
       .def_property_readonly("search_status",
                              [](const spp::NearestSpp& r) { return std::string(spp::to_string(r.search_status)); })
       .def_readonly("candidates", &spp::NearestSpp::candidates, "SPPs in the window searched")
-      .def_property_readonly("window", [](const spp::NearestSpp& r) {
-        return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi);
-      });
+      .def_property_readonly(
+          "window", [](const spp::NearestSpp& r) { return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi); });
   m.def(
       "nearest_spp",
       [solve_options](const spp::System& s, double t1, double t2, double radius, const py::object& options,
@@ -554,13 +553,14 @@ PYBIND11_MODULE(_spp, m) {
         if (restitution) o.restitution = *restitution;
         o.validate();
         if (!(samples_per_unit > 0.0))
-          throw std::invalid_argument("simulate: samples_per_unit must be > 0, got " + std::to_string(samples_per_unit));
+          throw std::invalid_argument("simulate: samples_per_unit must be > 0, got " +
+                                      std::to_string(samples_per_unit));
         if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
         py::gil_scoped_release release;
         return spp::simulate(s, x0, v0, o);
       },
-      "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(),
-      "samples_per_unit"_a = 100.0, "options"_a = py::none(),
+      "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(), "samples_per_unit"_a = 100.0,
+      "options"_a = py::none(),
       "Exact event-driven simulation from (x0, v0), shapes (n,): simulate(system, x0, v0, duration, restitution=0, "
       "samples_per_unit=100), or with a SimulateOptions and any field also as a keyword (sample_times=[...] replaces "
       "the uniform samples). Raises ValueError.");

@@ -38,12 +38,13 @@ StepEnd step_end(const TracePoint& p) {
 
 class CellTracer::Impl {
  public:
-  Impl(const EquationSet& eq, const SolveOptions& opt, SolveStats& st, Evaluator& ev)
+  Impl(const EquationSet& eq, const SolveOptions& opt, SolveStats& st, Evaluator& ev, const std::atomic<bool>* stop)
       : eq_(eq),
         md_(eq.modal()),
         ev_(ev),
         opt_(opt),
         st_(st),
+        stop_(stop),
         hmin_(opt.min_step * (opt.t1_max + opt.t2_max)),
         zhat_(md_.z().normalized()) {}
 
@@ -304,6 +305,10 @@ class CellTracer::Impl {
         budget = kPieceBudget;
         certified = false;
         h = std::max(h, 1e-3 * span);
+      }
+      if (stop_ != nullptr && stop_->load(std::memory_order_relaxed)) {  // stopped: the piece ends here, unproved
+        certified = false;
+        return point(out, &cur.b);
       }
       if (budget <= 0 || examine_budget_ <= 0) {
         if (run.open) abandon_run(r, k, run, certified);
@@ -605,7 +610,6 @@ class CellTracer::Impl {
     return below_b - static_cast<int>((lam.array() > 0.0).count());
   }
 
-
   // True when no SPP lies in [t1lo, t1hi] x [t2lo, t2hi] (inside one cell), proved by the onset inertia: Hc grows
   // with t1 and t2 there (Loewner), so equal counts at the two extreme corners, both certain, leave no eigenvalue of
   // any Hc in the box at 0, and an SPP makes Hc singular. Only where c is constant (onset_direction_fixed): with c(t2)
@@ -665,6 +669,7 @@ class CellTracer::Impl {
   Evaluator& ev_;
   const SolveOptions& opt_;
   SolveStats& st_;
+  const std::atomic<bool>* stop_;
   const double hmin_;                                      // smallest trace step in s
   const std::pair<double, double> band_ = axis_band(md_);  // roots are not reported within these of the axes
   static constexpr int kPieceBudget = 20000;               // trace steps (tried or taken) per curve piece
@@ -683,8 +688,8 @@ class CellTracer::Impl {
 };
 
 CellTracer::CellTracer(const EquationSet& equations, const SolveOptions& options, SolveStats& stats,
-                       Evaluator& evaluator)
-    : impl_(std::make_unique<Impl>(equations, options, stats, evaluator)) {}
+                       Evaluator& evaluator, const std::atomic<bool>* stop)
+    : impl_(std::make_unique<Impl>(equations, options, stats, evaluator, stop)) {}
 CellTracer::~CellTracer() = default;
 
 bool CellTracer::trace_cell(const Cell& cell, size_t column, std::vector<EdgeHit>& left_exits,

@@ -9,6 +9,7 @@
 // SolveOptions::certify_steps, by the proof of step_certificate.hpp where it holds.
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -42,7 +43,11 @@ struct Cell {
 /// Traces the cells of one strip (one thread): candidates and the hits on pole lines for pairing.
 class CellTracer {
  public:
-  CellTracer(const EquationSet& equations, const SolveOptions& options, SolveStats& stats, Evaluator& evaluator);
+  /// stop: raised by another thread (Ctrl-C, a progress callback) to end the trace promptly: each curve piece ends
+  /// at its next step, unproved (trace_cell then returns false), instead of at the end of the cell, which can take
+  /// tens of seconds (a certified cell of a 20-dof chain). nullptr: never stopped.
+  CellTracer(const EquationSet& equations, const SolveOptions& options, SolveStats& stats, Evaluator& evaluator,
+             const std::atomic<bool>* stop = nullptr);
   ~CellTracer();
   CellTracer(const CellTracer&) = delete;
   CellTracer& operator=(const CellTracer&) = delete;

@@ -233,7 +233,7 @@ TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, 
       for (size_t j = next_strip++; j < J; j = next_strip++) {
         StripOut& out = strips[j];
         search::DenseEvaluator evaluator(eq);
-        search::CellTracer tracer(eq, opt, out.stats, evaluator);
+        search::CellTracer tracer(eq, opt, out.stats, evaluator, &stop);
         for (size_t i = 0; i < I; ++i) {
           if (stop) {  // stopped: the rest of the strip is listed as not searched
             out.stats.unsearched_cells += static_cast<long>(I - i);
@@ -254,8 +254,11 @@ TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, 
           // curves leave through the left edge (pole line i) into the right edge of cell i - 1, and through the
           // top edge (pole line j + 1) into the bottom edge of strip j + 1
           if (!tracer.trace_cell(cell, i, tw.hits.v_from[i][j], tw.hits.h_from[j + 1][i], tw.hits.v_to[i + 1][j],
-                                 tw.hits.h_to[j][i]))
-            out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, "step"});
+                                 tw.hits.h_to[j][i])) {
+            const bool cut = stop.load();  // stopped inside the cell: its pieces ended early, counted as not searched
+            if (cut) ++out.stats.unsearched_cells;
+            out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, cut ? "interrupted" : "step"});
+          }
           candidates_found += static_cast<long>(tracer.candidates().size() - found_before);
         }
         out.candidates = std::move(tracer.candidates());

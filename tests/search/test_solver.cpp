@@ -7,6 +7,7 @@
 
 #include "paper_reference.hpp"
 #include "physical_flow.hpp"
+#include "search/cell_trace.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/equation_set.hpp"
@@ -430,5 +431,43 @@ TEST(Progress, ReportsEveryCellAndStopsWithWhatWasFound) {
     ASSERT_EQ(r.solutions.size(), 1u) << x.t1 << " " << x.t2;
     EXPECT_NEAR(r.solutions[0].t1, x.t1, 1e-9 * x.t1);
     EXPECT_NEAR(r.solutions[0].t2, x.t2, 1e-9 * x.t2);
+  }
+}
+
+TEST(Progress, AStopRaisedDuringACellEndsItsPiecesAtTheNextStep) {
+  // A stop was checked only between cells, and one certified cell of a 20-dof chain can take tens of seconds (Ctrl-C
+  // did not end such a run within 30 s). The tracer now ends each piece at its next step: the cell of the paper's SPP
+  // (3.2160302, 0.52773599), traced with the stop raised, is not certified and takes no step; without it, it is.
+  const System s5 = chain5();
+  const ModalForm md(s5);
+  const auto eq = make_equations(md, Symmetry::Axial);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 12;
+  const std::vector<double> fp = md.flight_poles(0.0, 12.0), cp = md.contact_poles(0.0, 12.0);
+  auto around = [](const std::vector<double>& poles, double t) {
+    const auto hi = std::upper_bound(poles.begin(), poles.end(), t);
+    return std::make_pair(*(hi - 1), *hi);
+  };
+  const auto [l1, h1] = around(fp, 3.2160302);
+  const auto [l2, h2] = around(cp, 0.52773599);
+  const double m1 = 1e-3 * (h1 - l1), m2 = 1e-3 * (h2 - l2);
+  const search::Cell cell{l1 + m1, h1 - m1, l2 + m2, h2 - m2, true, true, true, true};
+  for (const bool stopped : {false, true}) {
+    SolveStats st;
+    search::DenseEvaluator ev(*eq);
+    const std::atomic<bool> stop{stopped};
+    search::CellTracer tracer(*eq, o, st, ev, &stop);
+    std::vector<search::EdgeHit> a, b, c, d;
+    const bool certified = tracer.trace_cell(cell, 0, a, b, c, d);
+    EXPECT_GT(st.curve_pieces, 0);
+    if (stopped) {
+      EXPECT_FALSE(certified);
+      EXPECT_EQ(st.certified_steps, 0);
+      EXPECT_TRUE(tracer.candidates().empty());
+    } else {
+      EXPECT_TRUE(certified);
+      EXPECT_GT(st.certified_steps, 0);
+      EXPECT_FALSE(tracer.candidates().empty());  // the paper's SPP: a sign change of g in this cell
+    }
   }
 }
