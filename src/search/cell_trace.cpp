@@ -593,7 +593,7 @@ class CellTracer::Impl {
   // (bordered_form.hpp), whose entries stay O(1) next to a pole line where H's grow like 1 / distance (clustered pole
   // lines 1e-4 apart put every corner there): Haynsworth's inertia additivity, inertia(B) = inertia(H) +
   // inertia(-Lambda^-1), gives H's count as B's minus the number of positive border values. -1 where neither proves
-  // it. Without certify_steps, H's count as it is.
+  // it, or where H's own count disagrees. Without certify_steps, H's count as it is.
   int corner_count(const HPoint& T, double t1, double t2) const {
     if (!opt_.certify_steps) return T.count_below(0.0);
     const double e = T.eigen_error();
@@ -607,7 +607,10 @@ class CellTracer::Impl {
     if (below_b != B.count_below(eb)) return -1;
     const Eigen::VectorXd lam = bf.border_values(t1, t2);
     if (!lam.allFinite()) return -1;
-    return below_b - static_cast<int>((lam.array() > 0.0).count());
+    // The rest of the cell (edge-root brackets from H's eigenvalues at the corners) reads H as computed: a proved count
+    // that H's own contradicts is not used (the corner is moved instead, else the cell is not certified).
+    const int count = below_b - static_cast<int>((lam.array() > 0.0).count());
+    return count == T.count_below(0.0) ? count : -1;
   }
 
   // True when no SPP lies in [t1lo, t1hi] x [t2lo, t2hi] (inside one cell), proved by the onset inertia: Hc grows
