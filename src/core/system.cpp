@@ -4,9 +4,11 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "spp/detail/invalid.hpp"
 #include "spp/detail/out_of_memory.hpp"
+#include "spp/detail/symmetric_eigen.hpp"
 
 namespace spp {
 namespace {
@@ -46,9 +48,12 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
     }
   const Eigen::VectorXd d = S.diagonal().cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd U = d.asDiagonal() * S * d.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(U, Eigen::EigenvaluesOnly);
-  const double lmin = es.eigenvalues().minCoeff();
-  const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
+  const detail::SymmetricEigen es = detail::symmetric_eigen(U, /*vectors=*/false);
+  if (!es.ok)
+    detail::invalid(std::string("system: the eigenvalues of ") + field +
+                    " (scaled to a unit diagonal) did not converge");
+  const double lmin = es.values.minCoeff();
+  const double lmax = es.values.cwiseAbs().maxCoeff();
   if (!(lmin > kDefinitenessMargin * std::numeric_limits<double>::epsilon() * lmax * static_cast<double>(A.rows()))) {
     std::ostringstream os;
     os << "system: " << field << " must be positive definite, got smallest eigenvalue " << lmin << " (largest " << lmax

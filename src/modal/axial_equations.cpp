@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "modal/equation_sets.hpp"
+#include "spp/detail/dense_products.hpp"
 
 namespace spp {
 
@@ -57,7 +58,7 @@ class AxialEquations final : public EquationSet {
     const Eigen::ArrayXd c1 = (w * t1).cos(), s1 = (w * t1).sin();
     const Eigen::ArrayXd& d = md_.d().array();
     const Eigen::VectorXd e2 = (d.square() * (d * t2).cos()).matrix();
-    const Eigen::MatrixXd SC = md_.G() * e2.asDiagonal() * md_.G().transpose();  // S cos(S^1/2 t2)
+    const Eigen::MatrixXd SC = detail::congruence(md_.G(), e2);  // S cos(S^1/2 t2)
     return SC * c1.matrix().asDiagonal() - md_.contact_msin(t2) * (w * s1).matrix().asDiagonal();
   }
 

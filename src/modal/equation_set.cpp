@@ -4,15 +4,16 @@
 #include <string>
 
 #include "modal/equation_sets.hpp"
+#include "spp/detail/dense_products.hpp"
 
 namespace spp {
 
 Eigen::MatrixXd EquationSet::contact_part(double t2) const {
-  return md_.G() * contact_eigs(t2).asDiagonal() * md_.G().transpose();
+  return detail::congruence(md_.G(), contact_eigs(t2));
 }
 
 Eigen::MatrixXd EquationSet::dcontact_dt2(double t2) const {
-  return md_.G() * dcontact_eigs(t2).asDiagonal() * md_.G().transpose();
+  return detail::congruence(md_.G(), dcontact_eigs(t2));
 }
 
 Eigen::MatrixXd EquationSet::H(double t1, double t2) const {

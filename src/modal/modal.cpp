@@ -6,15 +6,18 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "spp/detail/dense_products.hpp"
 #include "spp/detail/out_of_memory.hpp"
+#include "spp/detail/symmetric_eigen.hpp"
 
 namespace spp {
 
 // (a function-try-block: the eigensolvers' n x n workspaces are what runs out first for a large n)
 ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) try : n_(system.n()) {
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(system.K(), system.M());
-  Eigen::VectorXd omega_all = ges.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  Eigen::MatrixXd Phi_all = ges.eigenvectors();  // M-normalised
+  detail::SymmetricEigen ges = detail::generalized_symmetric_eigen(system.K(), system.M());
+  if (!ges.ok) throw std::runtime_error("modal form: the generalized eigenproblem K v = omega^2 M v did not converge");
+  Eigen::VectorXd omega_all = ges.values.cwiseMax(0.0).cwiseSqrt();
+  Eigen::MatrixXd Phi_all = std::move(ges.vectors);  // M-normalised
   const Eigen::VectorXd& w = system.w();
 
   // Repeated frequencies: rotate each group (Householder) so that only its first mode couples to w.
@@ -68,9 +71,11 @@ ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_
   // Contact phase: S = W^2 - z z^T, PSD with a single zero eigenvalue (eigenvector W^{-1} u).
   z_ = omega_.cwiseProduct(u_);
   Eigen::MatrixXd S = Eigen::MatrixXd(omega_.array().square().matrix().asDiagonal()) - z_ * z_.transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
-  d_ = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  G_ = es.eigenvectors();
+  detail::SymmetricEigen es = detail::symmetric_eigen(S);
+  if (!es.ok)
+    throw std::runtime_error("modal form: the contact-phase eigenproblem of S = W^2 - z z^T did not converge");
+  d_ = es.values.cwiseMax(0.0).cwiseSqrt();
+  G_ = std::move(es.vectors);
   if (m > 0) {
     d_(0) = 0.0;  // exact: the constrained direction
     Eigen::VectorXd g = u_.cwiseQuotient(omega_).normalized();
@@ -89,18 +94,18 @@ const char* to_string(Symmetry s) {
 
 Eigen::MatrixXd ModalForm::contact_cos(double t) const {
   const Eigen::VectorXd e = (d_.array() * t).cos().matrix();
-  return G_ * e.asDiagonal() * G_.transpose();
+  return detail::congruence(G_, e);
 }
 
 Eigen::MatrixXd ModalForm::contact_sinc(double t) const {
   Eigen::VectorXd e(d_.size());
   for (Eigen::Index j = 0; j < d_.size(); ++j) e(j) = d_(j) > 0 ? std::sin(d_(j) * t) / d_(j) : t;
-  return G_ * e.asDiagonal() * G_.transpose();
+  return detail::congruence(G_, e);
 }
 
 Eigen::MatrixXd ModalForm::contact_msin(double t) const {
   const Eigen::VectorXd e = (d_.array() * (d_.array() * t).sin()).matrix();
-  return G_ * e.asDiagonal() * G_.transpose();
+  return detail::congruence(G_, e);
 }
 
 namespace {

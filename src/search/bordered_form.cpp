@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "spp/detail/dense_products.hpp"
+
 namespace spp::search {
 
 PhaseFamily::Point PhaseFamily::at(Eigen::Index k, double t) const {
@@ -139,7 +141,7 @@ BorderedForm::BorderedForm(const EquationSet& eq, double lo1, double hi1, double
 }
 
 Eigen::MatrixXd BorderedForm::matrix(double t1, double t2) const {
-  Eigen::MatrixXd B = K0_ + Gx_ * contact_.value(t2).asDiagonal() * Gx_.transpose();
+  Eigen::MatrixXd B = K0_ + detail::congruence(Gx_, contact_.value(t2));
   B.diagonal() += flight_.value(t1);
   return B;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "spp/detail/dense_products.hpp"
+
 namespace spp::search {
 
 namespace {
@@ -57,11 +59,11 @@ int DenseEvaluator::onset_inertia(double t1, double t2) {
   const Eigen::VectorXd chat = eq_.onset_direction(t2).normalized();
   Eigen::MatrixXd A(m + 1, m + 1);
   if (e.cwiseAbs().maxCoeff() <= f.cwiseAbs().maxCoeff()) {  // modal basis
-    A.topLeftCorner(m, m) = md.G() * e.asDiagonal() * md.G().transpose();
+    A.topLeftCorner(m, m) = detail::congruence(md.G(), e);
     A.topLeftCorner(m, m).diagonal() += f;
     A.col(m).head(m) = chat;
   } else {  // contact basis: G^T H G = G^T F G + D tan(D t2)
-    A.topLeftCorner(m, m) = md.G().transpose() * f.asDiagonal() * md.G();
+    A.topLeftCorner(m, m) = detail::congruence_transposed(md.G(), f);
     A.topLeftCorner(m, m).diagonal() += e;
     A.col(m).head(m) = md.G().transpose() * chat;
   }

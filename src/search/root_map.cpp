@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "spp/detail/invalid.hpp"
+#include "spp/detail/symmetric_eigen.hpp"
 #include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
 
@@ -30,8 +31,8 @@ namespace {
 /// sign(det A) * min |lambda(A)| of a symmetric matrix (0 for an empty one is never used: m >= 1 here).
 double signed_min_eigenvalue(const Eigen::MatrixXd& A) {
   if (A.rows() == 0) return 1.0;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A, Eigen::EigenvaluesOnly);
-  const Eigen::VectorXd& lam = es.eigenvalues();
+  const detail::SymmetricEigen es = detail::symmetric_eigen(A, /*vectors=*/false);
+  const Eigen::VectorXd& lam = es.values;
   int negatives = 0;
   double smallest = std::abs(lam(0));
   for (Eigen::Index k = 0; k < lam.size(); ++k) {

@@ -19,6 +19,7 @@
 #include "search/polish.hpp"
 #include "search/tolerances.hpp"
 #include "search/window_plan.hpp"
+#include "spp/detail/dense_products.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
@@ -274,6 +275,7 @@ TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, 
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const size_t nthreads = std::min<size_t>(J, opt.threads > 0 ? static_cast<size_t>(opt.threads) : hw);
   std::vector<std::thread> pool;
+  const detail::SingleThreadedBlas single_threaded_blas;  // the workers call BLAS / LAPACK at once
   if (!opt.progress) {
     for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(worker);
     worker();

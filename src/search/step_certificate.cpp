@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "spp/detail/dense_products.hpp"
+
 namespace spp::search {
 
 namespace {
@@ -21,8 +23,7 @@ double weighted_norm(const Eigen::VectorXd& weights, const Eigen::VectorXd& v) {
 
 }  // namespace
 
-const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const BorderedForm& bf, double t1, double t2,
-                                                                     bool& computed) {
+const detail::SymmetricEigen& EigenCache::at(const BorderedForm& bf, double t1, double t2, bool& computed) {
   const std::vector<int> key = bf.key();
   for (Entry& e : entries_)
     if (e.used && e.t1 == t1 && e.t2 == t2 && e.key == key) {
@@ -34,7 +35,7 @@ const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& EigenCache::at(const Borde
   e.t1 = t1;
   e.t2 = t2;
   e.key = key;
-  e.es.compute(bf.matrix(t1, t2));
+  e.es = detail::symmetric_eigen(bf.matrix(t1, t2));
   e.used = true;
   computed = true;
   return e.es;
@@ -57,14 +58,14 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   using Vec = Eigen::VectorXd;
   using Mat = Eigen::MatrixXd;
   SpectralBounds sb;
-  Eigen::SelfAdjointEigenSolver<Mat> own;
+  detail::SymmetricEigen own;
   bool computed = true;
-  if (!cache) own.compute(bf.matrix(x.t1, x.t2));
-  const Eigen::SelfAdjointEigenSolver<Mat>& es = cache ? cache->at(bf, x.t1, x.t2, computed) : own;
+  if (!cache) own = detail::symmetric_eigen(bf.matrix(x.t1, x.t2));
+  const detail::SymmetricEigen& es = cache ? cache->at(bf, x.t1, x.t2, computed) : own;
   sb.evaluations = computed ? 1 : 0;
-  if (es.info() != Eigen::Success) return sb;
-  const Vec& lam = es.eigenvalues();
-  const Mat& U = es.eigenvectors();
+  if (!es.ok) return sb;
+  const Vec& lam = es.values;
+  const Mat& U = es.vectors;
   const Eigen::Index m = lam.size();
   Eigen::Index k = 0;
   lam.cwiseAbs().minCoeff(&k);
@@ -81,8 +82,8 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   }
   if (!(gap > 0) || !std::isfinite(gap)) return sb;
   const Mat& G = bf.Gx();
-  const Mat Hp = U * inv.asDiagonal() * U.transpose();
-  const Mat HpG = Hp * G, GHpG = G.transpose() * HpG;
+  const Mat Hp = detail::congruence(U, inv);
+  const Mat HpG = detail::product(Hp, false, G, false), GHpG = detail::product(G, true, HpG, false);
   const Mat aHp = Hp.cwiseAbs(), aHpG = HpG.cwiseAbs(), aGHpG = GHpG.cwiseAbs();
   const PhaseBounds F = phase_bounds(bf.flight(), lo1, hi1);
   const PhaseBounds C = phase_bounds(bf.contact(), lo2, hi2);
@@ -292,7 +293,7 @@ AlongCurve::FirstOrder AlongCurve::first_order(const Vec& a, const Vec& ya, doub
 }
 
 double AlongCurve::k2(double kappa, const Mat& Hp, const Mat& HpG) const {
-  const Mat HpE = -Hp * F_.increment.asDiagonal() + HpG * C_.increment.asDiagonal() * G_.transpose();
+  const Mat HpE = -Hp * F_.increment.asDiagonal() + detail::product(HpG * C_.increment.asDiagonal(), false, G_, true);
   return HpE.norm() + (Hp * weight_F().asDiagonal()).norm() + (HpG * weight_C(kappa).asDiagonal()).norm();
 }
 
@@ -475,12 +476,12 @@ BorderedOffset bordered_offset(const EquationSet& eq, double t1, double t2) {
   BorderedOffset o;
   const BorderedForm bf(eq, t1, t1, t2, t2);
   if (!bf.valid() || bf.bordered() == 0) return o;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(bf.matrix(t1, t2));
-  if (es.info() != Eigen::Success) return o;
-  const Eigen::VectorXd& lam = es.eigenvalues();
+  const detail::SymmetricEigen es = detail::symmetric_eigen(bf.matrix(t1, t2));
+  if (!es.ok) return o;
+  const Eigen::VectorXd& lam = es.values;
   Eigen::Index k = 0;
   lam.cwiseAbs().minCoeff(&k);
-  const Eigen::VectorXd x = es.eigenvectors().col(k);
+  const Eigen::VectorXd x = es.vectors.col(k);
   const double err = decomposition_error(lam);
   const Eigen::VectorXd y = bf.Gx().transpose() * x;
   o.lam_err = std::abs(lam(k)) + err;

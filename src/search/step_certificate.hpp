@@ -33,6 +33,7 @@
 #include <Eigen/Dense>
 
 #include "search/bordered_form.hpp"
+#include "spp/detail/symmetric_eigen.hpp"
 #include "spp/modal/equation_set.hpp"
 
 namespace spp::search {
@@ -83,14 +84,13 @@ struct StepBox {
 class EigenCache {
  public:
   /// The eigenpairs of bf at (t1, t2); `computed` is set when they were not cached (one evaluation).
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& at(const BorderedForm& bf, double t1, double t2,
-                                                           bool& computed);
+  const detail::SymmetricEigen& at(const BorderedForm& bf, double t1, double t2, bool& computed);
 
  private:
   struct Entry {
     double t1 = 0, t2 = 0;
     std::vector<int> key;
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
+    detail::SymmetricEigen es;
     bool used = false;
   };
   Entry entries_[3];

@@ -7,6 +7,7 @@
 
 #include "spp/detail/cosine_sum.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/detail/symmetric_eigen.hpp"
 
 namespace spp {
 
@@ -22,10 +23,10 @@ Simulator::Phase make_phase(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, 
     return p;
   }
   const Eigen::MatrixXd Mr = T.transpose() * M * T, Kr = T.transpose() * K * T;
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);  // Psi^T Mr Psi = I
-  if (es.info() != Eigen::Success) throw std::runtime_error("simulator: generalized eigenproblem failed");
-  p.omega = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  p.Phi = T * es.eigenvectors();
+  const detail::SymmetricEigen es = detail::generalized_symmetric_eigen(Kr, Mr);  // Psi^T Mr Psi = I
+  if (!es.ok) throw std::runtime_error("simulator: generalized eigenproblem failed");
+  p.omega = es.values.cwiseMax(0.0).cwiseSqrt();
+  p.Phi = T * es.vectors;
   return p;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // One eigenpair and the inertia of a dense symmetric matrix through its Householder tridiagonal form
-// (Eigen::Tridiagonalization, ~4/3 m^3): Sturm counts give the number of eigenvalues below any x (Sylvester's
-// law on the LDL^T of T - x I), bisection the k-th eigenvalue to rounding level, inverse iteration its vector.
-// The full decomposition with vectors costs 5-10x more (measured: m = 30: 126 us vs 9 us for the
+// (Eigen's, or LAPACK's blocked dsytrd from m = kLapackFrom on; ~4/3 m^3): Sturm counts give the number of eigenvalues
+// below any x (Sylvester's law on the LDL^T of T - x I), bisection the k-th eigenvalue to rounding level, inverse
+// iteration its vector. The full decomposition with vectors costs 5-10x more (measured: m = 30: 126 us vs 9 us for the
 // tridiagonalisation; m = 100: 2650 us vs 267 us).
 
 #include <Eigen/Dense>
@@ -24,8 +24,9 @@ class SymmetricTridiagonal {
 
  private:
   Eigen::MatrixXd householder_;  // packed Householder reflectors (Eigen's Tridiagonalization storage)
-  Eigen::VectorXd hcoeffs_;
-  Eigen::VectorXd a_, b_;  // diagonal, sub-diagonal of T
+  Eigen::VectorXd hcoeffs_;      // their coefficients (LAPACK's tau when lapack_)
+  bool lapack_ = false;          // reduced by LAPACK's dsytrd (m >= kLapackFrom) rather than Eigen
+  Eigen::VectorXd a_, b_;        // diagonal, sub-diagonal of T
   double bound_ = 0.0, pivmin_ = 0.0;
 };
 
