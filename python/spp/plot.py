@@ -157,6 +157,39 @@ def _scatter_spps(ax, solutions, x, y):
             ax.scatter(a, b, s=16, lw=0.8, zorder=3, gid="admissible" if admissible else "potential", **style)
 
 
+def _merged_cells(rm):
+    """The root map's cells as one grid (t1, t2, symmetric, onset) for a single contour call per condition: the
+    cells tile the window as a tensor product (rows of equal t2 grids, columns of equal t1 grids), so their grids are
+    concatenated, with one masked (NaN) row or column on each pole line between two cells so that no contour joins
+    the two sides of a pole (where the sampled functions change sign through infinity)."""
+    cells = list(rm.cells)
+    ncols = 1
+    while ncols < len(cells) and np.array_equal(cells[ncols].t2, cells[0].t2):
+        ncols += 1
+    nrows = len(cells) // ncols
+    grid = [cells[r * ncols:(r + 1) * ncols] for r in range(nrows)]
+
+    def axis(parts):  # grids of consecutive cells, a separator between them (strictly increasing)
+        out, keep = [], []
+        for k, part in enumerate(parts):
+            if k:
+                out.append([0.5 * (out[-1][-1] + part[0])])
+                keep.append(False)
+            out.append(np.asarray(part, dtype=float))
+            keep.extend([True] * len(part))
+        return np.concatenate(out), np.array(keep)
+
+    t1, keep1 = axis([c.t1 for c in grid[0]])
+    t2, keep2 = axis([row[0].t2 for row in grid])
+    merged = []
+    for field in ("symmetric", "onset"):
+        blocks = [np.hstack([getattr(c, field) for c in row]) for row in grid]
+        values = np.full((len(t2), len(t1)), np.nan)
+        values[np.ix_(keep2, keep1)] = np.vstack(blocks)
+        merged.append(values)
+    return t1, t2, merged[0], merged[1]
+
+
 def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
@@ -171,11 +204,11 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
         ax.axvline(p, color="0.8", lw=0.5, zorder=0)
     for p in rm.contact_poles:
         ax.axhline(p, color="0.8", lw=0.5, zorder=0)
-    for c in rm.cells:
-        for values, style in ((c.symmetric, dict(colors="C0", linewidths=0.9)),
-                              (c.onset, dict(colors="C2", linewidths=0.8, linestyles="--"))):
-            if len(c.t1) > 1 and len(c.t2) > 1 and values.min() < 0 < values.max():
-                ax.contour(c.t1, c.t2, values, levels=[0.0], **style)
+    t1, t2, symmetric, onset = _merged_cells(rm)
+    for values, style in ((symmetric, dict(colors="C0", linewidths=0.9)),
+                          (onset, dict(colors="C2", linewidths=0.8, linestyles="--"))):
+        if np.nanmin(values) < 0 < np.nanmax(values):
+            ax.contour(t1, t2, np.ma.masked_invalid(values), levels=[0.0], **style)
     _scatter_spps(ax, solutions, lambda s: s.t1, lambda s: s.t2)
     ax.set_xlim(w["t1_min"], w["t1_max"])
     ax.set_ylim(w["t2_min"], w["t2_max"])
