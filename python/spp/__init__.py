@@ -10,7 +10,25 @@ from ._spp import (Branch, BranchEvent, BranchPoint, ContinuationResult, Continu
                    ParametricSystem, RootMap, RootMapCell, RootMapOptions, SimulateOptions, SimulationResult, Solution,
                    SolveOptions, SolveProgress, SolveResult, SppCandidate, SppCheck, Symmetry, System, VerifyOptions,
                    VerifyResult, chain, continue_branches, fundamental_box, load_result, modal_frequencies,
-                   nearest_spp, rod_with_slip, root_map, simulate, solve, trajectory, two_dof, verify)
+                   nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
+from . import _spp
+from ._progress import Bar as _Bar
+
+
+def solve(system, options=None, progress=None, **fields):
+    if isinstance(progress, str):
+        if progress != "bar":
+            raise ValueError(f"solve: progress must be True, False, a callable or \"bar\", got {progress!r}")
+        with _Bar() as bar:
+            return _spp.solve(system, options, progress=bar, **fields)
+    if progress is None:
+        return _spp.solve(system, options, **fields)
+    return _spp.solve(system, options, progress=progress, **fields)
+
+
+solve.__doc__ = _spp.solve.__doc__ + (
+    "\n\nprogress=\"bar\": a progress bar (tqdm's, a widget in Jupyter, when python3-tqdm is installed; else a "
+    "text bar on stderr): cells traced / cells of the window, SPP candidates so far, ETA.")
 
 __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Event", "SimulateOptions",
            "SimulationResult", "SppCheck", "VerifyOptions", "VerifyResult", "SppCandidate", "RootMap", "RootMapCell",

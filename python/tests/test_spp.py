@@ -1,5 +1,6 @@
 """The Python package mirrors the C++ tests: the paper's examples, simulation, verification, errors."""
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -315,6 +316,22 @@ def test_progress_reports_and_ctrl_c_keeps_what_was_found():
     r = spp.solve(big, t1_max=t1, t2_max=t2, progress=lambda p: "")
     assert r.stats["unsearched_cells"] > 0
     assert spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: "go on").status == "success"
+
+
+def test_progress_bar_shows_cells_and_candidates(capsys, monkeypatch):
+    s = chain5()
+    r = spp.solve(s, t1_max=12, t2_max=12, progress="bar")
+    assert r.status == "success" and len(r.solutions) == 64
+    err = capsys.readouterr().err
+    cells = r.stats["rectangles"]  # the window's cells: the bar ends full
+    assert "spp solve" in err and "candidates" in err and f"{cells}/{cells}" in err
+    # without tqdm: a text bar on stderr, ended by a newline
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)
+    r = spp.solve(s, t1_max=12, t2_max=12, progress="bar")
+    err = capsys.readouterr().err
+    assert "candidates" in err and "cells" in err and err.endswith("\n")
+    with pytest.raises(ValueError, match="progress must be"):
+        spp.solve(s, t1_max=12, t2_max=12, progress="tqdm")
 
 
 def test_solve_result_from_json_gives_back_what_was_written(tmp_path):
