@@ -2,7 +2,7 @@
 # Installs the Debian packages spp needs (Debian 12, as root). Skips apt entirely when all are present.
 set -euo pipefail
 PACKAGES=(g++ cmake ninja-build pkg-config
-          libeigen3-dev libopenblas-pthread-dev nlohmann-json3-dev libcli11-dev
+          libeigen3-dev libopenblas-pthread-dev nlohmann-json3-dev libcli11-dev libspectra-dev libsuitesparse-dev
           libgtest-dev googletest libbenchmark-dev
           python3 python3-dev python3-pip python3-venv pybind11-dev python3-numpy python3-pytest
           python3-matplotlib python3-pil python3-pandas python3-siconos

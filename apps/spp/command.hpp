@@ -25,6 +25,8 @@ Subcommand add_verify(CLI::App& app);
 /// plot and animate: delegated to the Python package (python3 -m spp plot|animate).
 std::vector<Subcommand> add_figures(CLI::App& app);
 Subcommand add_generate(CLI::App& app);
+/// reduce: a large sparse model to a small system file (Craig-Bampton).
+Subcommand add_reduce(CLI::App& app);
 
 /// An output file named by option `opt`: refused before any work when it is one of the inputs or of the run's other
 /// outputs (it would be replaced) or when its directory does not exist (the work would be lost at the end).

@@ -1,5 +1,6 @@
 // spp generate: system files of the paper's models (chain, rod, two-dof), optionally with one value left free as the
-// parameter of a parametric system.
+// parameter of a parametric system; and a large sparse model (bar: a finite-element rod, M and K in Matrix Market
+// files beside the JSON, to reduce with spp reduce).
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -15,7 +16,9 @@ namespace {
 
 struct GenerateArgs {
   std::string out, parameter, range;
-  CLI::App *chain = nullptr, *rod = nullptr;
+  CLI::App *chain = nullptr, *rod = nullptr, *bar = nullptr;
+  int bar_n = 1000, bar_contact_node = 0;  // 0: the free end
+  bool bar_lumped = false;
   int n = 5, contact_dof = 0;  // contact_dof 1-based, 0: the last
   std::string masses = "1", stiffnesses = "1", side = "upper";
   double chain_g0 = 1.0;
@@ -39,19 +42,38 @@ System make(const GenerateArgs& g, const std::optional<std::pair<std::string, do
   return two_dof(take("m1", g.m1), take("m2", g.m2), take("k1", g.k1), take("k2", g.k2), g.two_dof_g0);
 }
 
+// The bar: sparse, its M and K written as Matrix Market files beside the JSON (<stem>.M.mtx, <stem>.K.mtx).
+int run_bar(const GenerateArgs& g) {
+  const std::vector<std::string> mtx = sparse_system_matrix_files(g.out);
+  check_output(g.out, "--out", {});
+  for (const std::string& f : mtx) check_output(f, "--out (its Matrix Market file)", {g.out});
+  const int node = g.bar_contact_node == 0 ? g.bar_n : g.bar_contact_node;
+  const SparseSystem sys = bar(g.bar_n, g.bar_lumped ? BarMass::Lumped : BarMass::Consistent, node,
+                               g.side == "upper" ? ContactSide::Upper : ContactSide::Lower, g.chain_g0);
+  write_sparse_system(sys, g.out,
+                      "fixed-free bar, unit length, EA = rhoA = 1, " + std::to_string(g.bar_n) + " linear elements, " +
+                          (g.bar_lumped ? "lumped" : "consistent") + " mass, contact at node " + std::to_string(node));
+  std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ", " << (g.bar_lumped ? "lumped" : "consistent")
+            << " mass, contact at node " << node << ") to " << g.out << " with " << mtx[0] << " and " << mtx[1] << "\n";
+  return 0;
+}
+
 int run(const GenerateArgs& g) {
+  if (*g.bar) return run_bar(g);
   if (g.parameter.empty() && g.range.empty()) {
     const System sys = make(g, std::nullopt);
     write_file_atomic(g.out, system_json(sys));
     std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ") to " << g.out << "\n";
     return 0;
   }
-  if (g.parameter.empty() || g.range.empty()) throw std::invalid_argument("generate: --parameter and --range go together");
+  if (g.parameter.empty() || g.range.empty())
+    throw std::invalid_argument("generate: --parameter and --range go together");
   const std::vector<double> range = parse_list(g.range, "--range");
   if (range.size() != 2) throw std::invalid_argument("--range: expected MIN,MAX, got \"" + g.range + "\"");
   const int n = *g.chain ? g.n : 2;
   bool known = false;
-  for (int i = 1; i <= n; ++i) known |= g.parameter == "m" + std::to_string(i) || g.parameter == "k" + std::to_string(i);
+  for (int i = 1; i <= n; ++i)
+    known |= g.parameter == "m" + std::to_string(i) || g.parameter == "k" + std::to_string(i);
   if (!known)
     throw std::invalid_argument("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) + ", got \"" +
                                 g.parameter + "\"");
@@ -86,6 +108,19 @@ Subcommand add_generate(CLI::App& app) {
   g->rod->add_option("--a", g->a, "slope of the obstacle line");
   g->rod->add_option("--b", g->b, "intercept of the obstacle line");
   g->rod->add_option("--out", g->out, "output JSON")->required();
+  g->bar = gen->add_subcommand("bar",
+                               "fixed-free finite-element bar (sparse; M and K as Matrix Market files beside the "
+                               "JSON): reduce it with spp reduce");
+  g->bar->add_option("--n", g->bar_n, "number of linear rod elements = dofs (default 1000)")
+      ->check(CLI::Range(1, 100000000));
+  g->bar->add_flag("--lumped", g->bar_lumped, "lumped mass (default: consistent mass)");
+  g->bar
+      ->add_option("--contact-node", g->bar_contact_node, "node 1..n that meets the obstacle (default: the free end n)")
+      ->check(CLI::Range(1, 100000000));
+  g->bar->add_option("--side", g->side, "obstacle beyond the end (upper: g = g0 - x) or before it (lower: g = g0 + x)")
+      ->check(CLI::IsMember({"upper", "lower"}));
+  g->bar->add_option("--g0", g->chain_g0, "gap at rest (default 1)");
+  g->bar->add_option("--out", g->out, "output JSON (the .mtx files go beside it)")->required();
   auto* two = gen->add_subcommand("two-dof", "2-dof system of paper §2.3");
   two->add_option("--m1", g->m1);
   two->add_option("--m2", g->m2);

@@ -1,6 +1,6 @@
 // spp: command-line tool. Each subcommand (one file each: solve.cpp, continue.cpp, trajectory.cpp, simulate.cpp,
-// verify.cpp, figures.cpp, generate.cpp) registers its options and runs: parse -> options -> validate -> run -> write
-// (atomically, every output prepared before any is written).
+// verify.cpp, figures.cpp, generate.cpp, reduce.cpp) registers its options and runs: parse -> options -> validate ->
+// run -> write (atomically, every output prepared before any is written).
 // Exit codes: 0 success, 1 invalid input, usage error or failed run (message on stderr), 3 verify: a simulation
 // disagrees with the solver's admissibility.
 
@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
                                                 spp::cli::add_verify(app)};
   for (spp::cli::Subcommand& f : spp::cli::add_figures(app)) commands.push_back(std::move(f));
   commands.push_back(spp::cli::add_generate(app));
+  commands.push_back(spp::cli::add_reduce(app));
   app.set_version_flag("--version", std::string("spp ") + SPP_VERSION);
   // Usage errors exit 1 like every other error (README), not CLI11's 105-107; --help and --version exit 0.
   try {

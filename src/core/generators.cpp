@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "spp/detail/invalid.hpp"
 #include "spp/detail/out_of_memory.hpp"
 
 namespace spp {
@@ -54,6 +55,42 @@ System chain(int n, const std::vector<double>& masses, const std::vector<double>
   Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
   w(contact_dof) = side == ContactSide::Upper ? -1.0 : 1.0;
   return System(M, K, w, g0, "chain" + std::to_string(n));
+}
+
+SparseSystem bar(int n, BarMass mass, int contact_node, ContactSide side, double g0) {
+  if (n < 1) detail::invalid_option("bar", "n", n, ">= 1");
+  if (contact_node < 1 || contact_node > n)
+    detail::invalid_option("bar", "contact node", contact_node, "in [1, n = " + std::to_string(n) + "]");
+  const double h = 1.0 / n;
+  const double k = 1.0 / h;  // E A / h
+  const bool lumped = mass == BarMass::Lumped;
+  const double m_diag = lumped ? h / 2 : h / 3, m_off = lumped ? 0.0 : h / 6;  // rho A h (1/2 | 2/6, 1/6)
+  std::vector<Eigen::Triplet<double>> mt, kt;
+  mt.reserve(3 * static_cast<size_t>(n));
+  kt.reserve(3 * static_cast<size_t>(n));
+  // element e joins nodes e and e + 1 (e = 0..n-1); node j is dof j - 1; node 0 is fixed
+  for (int e = 0; e < n; ++e) {
+    const int a = e - 1, b = e;  // dofs of the element's nodes (a = -1: the fixed node)
+    kt.emplace_back(b, b, k);
+    mt.emplace_back(b, b, m_diag);
+    if (a >= 0) {
+      kt.emplace_back(a, a, k);
+      kt.emplace_back(a, b, -k);
+      kt.emplace_back(b, a, -k);
+      mt.emplace_back(a, a, m_diag);
+      if (m_off != 0.0) {
+        mt.emplace_back(a, b, m_off);
+        mt.emplace_back(b, a, m_off);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> M(n, n), K(n, n);
+  M.setFromTriplets(mt.begin(), mt.end());
+  K.setFromTriplets(kt.begin(), kt.end());
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+  w(contact_node - 1) = side == ContactSide::Upper ? -1.0 : 1.0;
+  return SparseSystem(std::move(M), std::move(K), std::move(w), g0,
+                      "bar" + std::to_string(n) + (lumped ? "-lumped" : ""));
 }
 
 System rod_with_slip(double a, double b) {

@@ -1,10 +1,14 @@
 #include "spp/io/matrix_market.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "io/text.hpp"
@@ -41,9 +45,12 @@ std::vector<std::string> tokens(const std::string& line) {
 }
 // Dense storage the reader may allocate (entries): larger sizes are refused with their size, not std::bad_alloc.
 constexpr double kMaxDenseEntries = 4e8;  // 3.2 GB of doubles
-}  // namespace
 
-Eigen::MatrixXd read_matrix_market(const std::string& path) {
+// The one parser of both readers: checks the banner and the size line, calls on_size(rows, cols) once, then
+// on_entry(i, j, v) (0-based, as stored: one triangle of a symmetric file) for every stored entry. `where` names the
+// current line.
+template <typename OnSize, typename OnEntry>
+void parse_matrix_market(const std::string& path, bool dense, OnSize on_size, OnEntry on_entry) {
   std::ifstream in(path);
   if (!in) invalid("cannot open Matrix Market file \"" + path + "\"");
   std::string line;
@@ -78,20 +85,17 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
   if (size.size() != (coordinate ? 3u : 2u) || !parse_index(size[0], rows) || !parse_index(size[1], cols) ||
       (coordinate && !parse_index(size[2], nnz)) || rows <= 0 || cols <= 0 || nnz < 0)
     invalid(where() + ": bad size line \"" + shown(line) + "\" (expected rows cols" + (coordinate ? " entries" : "") +
-         ")");
-  if (static_cast<double>(rows) * static_cast<double>(cols) > kMaxDenseEntries)
+            ")");
+  if (dense && static_cast<double>(rows) * static_cast<double>(cols) > kMaxDenseEntries)
     invalid(where() + ": a " + std::to_string(rows) + " x " + std::to_string(cols) +
-         " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) + " entries)");
+            " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) +
+            " entries; a large sparse model is reduced first: spp reduce)");
+  if (!dense && rows > std::numeric_limits<int>::max() / 2)
+    invalid(where() + ": " + std::to_string(rows) + " rows: more than a sparse matrix with int indices holds");
   const bool sym = symmetry == "symmetric";
   if (sym && rows != cols) invalid(where() + ": a symmetric matrix must be square, got " + size[0] + " x " + size[1]);
-  Eigen::MatrixXd A;
-  detail::naming_allocation(where() + ": " + detail::dense_size(static_cast<double>(rows), static_cast<double>(cols)),
-                            [&] { A = Eigen::MatrixXd::Zero(rows, cols); });
+  on_size(rows, cols, sym, where);
   if (coordinate) {
-    // Duplicate entries are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one
-    // triangle: an entry given in both triangles is refused.
-    Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic> side;
-    if (sym) side = Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic>::Zero(rows, cols);
     for (long e = 0; e < nnz; ++e) {
       if (!next_data_line(line))
         invalid(path + ": expected " + std::to_string(nnz) + " entries (size line), got " + std::to_string(e));
@@ -101,23 +105,12 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
       if (t.size() != 3 || !parse_index(t[0], i) || !parse_index(t[1], j) || !parse_number(t[2], v) || i < 1 ||
           i > rows || j < 1 || j > cols)
         invalid(where() + ": bad entry \"" + shown(line) + "\" (expected row col value, 1 <= row <= " +
-             std::to_string(rows) + ", 1 <= col <= " + std::to_string(cols) + ")");
-      if (sym && i != j) {
-        const long lo = std::min(i, j) - 1, hi = std::max(i, j) - 1;
-        const signed char s = i > j ? 1 : 2;
-        if (side(hi, lo) != 0 && side(hi, lo) != s)
-          invalid(where() + ": entry (" + std::to_string(i) + ", " + std::to_string(j) +
-               ") of a symmetric file: its mirror was given too (store one triangle)");
-        side(hi, lo) = s;
-        A(hi, lo) += v;
-        A(lo, hi) += v;
-      } else {
-        A(i - 1, j - 1) += v;
-      }
+                std::to_string(rows) + ", 1 <= col <= " + std::to_string(cols) + ")");
+      on_entry(i - 1, j - 1, v, where);
     }
     if (next_data_line(line))
       invalid(where() + ": more entries than the " + std::to_string(nnz) + " the size line declares: \"" + shown(line) +
-           "\"");
+              "\"");
   } else {
     std::vector<std::string> pending;
     size_t next = 0;
@@ -125,23 +118,108 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
       for (long i = sym ? j : 0; i < rows; ++i) {
         while (next == pending.size()) {
           if (!next_data_line(line))
-            invalid(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
-                 ")");
+            invalid(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " +
+                    std::to_string(j + 1) + ")");
           pending = tokens(line);
           next = 0;
         }
         double v = 0;
         if (!parse_number(pending[next++], v))
-          invalid(where() + ": entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is not a number: \"" +
-               shown(pending[next - 1]) + "\"");
-        A(i, j) = v;
-        if (sym) A(j, i) = v;
+          invalid(where() + ": entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+                  ") is not a number: \"" + shown(pending[next - 1]) + "\"");
+        on_entry(i, j, v, where);
       }
     if (next != pending.size() || next_data_line(line))
       invalid(where() + ": more values than the " + std::to_string(sym ? rows * (rows + 1) / 2 : rows * cols) +
-           " the size line declares");
+              " the size line declares");
   }
+}
+
+std::string mirror_given(long i, long j) {
+  return "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+         ") of a symmetric file: its mirror was given too (store one triangle)";
+}
+
+}  // namespace
+
+Eigen::MatrixXd read_matrix_market(const std::string& path) {
+  Eigen::MatrixXd A;
+  // Duplicate entries are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one
+  // triangle: an entry given in both triangles is refused.
+  Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic> side;
+  bool sym = false;
+  parse_matrix_market(
+      path, true,
+      [&](long rows, long cols, bool symmetric, const auto& where) {
+        sym = symmetric;
+        detail::naming_allocation(
+            where() + ": " + detail::dense_size(static_cast<double>(rows), static_cast<double>(cols)), [&] {
+              A = Eigen::MatrixXd::Zero(rows, cols);
+              if (sym) side = Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic>::Zero(rows, cols);
+            });
+      },
+      [&](long i, long j, double v, const auto& where) {
+        if (sym && i != j) {
+          const long lo = std::min(i, j), hi = std::max(i, j);
+          const signed char s = i > j ? 1 : 2;
+          if (side(hi, lo) != 0 && side(hi, lo) != s) invalid(where() + ": " + mirror_given(i, j));
+          side(hi, lo) = s;
+          A(hi, lo) += v;
+          A(lo, hi) += v;
+        } else {
+          A(i, j) += v;
+        }
+      });
   return A;
+}
+
+Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path) {
+  std::vector<Eigen::Triplet<double>> entries;
+  // (lower index, upper index, which triangle) of every off-diagonal entry of a symmetric file: one triangle only
+  std::vector<std::tuple<long, long, signed char>> sides;
+  bool sym = false;
+  long rows = 0, cols = 0;
+  parse_matrix_market(
+      path, false,
+      [&](long r, long c, bool symmetric, const auto&) {
+        rows = r;
+        cols = c;
+        sym = symmetric;
+      },
+      [&](long i, long j, double v, const auto&) {
+        if (v == 0.0) return;  // (array files list the zeros too)
+        entries.emplace_back(static_cast<int>(i), static_cast<int>(j), v);
+        if (sym && i != j) {
+          entries.emplace_back(static_cast<int>(j), static_cast<int>(i), v);
+          sides.emplace_back(std::min(i, j), std::max(i, j), i > j ? 1 : 2);
+        }
+      });
+  std::sort(sides.begin(), sides.end());
+  for (size_t k = 1; k < sides.size(); ++k)
+    if (std::get<0>(sides[k]) == std::get<0>(sides[k - 1]) && std::get<1>(sides[k]) == std::get<1>(sides[k - 1]) &&
+        std::get<2>(sides[k]) != std::get<2>(sides[k - 1]))
+      invalid(path + ": " + mirror_given(std::get<1>(sides[k]), std::get<0>(sides[k])));
+  Eigen::SparseMatrix<double> A(rows, cols);
+  A.setFromTriplets(entries.begin(), entries.end());  // duplicates summed
+  return A;
+}
+
+std::string matrix_market_text(const Eigen::SparseMatrix<double>& A, bool symmetric, const std::string& comment) {
+  Eigen::SparseMatrix<double> stored = A;
+  if (symmetric) stored = A.triangularView<Eigen::Lower>();
+  stored.prune(0.0);
+  std::string out =
+      std::string("%%MatrixMarket matrix coordinate real ") + (symmetric ? "symmetric" : "general") + "\n";
+  if (!comment.empty()) out += "% " + comment + "\n";
+  out += std::to_string(A.rows()) + " " + std::to_string(A.cols()) + " " + std::to_string(stored.nonZeros()) + "\n";
+  char buf[64];
+  for (int k = 0; k < stored.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(stored, k); it; ++it) {
+      std::snprintf(buf, sizeof buf, "%ld %ld %.17g\n", static_cast<long>(it.row()) + 1,
+                    static_cast<long>(it.col()) + 1, it.value());
+      out += buf;
+    }
+  return out;
 }
 
 }  // namespace spp

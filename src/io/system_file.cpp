@@ -2,6 +2,9 @@
 
 #include "spp/io/system_file.hpp"
 
+#include "spp/io/files.hpp"
+#include "spp/io/matrix_market.hpp"
+
 #include "io/json.hpp"
 
 namespace spp::io {
@@ -160,6 +163,76 @@ std::vector<std::string> system_file_inputs(const std::string& path) {
       for (const auto& [_, part] : j.at(key).items()) add(part);
   }
   return files;
+}
+
+namespace {
+Eigen::SparseMatrix<double> sparse_matrix_field(const io::json& j, const char* key, const std::string& where,
+                                                const std::string& dir) {
+  if (!j.contains(key)) io::invalid(where + ": missing field \"" + key + "\"");
+  const io::json& v = j.at(key);
+  if (!v.is_object()) return io::matrix_field(j, key, where, dir).sparseView();  // a (small) list of rows
+  if (!v.contains("matrix_market") || !v.at("matrix_market").is_string())
+    io::invalid(where + ": field \"" + key + "\" must be a list of rows or {\"matrix_market\": \"file.mtx\"}");
+  io::check_fields(v, {"matrix_market"}, where + ": field \"" + key + "\"");
+  std::filesystem::path p = v.at("matrix_market").get<std::string>();
+  if (p.is_relative()) p = std::filesystem::path(dir) / p;
+  try {
+    return read_sparse_matrix_market(p.string());
+  } catch (const std::invalid_argument& e) {
+    io::invalid(where + ": field \"" + key + "\": " + e.what());
+  }
+}
+}  // namespace
+
+SparseSystem load_sparse_system(const std::string& path) {
+  const io::json j = io::read_json_file(path);
+  if (io::declares_parameter(j))
+    io::invalid(path + ": declares a parameter (a parametric system): spp reduce takes a system without one");
+  if (!j.is_object()) io::invalid(path + ": expected a JSON object with fields M, K, w, g0");
+  io::check_fields(j, {"name", "description", "M", "K", "w", "g0"}, path, {"n", "w_normalized", "w_input_norm"});
+  const std::string d = std::filesystem::path(path).parent_path().string();
+  const std::string dir = d.empty() ? "." : d;
+  Eigen::SparseMatrix<double> M = sparse_matrix_field(j, "M", path, dir);
+  Eigen::SparseMatrix<double> K = sparse_matrix_field(j, "K", path, dir);
+  Eigen::VectorXd w = io::vector_field(j, "w", path);
+  if (!j.contains("g0")) io::invalid(path + ": missing field \"g0\" (the gap at rest)");
+  if (!j.at("g0").is_number()) io::invalid(path + ": field \"g0\" must be a number, got " + io::describe(j.at("g0")));
+  std::string name;
+  for (const char* k : {"name", "description"})
+    if (j.contains(k) && !j.at(k).is_string())
+      io::invalid(path + ": field \"" + k + "\" must be a string, got " + io::describe(j.at(k)));
+  if (j.contains("name")) name = j.at("name").get<std::string>();
+  try {
+    return SparseSystem(std::move(M), std::move(K), std::move(w), j.at("g0").get<double>(), name);
+  } catch (const std::invalid_argument& e) {
+    io::invalid(path + ": " + e.what());
+  }
+}
+
+std::vector<std::string> sparse_system_matrix_files(const std::string& json_path) {
+  namespace fs = std::filesystem;
+  const fs::path p(json_path);
+  const fs::path stem = p.parent_path() / p.stem();
+  return {stem.string() + ".M.mtx", stem.string() + ".K.mtx"};
+}
+
+void write_sparse_system(const SparseSystem& system, const std::string& json_path, const std::string& description) {
+  namespace fs = std::filesystem;
+  const std::vector<std::string> files = sparse_system_matrix_files(json_path);
+  const std::string comment = system.name() + ", n = " + std::to_string(system.n());
+  const std::string m_text = matrix_market_text(system.M(), true, "M of " + comment);
+  const std::string k_text = matrix_market_text(system.K(), true, "K of " + comment);
+  io::json j;
+  j["name"] = system.name();
+  if (!description.empty()) j["description"] = description;
+  j["M"] = {{"matrix_market", fs::path(files[0]).filename().string()}};
+  j["K"] = {{"matrix_market", fs::path(files[1]).filename().string()}};
+  j["w"] = io::vector_json(system.w());
+  j["g0"] = system.g0();
+  const std::string json_text = j.dump(2) + "\n";
+  write_file_atomic(files[0], m_text);
+  write_file_atomic(files[1], k_text);
+  write_file_atomic(json_path, json_text);
 }
 
 std::string system_json(const System& system, int indent) {

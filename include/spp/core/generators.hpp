@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "spp/core/parametric.hpp"
+#include "spp/core/sparse_system.hpp"
 #include "spp/core/system.hpp"
 
 namespace spp {
@@ -26,6 +27,17 @@ System rod_with_slip(double a, double b);
 
 /// 2-dof system of paper §2.3 (eq. 2.5), obstacle on the second mass: g = g0 - x2.
 System two_dof(double m1, double m2, double k1, double k2, double g0);
+
+enum class BarMass {
+  Consistent,  ///< element mass rho A h / 6 [[2, 1], [1, 2]] (frequencies from above)
+  Lumped,      ///< rho A h / 2 on each node (frequencies from below)
+};
+
+/// 1-D fixed-free bar of unit length, E A = 1, rho A = 1 (wave speed 1: continuous frequencies (2k - 1) pi / 2), cut
+/// into n linear rod elements of length h = 1 / n: node 0 is fixed, the dofs are the axial displacements of nodes
+/// 1..n (K = tridiag(-1, 2, -1) / h with K(n, n) = 1 / h). The obstacle meets contact_node (1..n, the free end n
+/// by default in the CLI): Upper g = g0 - x, Lower g = x + g0. Held sparse, any n >= 1.
+SparseSystem bar(int n, BarMass mass, int contact_node, ContactSide side, double g0);
 
 /// A generator with one argument left free: the family mu -> make(mu) as a ParametricSystem (masses and
 /// stiffnesses of chain and two_dof enter M and K linearly). The parts come from make(min) and make(max); the

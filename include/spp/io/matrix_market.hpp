@@ -1,7 +1,8 @@
 #pragma once
-// Matrix Market input (M and K exported from MATLAB, scipy or a finite-element code).
+// Matrix Market input (M and K exported from MATLAB, scipy or a finite-element code) and output (sparse models).
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <string>
 
 namespace spp {
@@ -11,5 +12,12 @@ namespace spp {
 /// entry given in both is refused); more or fewer entries than the size line declares, and tokens that are not whole
 /// numbers ("1.5xyz"), are refused. Throws std::invalid_argument naming the file and line.
 Eigen::MatrixXd read_matrix_market(const std::string& path);
+
+/// The same file held sparse (any size; a symmetric file is expanded to both triangles; stored zeros dropped).
+Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path);
+
+/// "coordinate real symmetric" (the lower triangle of A, A assumed symmetric) or "general" text of A, 17 digits (reads
+/// back bit for bit); `comment` (one line, may be empty) goes after the banner.
+std::string matrix_market_text(const Eigen::SparseMatrix<double>& A, bool symmetric, const std::string& comment = "");
 
 }  // namespace spp

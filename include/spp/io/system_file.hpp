@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "spp/core/parametric.hpp"
+#include "spp/core/sparse_system.hpp"
 #include "spp/core/system.hpp"
 
 namespace spp {
@@ -23,6 +24,16 @@ bool file_declares_parameter(const std::string& path);
 /// loaders resolve them (an output must be none of them). Empty for an empty path; throws like load_system when the
 /// file cannot be read as JSON.
 std::vector<std::string> system_file_inputs(const std::string& path);
+
+/// The same system file held sparse (a large finite-element model: any size; Matrix Market files are read sparse, lists
+/// of rows converted). Throws std::invalid_argument naming the file and the field; refuses a parametric file.
+SparseSystem load_sparse_system(const std::string& path);
+/// The Matrix Market files write_sparse_system writes next to `json_path`: "<stem>.M.mtx" and "<stem>.K.mtx".
+std::vector<std::string> sparse_system_matrix_files(const std::string& json_path);
+/// Writes the system file `json_path` with "M" and "K" as {"matrix_market": "<stem>.M.mtx"} (symmetric coordinate
+/// files beside it, 17 digits) and w as a list of n numbers: load_system (small n) and load_sparse_system read it.
+/// Each file is written atomically, the matrices first.
+void write_sparse_system(const SparseSystem& system, const std::string& json_path, const std::string& description = "");
 
 /// The system file's text (load_system reads it back). indent < 0: one line.
 std::string system_json(const System& system, int indent = 2);

@@ -1,0 +1,185 @@
+// spp reduce: a large sparse model (spp generate bar, or M and K from a finite-element code as Matrix Market files) to
+// its contact coordinate plus m fixed-interface modes (Craig-Bampton, reduction/craig_bampton.hpp): a small system
+// file that spp solve reads. Several m (--modes 10,20,40) give one file each and a table of the reduced frequencies
+// against m (the convergence study); --window also solves each reduced model there and lists its admissible SPPs.
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "command.hpp"
+#include "spp/io.hpp"
+#include "spp/modal/modal.hpp"
+#include "spp/reduction/craig_bampton.hpp"
+#include "spp/search/solver.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+struct ReduceArgs {
+  std::string model, out, modes = "20", window, csv, spp_csv;
+  int frequencies = 6;
+  int threads = 0;
+  bool certify_steps = true;
+};
+
+std::vector<int> parse_modes(const std::string& s) {
+  std::vector<int> ms;
+  for (double v : parse_list(s, "--modes")) {
+    if (v != std::floor(v) || v < 1 || v > 1e6)
+      throw std::invalid_argument("--modes: expected positive whole numbers (e.g. 10,20,40), got \"" + s + "\"");
+    ms.push_back(static_cast<int>(v));
+  }
+  for (size_t i = 1; i < ms.size(); ++i)
+    if (ms[i] <= ms[i - 1])
+      throw std::invalid_argument("--modes: expected increasing numbers of modes, got \"" + s + "\"");
+  return ms;
+}
+
+// --out R.json with one m: R.json; with several: R-m10.json, R-m20.json, ...
+std::string out_name(const std::string& out, int m, bool several) {
+  if (!several) return out;
+  namespace fs = std::filesystem;
+  const fs::path p(out);
+  return (p.parent_path() / (p.stem().string() + "-m" + std::to_string(m) + p.extension().string())).string();
+}
+
+int run(const ReduceArgs& a) {
+  const std::vector<int> modes = parse_modes(a.modes);
+  const bool several = modes.size() > 1;
+  std::vector<double> window;
+  if (!a.window.empty()) {
+    window = parse_list(a.window, "--window");
+    if (window.size() != 2 || !(window[0] > 0) || !(window[1] > 0))
+      throw std::invalid_argument("--window: expected T1MAX,T2MAX (both positive), got \"" + a.window + "\"");
+  }
+  // outputs: none an input (the model or its Matrix Market files), none another output, directories existing
+  std::vector<std::string> inputs = system_file_inputs(a.model);
+  std::vector<std::string> outputs;
+  for (int m : modes) outputs.push_back(out_name(a.out, m, several));
+  if (!a.csv.empty()) outputs.push_back(a.csv);
+  if (!a.spp_csv.empty()) {
+    if (window.empty()) throw std::invalid_argument("--spp-csv: needs --window (the SPPs of the reduced models)");
+    outputs.push_back(a.spp_csv);
+  }
+  for (const std::string& o : outputs) {
+    check_output(o, "output", inputs);
+    inputs.push_back(o);
+  }
+
+  const SparseSystem model = load_sparse_system(a.model);
+  for (int m : modes) ReductionOptions{m}.validate(model.n());  // every m refused before any work
+  std::cout << model.name() << ": " << model.n() << " dofs, " << model.K().nonZeros() << " non-zeros in K\n";
+
+  std::vector<ReductionResult> results;
+  for (int m : modes) {
+    ReductionOptions o;
+    o.modes = m;
+    ReductionResult r = reduce(model, o);
+    std::cout << "m = " << m << ": " << r.brief_report() << "\n";
+    if (r.status != ReductionResult::Status::Success)
+      throw std::runtime_error("reduce: m = " + std::to_string(m) + ": " + to_string(r.status) +
+                               " (the fixed-interface modes did not converge): nothing written");
+    results.push_back(std::move(r));
+  }
+
+  // the convergence table: the lowest natural frequencies of each reduced model
+  const int k_show = std::min<int>(a.frequencies, modes.front() + 1);
+  std::ostringstream table, csv;
+  table << std::setw(6) << "m" << std::setw(7) << "dofs";
+  csv << "m,dofs";
+  for (int k = 1; k <= k_show; ++k) {
+    table << std::setw(19) << ("omega_" + std::to_string(k));
+    csv << ",omega_" << k;
+  }
+  table << std::setw(11) << "seconds\n";
+  csv << ",seconds\n";
+  for (const ReductionResult& r : results) {
+    table << std::setw(6) << r.modes << std::setw(7) << r.modes + 1;
+    csv << r.modes << "," << r.modes + 1;
+    for (int k = 0; k < k_show; ++k) {
+      table << std::setw(19) << std::setprecision(12) << r.reduced_frequencies(k);
+      csv << "," << std::setprecision(17) << r.reduced_frequencies(k);
+    }
+    table << std::setw(10) << std::setprecision(3) << r.timings.total_seconds << "\n";
+    csv << "," << std::setprecision(6) << r.timings.total_seconds << "\n";
+  }
+  std::cout << "\nlowest natural frequencies of the reduced models (rad per unit time):\n" << table.str();
+  if (several) {
+    const ReductionResult &last = results.back(), &prev = results[results.size() - 2];
+    double change = 0;
+    for (int k = 0; k < k_show; ++k)
+      change = std::max(
+          change, std::abs(last.reduced_frequencies(k) - prev.reduced_frequencies(k)) / last.reduced_frequencies(k));
+    std::cout << "largest relative change of these from m = " << prev.modes << " to m = " << last.modes << ": "
+              << std::setprecision(3) << change << "\n";
+  }
+
+  // optionally, the admissible SPPs of each reduced model in one window
+  std::ostringstream spp_csv;
+  if (!window.empty()) {
+    spp_csv << "m,t1,t2,period,mid_flight_gap,energy\n";
+    std::cout << "\nadmissible SPPs of the reduced models in t1 <= " << window[0] << ", t2 <= " << window[1]
+              << " (mid-flight gap: g at t = -t1, where the velocity vanishes):\n";
+    for (const ReductionResult& r : results) {
+      const System& sys = *r.reduced;
+      SolveOptions so;
+      so.t1_max = window[0];
+      so.t2_max = window[1];
+      so.admissible_only = true;
+      so.threads = a.threads;
+      so.certify_steps = a.certify_steps;
+      so.validate();
+      const SolveResult sr = solve(sys, ModalForm(sys), so);
+      std::cout << "m = " << r.modes << ": " << sr.brief_report() << "\n";
+      for (const Solution& s : sr.solutions) {
+        std::cout << std::setprecision(10) << "    t1 = " << std::setw(14) << s.t1 << "  t2 = " << std::setw(14) << s.t2
+                  << "  mid-flight gap = " << std::setw(14) << s.admissibility.mid_flight_gap << "\n";
+        spp_csv << r.modes << std::setprecision(17) << "," << s.t1 << "," << s.t2 << "," << s.period << ","
+                << s.admissibility.mid_flight_gap << "," << s.energy << "\n";
+      }
+    }
+  }
+
+  // every output prepared: write them
+  std::vector<std::string> texts;
+  for (const ReductionResult& r : results) texts.push_back(system_json(*r.reduced));
+  for (size_t i = 0; i < results.size(); ++i) {
+    write_file_atomic(out_name(a.out, results[i].modes, several), texts[i]);
+    std::cout << "wrote " << out_name(a.out, results[i].modes, several) << "\n";
+  }
+  if (!a.csv.empty()) write_file_atomic(a.csv, csv.str());
+  if (!a.spp_csv.empty()) write_file_atomic(a.spp_csv, spp_csv.str());
+  return 0;
+}
+
+}  // namespace
+
+Subcommand add_reduce(CLI::App& app) {
+  auto a = std::make_shared<ReduceArgs>();
+  auto* r = app.add_subcommand("reduce",
+                               "reduce a large sparse model to its contact coordinate plus m fixed-interface modes "
+                               "(Craig-Bampton): a small system file for spp solve");
+  r->add_option("model", a->model, "system JSON (M and K as lists of rows or Matrix Market files, read sparse)")
+      ->required();
+  r->add_option("--modes", a->modes,
+                "fixed-interface modes m (default 20), or an increasing list (10,20,40,80): one file per m and a "
+                "convergence table");
+  r->add_option("--out", a->out, "reduced system JSON (several m: OUT-m10.json, OUT-m20.json, ...)")->required();
+  r->add_option("--frequencies", a->frequencies, "how many of the lowest reduced frequencies to tabulate (default 6)")
+      ->check(CLI::Range(1, 1000));
+  r->add_option("--csv", a->csv, "write the frequency table as CSV");
+  r->add_option("--window", a->window,
+                "T1MAX,T2MAX: also solve each reduced model in this window and list its admissible SPPs (the cost "
+                "grows fast with m: the pole lines of the fast modes fill the window)");
+  r->add_option("--spp-csv", a->spp_csv, "with --window: write the admissible SPPs per m as CSV");
+  r->add_option("--threads", a->threads, "with --window: worker threads of each solve (default 0: all)");
+  r->add_flag("--certify-steps,!--no-certify-steps", a->certify_steps,
+              "with --window: prove every trace step (default), as spp solve");
+  return {r, [a] { return run(*a); }};
+}
+
+}  // namespace spp::cli

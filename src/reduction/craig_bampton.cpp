@@ -1,0 +1,252 @@
+#include "spp/reduction/craig_bampton.hpp"
+
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymGEigsShiftSolver.h>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <vector>
+
+#include "spp/detail/invalid.hpp"
+#include "spp/detail/out_of_memory.hpp"
+
+namespace spp {
+
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// A CHOLMOD factorisation, quiet (CHOLMOD prints its warnings on stdout by default; a non-definite matrix is
+// reported through info()).
+struct Cholmod {
+  Eigen::CholmodDecomposition<SpMat, Eigen::Lower> llt;
+  explicit Cholmod(const SpMat& A) {
+    llt.cholmod().print = 0;
+    llt.compute(A);
+  }
+  bool ok() const { return llt.info() == Eigen::Success; }
+};
+
+// Spectra's shift-invert operator y = (K_ii - sigma M_ii)^{-1} x at sigma = 0, through the factor of K_ii that psi
+// also uses (Spectra's own SymShiftInvert would factor again, with SparseLU).
+class CholmodInverse {
+ public:
+  using Scalar = double;
+  explicit CholmodInverse(const Cholmod& f, Eigen::Index n) : f_(f), n_(n) {}
+  Eigen::Index rows() const { return n_; }
+  Eigen::Index cols() const { return n_; }
+  void set_shift(double sigma) {
+    if (sigma != 0.0) detail::invalid("CholmodInverse: only the shift 0 is factored");
+  }
+  void perform_op(const double* x_in, double* y_out) const {
+    Eigen::Map<const Eigen::VectorXd> x(x_in, n_);
+    Eigen::Map<Eigen::VectorXd>(y_out, n_) = f_.llt.solve(x);
+  }
+
+ private:
+  const Cholmod& f_;
+  Eigen::Index n_;
+};
+
+// The rows/columns of A without index p: A_ii, and column p without its entry p: A_ip; A_pp.
+void partition(const SpMat& A, int p, SpMat& Aii, Eigen::VectorXd& Aip, double& App) {
+  const int n = static_cast<int>(A.rows());
+  auto idx = [p](int k) { return k < p ? k : k - 1; };
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(A.nonZeros()));
+  Aip = Eigen::VectorXd::Zero(n - 1);
+  App = 0;
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SpMat::InnerIterator it(A, k); it; ++it) {
+      const int r = static_cast<int>(it.row()), c = static_cast<int>(it.col());
+      if (r == p && c == p)
+        App += it.value();
+      else if (c == p)
+        Aip(idx(r)) += it.value();
+      else if (r != p)
+        t.emplace_back(idx(r), idx(c), it.value());
+    }
+  Aii.resize(n - 1, n - 1);
+  Aii.setFromTriplets(t.begin(), t.end());
+}
+
+std::string fmt(double v, int digits = 6) {
+  std::ostringstream os;
+  os << std::setprecision(digits) << v;
+  return os.str();
+}
+
+}  // namespace
+
+void ReductionOptions::validate(int n) const {
+  constexpr const char* where = "ReductionOptions";
+  if (modes < 1) detail::invalid_option(where, "modes", modes, ">= 1");
+  if (n > 0 && modes > n - 1)
+    detail::invalid_option(
+        where, "modes", modes,
+        "<= n - 1 = " + std::to_string(n - 1) + " (the interior dofs of the " + std::to_string(n) + "-dof model)");
+  if (!(eigen_tolerance > 0) || !(eigen_tolerance < 1))
+    detail::invalid_option(where, "eigen_tolerance", eigen_tolerance, "in (0, 1)");
+  if (max_iterations < 1) detail::invalid_option(where, "max_iterations", max_iterations, ">= 1");
+  if (dense_interior < 0) detail::invalid_option(where, "dense_interior", dense_interior, ">= 0");
+}
+
+const char* to_string(ReductionResult::Status status) {
+  switch (status) {
+    case ReductionResult::Status::NotRun: return "not run";
+    case ReductionResult::Status::Success: return "success";
+    case ReductionResult::Status::EigenNotConverged: return "eigen_not_converged";
+  }
+  return "?";
+}
+
+std::string ReductionResult::brief_report() const {
+  std::ostringstream os;
+  os << to_string(status);
+  if (status == Status::NotRun) return os.str();
+  os << ": " << n_full << " dofs -> " << modes + 1 << " (contact coordinate + " << modes << " fixed-interface modes"
+     << (dense_eigensolver ? ", dense eigensolver" : "") << ")";
+  if (reduced_frequencies.size() > 0) {
+    os << "; lowest frequencies";
+    for (int k = 0; k < std::min<int>(3, static_cast<int>(reduced_frequencies.size())); ++k)
+      os << (k ? ", " : " ") << fmt(reduced_frequencies(k), 8);
+  }
+  os << "; " << fmt(timings.total_seconds, 3) << " s";
+  return os.str();
+}
+
+ReductionResult reduce(const SparseSystem& system, const ReductionOptions& options) {
+  const int n = system.n();
+  options.validate(n);
+  if (n < 2) detail::invalid("reduce: the model has " + std::to_string(n) + " dof: nothing to reduce");
+  const auto t_start = Clock::now();
+  ReductionResult res;
+  res.n_full = n;
+  res.modes = options.modes;
+
+  // the contact coordinate u = w^T x / w_p (the header)
+  auto t0 = Clock::now();
+  const Eigen::VectorXd& w = system.w();
+  Eigen::Index p_index = 0;
+  w.cwiseAbs().maxCoeff(&p_index);
+  const int p = static_cast<int>(p_index);
+  const double wp = w(p);
+  res.contact_dof = p;
+  res.w_nonzeros = static_cast<int>((w.array() != 0.0).count());
+  SpMat M = system.M(), K = system.K();
+  if (res.w_nonzeros > 1) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int j = 0; j < n; ++j) {
+      t.emplace_back(j, j, 1.0);
+      if (j != p && w(j) != 0.0) t.emplace_back(p, j, -w(j) / wp);
+    }
+    SpMat A(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    const SpMat At = A.transpose();
+    M = SpMat(At * system.M() * A);
+    K = SpMat(At * system.K() * A);
+  }
+  SpMat Kii, Mii;
+  Eigen::VectorXd Kip, Mip;
+  double Kpp = 0, Mpp = 0;
+  partition(K, p, Kii, Kip, Kpp);
+  partition(M, p, Mii, Mip, Mpp);
+  const int ni = n - 1;
+  res.timings.transform_seconds = seconds_since(t0);
+
+  // one factorisation of K_ii for psi and the eigensolver; M's for the check
+  t0 = Clock::now();
+  const Cholmod Kf(Kii);
+  if (!Kf.ok())
+    detail::invalid("reduce: K must be positive definite: its Cholesky factorisation (CHOLMOD) with dof " +
+                    std::to_string(p + 1) + " clamped failed");
+  const Eigen::VectorXd psi = -Kf.llt.solve(Kip);  // static constraint mode
+  res.static_stiffness = Kpp + Kip.dot(psi);       // Schur complement of K_ii
+  if (!(res.static_stiffness > 1e-12 * std::abs(Kpp)))
+    detail::invalid("reduce: K must be positive definite: its static stiffness at dof " + std::to_string(p + 1) +
+                    " (the Schur complement K_pp - K_pi K_ii^-1 K_ip) is " + fmt(res.static_stiffness) +
+                    " against K_pp = " + fmt(Kpp));
+  {
+    const Cholmod Mf(M);
+    if (!Mf.ok()) detail::invalid("reduce: M must be positive definite: its Cholesky factorisation (CHOLMOD) failed");
+  }
+  res.timings.factorization_seconds = seconds_since(t0);
+
+  // fixed-interface modes
+  t0 = Clock::now();
+  const int m = options.modes;
+  Eigen::VectorXd lambda;
+  Eigen::MatrixXd Phi;
+  res.dense_eigensolver = ni <= options.dense_interior || 2 * m > ni;
+  if (res.dense_eigensolver) {
+    Eigen::MatrixXd Kd, Md;
+    detail::naming_allocation("reduce: the dense interior eigenproblem, two " + detail::dense_size(ni, ni), [&] {
+      Kd = Eigen::MatrixXd(Kii);
+      Md = Eigen::MatrixXd(Mii);
+    });
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kd, Md);
+    if (es.info() != Eigen::Success)
+      detail::invalid("reduce: M must be positive definite (the dense eigensolver failed)");
+    lambda = es.eigenvalues().head(m);
+    Phi = es.eigenvectors().leftCols(m);  // M_ii-normalised
+  } else {
+    CholmodInverse op(Kf, ni);
+    Spectra::SparseSymMatProd<double> bop(Mii);
+    const int ncv = std::min(ni, std::max(2 * m + 1, m + 20));
+    Spectra::SymGEigsShiftSolver<CholmodInverse, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
+        eigs(op, bop, m, ncv, 0.0);
+    eigs.init();
+    eigs.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.eigen_tolerance,
+                 Spectra::SortRule::SmallestAlge);
+    res.eigen_iterations = static_cast<int>(eigs.num_iterations());
+    res.eigen_operations = static_cast<int>(eigs.num_operations());
+    if (eigs.info() != Spectra::CompInfo::Successful) {
+      res.status = ReductionResult::Status::EigenNotConverged;
+      res.timings.eigen_seconds = seconds_since(t0);
+      res.timings.total_seconds = seconds_since(t_start);
+      return res;
+    }
+    lambda = eigs.eigenvalues();
+    Phi = eigs.eigenvectors();
+    for (int k = 0; k < m; ++k) Phi.col(k) /= std::sqrt(Phi.col(k).dot(Mii * Phi.col(k)));  // M_ii-normalised
+  }
+  res.fixed_interface_frequencies = lambda.cwiseMax(0.0).cwiseSqrt();
+  res.timings.eigen_seconds = seconds_since(t0);
+
+  // projection: T^T M T and T^T K T by blocks (the header's T)
+  t0 = Clock::now();
+  const Eigen::MatrixXd MiiPhi = Mii * Phi, KiiPhi = Kii * Phi;
+  const Eigen::VectorXd Miipsi = Mii * psi, Kiipsi = Kii * psi;
+  Eigen::MatrixXd Mr(m + 1, m + 1), Kr(m + 1, m + 1);
+  Mr(0, 0) = Mpp + 2 * Mip.dot(psi) + psi.dot(Miipsi);
+  Kr(0, 0) = Kpp + 2 * Kip.dot(psi) + psi.dot(Kiipsi);
+  Mr.block(1, 0, m, 1) = Phi.transpose() * (Mip + Miipsi);
+  Kr.block(1, 0, m, 1) = Phi.transpose() * (Kip + Kiipsi);
+  Mr.block(1, 1, m, m) = Phi.transpose() * MiiPhi;
+  Kr.block(1, 1, m, m) = Phi.transpose() * KiiPhi;
+  Mr.block(0, 1, 1, m) = Mr.block(1, 0, m, 1).transpose();
+  Kr.block(0, 1, 1, m) = Kr.block(1, 0, m, 1).transpose();
+  Mr = (0.5 * (Mr + Mr.transpose())).eval();
+  Kr = (0.5 * (Kr + Kr.transpose())).eval();
+  Eigen::VectorXd wr = Eigen::VectorXd::Zero(m + 1);
+  wr(0) = wp;
+  const std::string base = system.name().empty() ? "model" : system.name();
+  res.reduced.emplace(std::move(Mr), std::move(Kr), std::move(wr), system.g0(), base + "-cb" + std::to_string(m));
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> red(res.reduced->K(), res.reduced->M(),
+                                                                Eigen::EigenvaluesOnly);
+  res.reduced_frequencies = red.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  res.timings.projection_seconds = seconds_since(t0);
+  res.timings.total_seconds = seconds_since(t_start);
+  res.status = ReductionResult::Status::Success;
+  return res;
+}
+
+}  // namespace spp
