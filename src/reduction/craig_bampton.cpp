@@ -24,12 +24,15 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// A CHOLMOD factorisation, quiet (CHOLMOD prints its warnings on stdout by default; a non-definite matrix is
-// reported through info()).
+// A CHOLMOD factorisation L L^T (simplicial or supernodal, CHOLMOD chooses), quiet: a matrix that is not positive
+// definite is reported through info(). Eigen's CholmodAuto keeps a simplicial LDL^T "as is", which factors indefinite
+// matrices without complaint (measured: [[1, 3], [3, 1]] succeeds): final_ll = 1 makes both paths L L^T.
 struct Cholmod {
   Eigen::CholmodDecomposition<SpMat, Eigen::Lower> llt;
   explicit Cholmod(const SpMat& A) {
     llt.cholmod().print = 0;
+    llt.cholmod().final_asis = 0;
+    llt.cholmod().final_ll = 1;
     llt.compute(A);
   }
   bool ok() const { return llt.info() == Eigen::Success; }

@@ -572,3 +572,61 @@ TEST(Cli, OutOfMemoryNamesWhatWasTooLarge) {
       << r.out;
   EXPECT_FALSE(fs::exists(out));
 }
+
+TEST(Cli, GenerateBarReduceAndSolveTheReducedModel) {
+  // the large-model path end to end: a sparse bar (M, K as .mtx beside the JSON), reduced for several m (one file each
+  // and the frequency table), and the reduced file solved like any system file
+  const fs::path bar = dir() / "bar300.json", red = dir() / "bar300-red.json", csv = dir() / "bar300-freq.csv";
+  CliRun r = run("generate bar --n 300 --out " + bar.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(dir() / "bar300.M.mtx"));
+  EXPECT_TRUE(fs::exists(dir() / "bar300.K.mtx"));
+  r = run("reduce " + bar.string() + " --modes 2,4,8 --out " + red.string() + " --csv " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("lowest natural frequencies of the reduced models"), std::string::npos) << r.out;
+  for (int m : {2, 4, 8}) {
+    const fs::path f = dir() / ("bar300-red-m" + std::to_string(m) + ".json");
+    ASSERT_TRUE(fs::exists(f)) << f;
+    std::ifstream in(f);
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["M"].size(), static_cast<size_t>(m + 1));
+  }
+  std::ifstream c(csv);
+  std::string header;
+  std::getline(c, header);
+  EXPECT_EQ(header.rfind("m,dofs,omega_1,omega_2,omega_3", 0), 0u) << header;
+  const fs::path res = dir() / "bar300-red-solve.json";
+  r = run("solve " + (dir() / "bar300-red-m4.json").string() + " --t1-max 1 --t2-max 0.5 --quiet --json " +
+          res.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream in(res);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["system"]["n"], 5);
+  // --window solves each reduced model and lists its admissible SPPs
+  r = run("reduce " + bar.string() + " --modes 2,4 --out " + red.string() + " --window 1,0.5 --threads 1 --spp-csv " +
+          (dir() / "bar300-spp.csv").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("admissible SPPs of the reduced models"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir() / "bar300-spp.csv"));
+}
+
+TEST(Cli, ReduceRefusesBadModesAndWritesNothing) {
+  const fs::path bar = dir() / "bar20.json", red = dir() / "bar20-red.json";
+  ASSERT_EQ(run("generate bar --n 20 --out " + bar.string()).code, 0);
+  auto expect_refused = [&](const std::string& args, const std::string& message) {
+    fs::remove(red);
+    const CliRun r = run("reduce " + args + " --out " + red.string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
+    EXPECT_FALSE(fs::exists(red));
+  };
+  expect_refused(bar.string() + " --modes 0", "--modes: expected positive whole numbers");
+  expect_refused(bar.string() + " --modes 20", "modes must be <= n - 1 = 19");
+  expect_refused(bar.string() + " --modes 4,2", "--modes: expected increasing numbers");
+  expect_refused((dir() / "nope.json").string(), "nope.json");
+  expect_refused(bar.string() + " --spp-csv x.csv", "--spp-csv: needs --window");
+  // the output may not replace the model's Matrix Market file
+  const CliRun r = run("reduce " + bar.string() + " --modes 3 --out " + (dir() / "bar20.K.mtx").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("is also"), std::string::npos) << r.out;
+}

@@ -47,3 +47,53 @@ TEST(Generators, TwoDofMatchesPaperEq25) {
   EXPECT_EQ(g.M()(1, 1), 3.0);
   EXPECT_EQ(g.w()(1), -1.0);
 }
+
+namespace {
+Eigen::VectorXd bar_frequencies(const SparseSystem& s) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(s.K()), Eigen::MatrixXd(s.M()),
+                                                               Eigen::EigenvaluesOnly);
+  return es.eigenvalues().cwiseSqrt();
+}
+}  // namespace
+
+TEST(Generators, BarMatchesTheExactDiscreteFrequencies) {
+  // A uniform fixed-free mesh has the modes x_j = sin(j theta_k), theta_k = (2k - 1) pi / (2n) (the free end's row is
+  // half an interior row): lambda_k = 6 (1 - cos theta) / (h^2 (2 + cos theta)) with consistent mass,
+  // 4 sin^2(theta / 2) / h^2 lumped.
+  const int n = 50;
+  const double h = 1.0 / n;
+  const Eigen::VectorXd consistent = bar_frequencies(bar(n, BarMass::Consistent, n, ContactSide::Upper, 1.0));
+  const Eigen::VectorXd lumped = bar_frequencies(bar(n, BarMass::Lumped, n, ContactSide::Upper, 1.0));
+  for (int k = 1; k <= n; ++k) {
+    const double theta = (2 * k - 1) * M_PI / (2 * n);
+    EXPECT_NEAR(consistent(k - 1), std::sqrt(6 * (1 - std::cos(theta)) / (h * h * (2 + std::cos(theta)))),
+                1e-10 * consistent(k - 1));
+    EXPECT_NEAR(lumped(k - 1), 2 * std::sin(theta / 2) / h, 1e-10 * lumped(k - 1));
+  }
+}
+
+TEST(Generators, FineBarApproachesTheContinuousBar) {
+  // continuous fixed-free bar (unit length, wave speed 1): omega_k = (2k - 1) pi / 2. Consistent mass bounds it from
+  // above, lumped from below, each within (omega h)^2 / 12 relative (the O(h^2) dispersion error of linear elements).
+  const int n = 400;
+  const double h = 1.0 / n;
+  const Eigen::VectorXd consistent = bar_frequencies(bar(n, BarMass::Consistent, n, ContactSide::Upper, 1.0));
+  const Eigen::VectorXd lumped = bar_frequencies(bar(n, BarMass::Lumped, n, ContactSide::Upper, 1.0));
+  for (int k = 1; k <= 10; ++k) {
+    const double exact = (2 * k - 1) * M_PI / 2, bound = std::pow(exact * h, 2) / 12;
+    EXPECT_GT(consistent(k - 1), exact);
+    EXPECT_LT(consistent(k - 1) / exact - 1, bound) << k;
+    EXPECT_LT(lumped(k - 1), exact);
+    EXPECT_LT(1 - lumped(k - 1) / exact, bound) << k;
+  }
+}
+
+TEST(Generators, BarIsSparseAndChecksItsArguments) {
+  const SparseSystem b = bar(100000, BarMass::Consistent, 100000, ContactSide::Upper, 1.0);
+  EXPECT_EQ(b.n(), 100000);
+  EXPECT_EQ(b.K().nonZeros(), 3 * 100000 - 2);
+  EXPECT_EQ(b.w()(99999), -1.0);
+  EXPECT_DOUBLE_EQ(b.K().coeff(99999, 99999), 100000.0);  // the free end: half an interior row
+  EXPECT_THROW(bar(0, BarMass::Consistent, 1, ContactSide::Upper, 1.0), std::invalid_argument);
+  EXPECT_THROW(bar(10, BarMass::Consistent, 11, ContactSide::Upper, 1.0), std::invalid_argument);
+}

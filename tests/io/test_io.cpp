@@ -353,3 +353,53 @@ TEST(Io, MatrixMarketHexadecimalNumberIsRefused) {
   expect_load_refused(R"({"M": {"matrix_market": "hex.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
                       "bad entry \"1 1 0x1p1\"");
 }
+
+TEST(Io, SparseSystemRoundTripsThroughMatrixMarketFiles) {
+  // write_sparse_system: M and K as symmetric coordinate files beside the JSON, 17 digits: read back bit for bit by the
+  // sparse loader, and by the dense one (small n)
+  const SparseSystem s = bar(40, BarMass::Consistent, 17, ContactSide::Lower, 0.3);
+  const fs::path p = tmpdir() / "bar40.json";
+  write_sparse_system(s, p.string());
+  EXPECT_TRUE(fs::exists(tmpdir() / "bar40.M.mtx"));
+  EXPECT_TRUE(fs::exists(tmpdir() / "bar40.K.mtx"));
+  const SparseSystem t = load_sparse_system(p.string());
+  EXPECT_EQ(Eigen::MatrixXd(s.M() - t.M()).norm(), 0.0);
+  EXPECT_EQ(Eigen::MatrixXd(s.K() - t.K()).norm(), 0.0);
+  EXPECT_EQ((s.w() - t.w()).norm(), 0.0);
+  EXPECT_EQ(t.g0(), 0.3);
+  EXPECT_EQ(t.name(), "bar40");
+  const System d = load_system(p.string());
+  EXPECT_EQ((d.M() - Eigen::MatrixXd(s.M())).norm(), 0.0);
+  EXPECT_EQ((d.K() - Eigen::MatrixXd(s.K())).norm(), 0.0);
+  const std::vector<std::string> inputs = system_file_inputs(p.string());
+  ASSERT_EQ(inputs.size(), 3u);
+  EXPECT_EQ(fs::path(inputs[1]).filename(), "bar40.M.mtx");
+}
+
+TEST(Io, SparseMatrixMarketReaderFollowsTheDenseOne) {
+  // the same files through both readers: symmetric expanded, duplicates summed, array zeros dropped
+  const fs::path d = tmpdir();
+  write(d / "Ks.mtx",
+        "%%MatrixMarket matrix coordinate real symmetric\n3 3 5\n1 1 2\n2 1 -1\n2 1 -0.5\n2 2 3\n3 3 1\n");
+  write(d / "Ma.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n0\n0\n1\n");
+  for (const char* f : {"Ks.mtx", "Ma.mtx"}) {
+    const Eigen::MatrixXd dense = read_matrix_market((d / f).string());
+    const Eigen::SparseMatrix<double> sparse = read_sparse_matrix_market((d / f).string());
+    EXPECT_EQ((dense - Eigen::MatrixXd(sparse)).norm(), 0.0) << f;
+  }
+  EXPECT_EQ(read_sparse_matrix_market((d / "Ks.mtx").string()).coeff(0, 1), -1.5);
+  EXPECT_EQ(read_sparse_matrix_market((d / "Ma.mtx").string()).nonZeros(), 2);
+  // an entry given in both triangles of a symmetric file is refused by both
+  write(d / "Kboth.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 2\n2 1 -1\n1 2 -1\n");
+  EXPECT_THROW(read_matrix_market((d / "Kboth.mtx").string()), std::invalid_argument);
+  try {
+    read_sparse_matrix_market((d / "Kboth.mtx").string());
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("its mirror was given too"), std::string::npos) << e.what();
+  }
+  // the sparse reader takes sizes the dense one refuses
+  write(d / "big.mtx", "%%MatrixMarket matrix coordinate real symmetric\n100000 100000 1\n100000 100000 1\n");
+  EXPECT_THROW(read_matrix_market((d / "big.mtx").string()), std::invalid_argument);
+  EXPECT_EQ(read_sparse_matrix_market((d / "big.mtx").string()).coeff(99999, 99999), 1.0);
+}
