@@ -126,26 +126,33 @@ std::string ReductionResult::brief_report() const {
   return os.str();
 }
 
-ReductionResult reduce(const SparseSystem& system, const ReductionOptions& options) {
+std::vector<ReductionResult> reduce(const SparseSystem& system, const std::vector<int>& modes,
+                                    const ReductionOptions& options) {
   const int n = system.n();
-  options.validate(n);
+  if (modes.empty()) detail::invalid("reduce: expected at least one number of modes, got none");
+  for (size_t k = 0; k < modes.size(); ++k) {
+    ReductionOptions o = options;
+    o.modes = modes[k];
+    o.validate(n);
+    if (k > 0 && modes[k] <= modes[k - 1])
+      detail::invalid_option(
+          "reduce", "modes[" + std::to_string(k) + "]", modes[k],
+          "> modes[" + std::to_string(k - 1) + "] = " + std::to_string(modes[k - 1]) + " (increasing)");
+  }
   if (n < 2) detail::invalid("reduce: the model has " + std::to_string(n) + " dof: nothing to reduce");
   const auto t_start = Clock::now();
-  ReductionResult res;
-  res.n_full = n;
-  res.modes = options.modes;
+  ReductionTimings shared;
 
-  // the contact coordinate u = w^T x / w_p (the header)
+  // the contact coordinate u = w^T x / w_p (the header), and the partition {u} + interior
   auto t0 = Clock::now();
   const Eigen::VectorXd& w = system.w();
   Eigen::Index p_index = 0;
   w.cwiseAbs().maxCoeff(&p_index);
   const int p = static_cast<int>(p_index);
   const double wp = w(p);
-  res.contact_dof = p;
-  res.w_nonzeros = static_cast<int>((w.array() != 0.0).count());
+  const int w_nonzeros = static_cast<int>((w.array() != 0.0).count());
   SpMat M = system.M(), K = system.K();
-  if (res.w_nonzeros > 1) {
+  if (w_nonzeros > 1) {
     std::vector<Eigen::Triplet<double>> t;
     for (int j = 0; j < n; ++j) {
       t.emplace_back(j, j, 1.0);
@@ -163,7 +170,7 @@ ReductionResult reduce(const SparseSystem& system, const ReductionOptions& optio
   partition(K, p, Kii, Kip, Kpp);
   partition(M, p, Mii, Mip, Mpp);
   const int ni = n - 1;
-  res.timings.transform_seconds = seconds_since(t0);
+  shared.transform_seconds = seconds_since(t0);
 
   // one factorisation of K_ii for psi and the eigensolver; M's for the check
   t0 = Clock::now();
@@ -171,25 +178,27 @@ ReductionResult reduce(const SparseSystem& system, const ReductionOptions& optio
   if (!Kf.ok())
     detail::invalid("reduce: K must be positive definite: its Cholesky factorisation (CHOLMOD) with dof " +
                     std::to_string(p + 1) + " clamped failed");
-  const Eigen::VectorXd psi = -Kf.llt.solve(Kip);  // static constraint mode
-  res.static_stiffness = Kpp + Kip.dot(psi);       // Schur complement of K_ii
-  if (!(res.static_stiffness > 1e-12 * std::abs(Kpp)))
+  const Eigen::VectorXd psi = -Kf.llt.solve(Kip);      // static constraint mode
+  const double static_stiffness = Kpp + Kip.dot(psi);  // Schur complement of K_ii
+  if (!(static_stiffness > 1e-12 * std::abs(Kpp)))
     detail::invalid("reduce: K must be positive definite: its static stiffness at dof " + std::to_string(p + 1) +
-                    " (the Schur complement K_pp - K_pi K_ii^-1 K_ip) is " + fmt(res.static_stiffness) +
+                    " (the Schur complement K_pp - K_pi K_ii^-1 K_ip) is " + fmt(static_stiffness) +
                     " against K_pp = " + fmt(Kpp));
   {
     const Cholmod Mf(M);
     if (!Mf.ok()) detail::invalid("reduce: M must be positive definite: its Cholesky factorisation (CHOLMOD) failed");
   }
-  res.timings.factorization_seconds = seconds_since(t0);
+  shared.factorization_seconds = seconds_since(t0);
 
-  // fixed-interface modes
+  // the fixed-interface modes of the largest m: the lowest m' of them are those of every smaller m'
   t0 = Clock::now();
-  const int m = options.modes;
+  const int m_max = modes.back();
   Eigen::VectorXd lambda;
   Eigen::MatrixXd Phi;
-  res.dense_eigensolver = ni <= options.dense_interior || 2 * m > ni;
-  if (res.dense_eigensolver) {
+  const bool dense = ni <= options.dense_interior || 2 * m_max > ni;
+  bool converged = true;
+  int iterations = 0, operations = 0;
+  if (dense) {
     Eigen::MatrixXd Kd, Md;
     detail::naming_allocation("reduce: the dense interior eigenproblem, two " + detail::dense_size(ni, ni), [&] {
       Kd = Eigen::MatrixXd(Kii);
@@ -198,58 +207,81 @@ ReductionResult reduce(const SparseSystem& system, const ReductionOptions& optio
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kd, Md);
     if (es.info() != Eigen::Success)
       detail::invalid("reduce: M must be positive definite (the dense eigensolver failed)");
-    lambda = es.eigenvalues().head(m);
-    Phi = es.eigenvectors().leftCols(m);  // M_ii-normalised
+    lambda = es.eigenvalues().head(m_max);
+    Phi = es.eigenvectors().leftCols(m_max);  // M_ii-normalised
   } else {
     CholmodInverse op(Kf, ni);
     Spectra::SparseSymMatProd<double> bop(Mii);
-    const int ncv = std::min(ni, std::max(2 * m + 1, m + 20));
+    const int ncv = std::min(ni, std::max(2 * m_max + 1, m_max + 20));
     Spectra::SymGEigsShiftSolver<CholmodInverse, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
-        eigs(op, bop, m, ncv, 0.0);
+        eigs(op, bop, m_max, ncv, 0.0);
     eigs.init();
     eigs.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.eigen_tolerance,
                  Spectra::SortRule::SmallestAlge);
-    res.eigen_iterations = static_cast<int>(eigs.num_iterations());
-    res.eigen_operations = static_cast<int>(eigs.num_operations());
-    if (eigs.info() != Spectra::CompInfo::Successful) {
-      res.status = ReductionResult::Status::EigenNotConverged;
-      res.timings.eigen_seconds = seconds_since(t0);
-      res.timings.total_seconds = seconds_since(t_start);
-      return res;
+    iterations = static_cast<int>(eigs.num_iterations());
+    operations = static_cast<int>(eigs.num_operations());
+    converged = eigs.info() == Spectra::CompInfo::Successful;
+    if (converged) {
+      lambda = eigs.eigenvalues();
+      Phi = eigs.eigenvectors();
+      for (int k = 0; k < m_max; ++k) Phi.col(k) /= std::sqrt(Phi.col(k).dot(Mii * Phi.col(k)));  // M_ii-normalised
     }
-    lambda = eigs.eigenvalues();
-    Phi = eigs.eigenvectors();
-    for (int k = 0; k < m; ++k) Phi.col(k) /= std::sqrt(Phi.col(k).dot(Mii * Phi.col(k)));  // M_ii-normalised
   }
-  res.fixed_interface_frequencies = lambda.cwiseMax(0.0).cwiseSqrt();
-  res.timings.eigen_seconds = seconds_since(t0);
+  shared.eigen_seconds = seconds_since(t0);
 
-  // projection: T^T M T and T^T K T by blocks (the header's T)
-  t0 = Clock::now();
-  const Eigen::MatrixXd MiiPhi = Mii * Phi, KiiPhi = Kii * Phi;
+  std::vector<ReductionResult> results;
   const Eigen::VectorXd Miipsi = Mii * psi, Kiipsi = Kii * psi;
-  Eigen::MatrixXd Mr(m + 1, m + 1), Kr(m + 1, m + 1);
-  Mr(0, 0) = Mpp + 2 * Mip.dot(psi) + psi.dot(Miipsi);
-  Kr(0, 0) = Kpp + 2 * Kip.dot(psi) + psi.dot(Kiipsi);
-  Mr.block(1, 0, m, 1) = Phi.transpose() * (Mip + Miipsi);
-  Kr.block(1, 0, m, 1) = Phi.transpose() * (Kip + Kiipsi);
-  Mr.block(1, 1, m, m) = Phi.transpose() * MiiPhi;
-  Kr.block(1, 1, m, m) = Phi.transpose() * KiiPhi;
-  Mr.block(0, 1, 1, m) = Mr.block(1, 0, m, 1).transpose();
-  Kr.block(0, 1, 1, m) = Kr.block(1, 0, m, 1).transpose();
-  Mr = (0.5 * (Mr + Mr.transpose())).eval();
-  Kr = (0.5 * (Kr + Kr.transpose())).eval();
-  Eigen::VectorXd wr = Eigen::VectorXd::Zero(m + 1);
-  wr(0) = wp;
-  const std::string base = system.name().empty() ? "model" : system.name();
-  res.reduced.emplace(std::move(Mr), std::move(Kr), std::move(wr), system.g0(), base + "-cb" + std::to_string(m));
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> red(res.reduced->K(), res.reduced->M(),
-                                                                Eigen::EigenvaluesOnly);
-  res.reduced_frequencies = red.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  res.timings.projection_seconds = seconds_since(t0);
-  res.timings.total_seconds = seconds_since(t_start);
-  res.status = ReductionResult::Status::Success;
-  return res;
+  for (int m : modes) {
+    ReductionResult res;
+    res.n_full = n;
+    res.modes = m;
+    res.contact_dof = p;
+    res.w_nonzeros = w_nonzeros;
+    res.dense_eigensolver = dense;
+    res.static_stiffness = static_stiffness;
+    res.eigen_iterations = iterations;
+    res.eigen_operations = operations;
+    res.timings = shared;
+    if (!converged) {
+      res.status = ReductionResult::Status::EigenNotConverged;
+      res.timings.total_seconds = seconds_since(t_start);
+      results.push_back(std::move(res));
+      continue;
+    }
+    // projection: T^T M T and T^T K T by blocks (the header's T)
+    t0 = Clock::now();
+    const auto Phim = Phi.leftCols(m);
+    res.fixed_interface_frequencies = lambda.head(m).cwiseMax(0.0).cwiseSqrt();
+    const Eigen::MatrixXd MiiPhi = Mii * Phim, KiiPhi = Kii * Phim;
+    Eigen::MatrixXd Mr(m + 1, m + 1), Kr(m + 1, m + 1);
+    Mr(0, 0) = Mpp + 2 * Mip.dot(psi) + psi.dot(Miipsi);
+    Kr(0, 0) = Kpp + 2 * Kip.dot(psi) + psi.dot(Kiipsi);
+    Mr.block(1, 0, m, 1) = Phim.transpose() * (Mip + Miipsi);
+    Kr.block(1, 0, m, 1) = Phim.transpose() * (Kip + Kiipsi);
+    Mr.block(1, 1, m, m) = Phim.transpose() * MiiPhi;
+    Kr.block(1, 1, m, m) = Phim.transpose() * KiiPhi;
+    Mr.block(0, 1, 1, m) = Mr.block(1, 0, m, 1).transpose();
+    Kr.block(0, 1, 1, m) = Kr.block(1, 0, m, 1).transpose();
+    Mr = (0.5 * (Mr + Mr.transpose())).eval();
+    Kr = (0.5 * (Kr + Kr.transpose())).eval();
+    Eigen::VectorXd wr = Eigen::VectorXd::Zero(m + 1);
+    wr(0) = wp;
+    const std::string base = system.name().empty() ? "model" : system.name();
+    res.reduced.emplace(std::move(Mr), std::move(Kr), std::move(wr), system.g0(), base + "-cb" + std::to_string(m));
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> red(res.reduced->K(), res.reduced->M(),
+                                                                  Eigen::EigenvaluesOnly);
+    res.reduced_frequencies = red.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    res.timings.projection_seconds = seconds_since(t0);
+    res.timings.total_seconds = seconds_since(t_start);
+    res.status = ReductionResult::Status::Success;
+    results.push_back(std::move(res));
+  }
+  return results;
+}
+
+ReductionResult reduce(const SparseSystem& system, const ReductionOptions& options) {
+  options.validate(system.n());
+  return std::move(reduce(system, std::vector<int>{options.modes}, options).front());
 }
 
 }  // namespace spp

@@ -126,6 +126,23 @@ TEST(CraigBampton, SpectraAgreesWithTheDenseEigensolver) {
   }
 }
 
+TEST(CraigBampton, ASequenceOfModesEqualsSeparateReductions) {
+  // the convergence study shares one eigensolve for the largest m: the same reduced models as one reduce() per m
+  const SparseSystem b = bar(800, BarMass::Consistent, 800, ContactSide::Upper, 1.0);
+  const std::vector<ReductionResult> seq = reduce(b, std::vector<int>{3, 8, 16});
+  ASSERT_EQ(seq.size(), 3u);
+  for (const ReductionResult& r : seq) {
+    ASSERT_EQ(r.status, ReductionResult::Status::Success);
+    const ReductionResult one = reduce_with(b, r.modes);
+    ASSERT_EQ(r.reduced->n(), r.modes + 1);
+    for (int k = 0; k <= r.modes; ++k)
+      EXPECT_NEAR(r.reduced_frequencies(k) / one.reduced_frequencies(k), 1.0, 1e-10) << r.modes << " " << k;
+    EXPECT_NEAR(r.reduced->K()(0, 0), one.reduced->K()(0, 0), 1e-12);
+  }
+  EXPECT_THROW(reduce(b, std::vector<int>{8, 3}), std::invalid_argument);
+  EXPECT_THROW(reduce(b, std::vector<int>{}), std::invalid_argument);
+}
+
 TEST(CraigBampton, ReducedModelIsASystemFile) {
   const SparseSystem b = bar(300, BarMass::Consistent, 300, ContactSide::Upper, 0.5);
   const ReductionResult r = reduce_with(b, 6);

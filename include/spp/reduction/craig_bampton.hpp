@@ -26,6 +26,7 @@
 #include <Eigen/Dense>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "spp/core/sparse_system.hpp"
 #include "spp/core/system.hpp"
@@ -77,5 +78,11 @@ const char* to_string(ReductionResult::Status status);
 /// Reduces the model to its contact coordinate and options.modes fixed-interface modes. Caller mistakes (options out
 /// of range, M or K not positive definite) throw std::invalid_argument; non-convergence is a status.
 ReductionResult reduce(const SparseSystem& system, const ReductionOptions& options = {});
+
+/// The convergence study: one result per m of `modes` (increasing; options.modes is ignored), sharing one
+/// factorisation and one eigensolve for the largest m (the lowest m' fixed-interface modes are the same for every
+/// m' <= m). Each result's timings hold the shared stages once, its own projection, and total = time since the start.
+std::vector<ReductionResult> reduce(const SparseSystem& system, const std::vector<int>& modes,
+                                    const ReductionOptions& options = {});
 
 }  // namespace spp
