@@ -1,11 +1,10 @@
-#include <filesystem>
-
 #include "spp/io/system_file.hpp"
 
-#include "spp/io/files.hpp"
-#include "spp/io/matrix_market.hpp"
+#include <filesystem>
 
 #include "io/json.hpp"
+#include "spp/io/files.hpp"
+#include "spp/io/matrix_market.hpp"
 
 namespace spp::io {
 
