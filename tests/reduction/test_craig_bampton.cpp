@@ -195,6 +195,30 @@ TEST(CraigBampton, BadInputIsRefusedNamingWhy) {
   expect_refused([&] { SparseSystem(M.sparseView(), Kneg.sparseView(), w, 1.0); }, "K(3, 3) = -1");
 }
 
+TEST(CraigBampton, IndefiniteMassIsNotFactoredAsLdlt) {
+  // Eigen's CholmodAuto keeps CHOLMOD's simplicial L D L^T, which factors an indefinite matrix without complaint: M
+  // with the block [[1, 3], [3, 1]] (eigenvalue -2) was accepted and reduced. The factorisations are now L L^T.
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(4, 4), K = 2 * Eigen::MatrixXd::Identity(4, 4);
+  M(0, 1) = M(1, 0) = 3;
+  const SparseSystem s(M.sparseView(), K.sparseView(), Eigen::Vector4d(0, 0, 0, 1), 1.0);
+  EXPECT_THROW(reduce(s, ReductionOptions{2}), std::invalid_argument);
+}
+
+TEST(CraigBampton, GeneralContactDirectionThroughSpectra) {
+  // the change of coordinates on a model large enough for Spectra: w on the last two nodes of a 600-element bar
+  const SparseSystem b = bar(600, BarMass::Consistent, 600, ContactSide::Upper, 1.0);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(600);
+  w(598) = 0.5;
+  w(599) = -1.0;
+  const SparseSystem s(b.M(), b.K(), w, 1.0);
+  const ReductionResult sparse = reduce_with(s, 10, 0), dense = reduce_with(s, 10, 5000);
+  EXPECT_FALSE(sparse.dense_eigensolver);
+  for (int k = 0; k < 11; ++k)
+    EXPECT_NEAR(sparse.reduced_frequencies(k) / dense.reduced_frequencies(k), 1.0, 1e-10) << k;
+  const Eigen::MatrixXd Kd(s.K());
+  EXPECT_NEAR(sparse.static_stiffness * w.dot(Kd.ldlt().solve(w)), 1.0, 1e-9);  // w_p^2 = 1
+}
+
 TEST(CraigBampton, DefaultResultSaysNotRun) {
   const ReductionResult r;
   EXPECT_EQ(r.status, ReductionResult::Status::NotRun);
