@@ -61,16 +61,15 @@ std::string ContinuationResult::brief_report() const {
     for (const BranchEvent& e : b.events) ++kinds[to_string(e.kind)];
   }
   std::ostringstream os;
-  os << "continue: " << to_string(status) << ", " << branches.size() << " branches, " << points << " points over " << parameter.name << " in ["
-     << parameter.min << ", " << parameter.max << "]; events:";
+  os << "continue: " << to_string(status) << ", " << branches.size() << " branches, " << points << " points over "
+     << parameter.name << " in [" << parameter.min << ", " << parameter.max << "]; events:";
   if (kinds.empty()) os << " none";
   for (const auto& [k, c] : kinds) os << " " << c << " " << k;
   os << "; " << seed_spps << " seed SPPs, " << seed_crossings << " seed crossings; ";
   if (incomplete_seed_solves) os << incomplete_seed_solves << " incomplete seed solves, ";
   if (stalled_branches) os << stalled_branches << " stalled branch ends, ";
   if (unlisted_crossings) os << unlisted_crossings << " unlisted crossings, ";
-  os << warnings.size() << " warnings; "
-     << corrector_solves << " corrector solves, " << seconds << " s";
+  os << warnings.size() << " warnings; " << corrector_solves << " corrector solves, " << seconds << " s";
   return os.str();
 }
 
@@ -87,6 +86,30 @@ namespace {
 using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 using V3 = Eigen::Vector3d;
+
+// Tolerances of the branch tracer, in the scaled coordinates y = (t1 / t1_max, t2 / t2_max, (mu - min) / range).
+/// Central-difference step of the Jacobian, relative to max(1, |y_k|): ~eps^(1/3), the step that balances
+/// truncation (h^2) against rounding (eps / h) of F.
+constexpr double kDifferenceStep = 1e-6;
+/// Newton iterations of one corrector solve: converging correctors need 3 to 5; more means the predictor was off.
+constexpr int kCorrectorIterations = 12;
+/// A Newton step longer than this (scaled units) left the branch: the step is refused and the arclength halved.
+constexpr double kCorrectorMaxStep = 0.2;
+/// Newton stops when its step falls below this (scaled units): the rounding level of y (~1e2 eps).
+constexpr double kCorrectorStepTol = 1e-14;
+/// Steps shorter than this fraction of max_step count as creeping; kCreepSteps of them in a row is a stall.
+constexpr double kCreepFraction = 1e-3;
+constexpr int kCreepSteps = 200;
+/// Back at the start with a tangent within ~25 degrees of the first one (cosine above this): a closed branch.
+constexpr double kClosedLoopCos = 0.9;
+/// A seed SPP and a branch crossing of that seed value closer than this fraction of t1_max and t2_max are one SPP:
+/// the crossing is located to locate_tol in arclength, far finer, and distinct SPPs lie much farther apart.
+constexpr double kSeedMatch = 1e-7;
+/// Events are looked for up to the located window edge times this: a relative 1e-7 past it, so that an event located
+/// at the edge itself (to locate_tol) is not lost to rounding of the edge's arclength.
+constexpr double kEdgeOvershoot = 1.0000001;
+/// Parameter values whose modal forms are kept (the corrector and the difference Jacobian revisit a few of them).
+constexpr size_t kCachedForms = 6;
 
 struct Eval {
   Eigen::Vector2d F;
@@ -132,7 +155,7 @@ class Tracer {
     auto c = std::make_unique<Cached>(Cached{std::move(s), std::move(md), nullptr});
     c->equations = make_equations(c->modal, o_.symmetry);
     cache_.emplace_front(mu, std::move(c));
-    if (cache_.size() > 6) cache_.pop_back();
+    if (cache_.size() > kCachedForms) cache_.pop_back();
     return *cache_.front().second;
   }
 
@@ -160,7 +183,7 @@ class Tracer {
   Eigen::Matrix<double, 2, 3> jacobian(const V3& y, const Vec& xref) {
     Eigen::Matrix<double, 2, 3> J;
     for (int k = 0; k < 3; ++k) {
-      const double h = 1e-6 * std::max(1.0, std::abs(y(k)));
+      const double h = kDifferenceStep * std::max(1.0, std::abs(y(k)));
       V3 yp = y, ym = y;
       yp(k) += h;
       ym(k) -= h;
@@ -190,7 +213,7 @@ class Tracer {
   bool correct_unchecked(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
     ++corrector_solves;
     y = ypred;
-    for (its = 1; its <= 12; ++its) {
+    for (its = 1; its <= kCorrectorIterations; ++its) {
       e = eval(y, xref);
       Eigen::Matrix3d A;
       A.topRows(2) = jacobian(y, xref);
@@ -198,11 +221,11 @@ class Tracer {
       V3 r;
       r << e.F, tau.dot(y - ypred);
       const V3 dy = A.fullPivLu().solve(-r);
-      if (!dy.allFinite() || dy.norm() > 0.2) return false;
+      if (!dy.allFinite() || dy.norm() > kCorrectorMaxStep) return false;
       y += dy;
-      if (dy.norm() <= 1e-14) break;
+      if (dy.norm() <= kCorrectorStepTol) break;
     }
-    if (its > 12) return false;
+    if (its > kCorrectorIterations) return false;
     e = eval(y, xref);
     return y.allFinite();
   }
@@ -321,15 +344,16 @@ class BranchWalker {
       travelled += (next.y - s.y).norm();
       // Back at the start, in the same direction: a closed branch.
       if (travelled > 4.0 * h && (next.y - y_start).norm() <= std::max(h, (next.y - s.y).norm()) &&
-          next.tau.dot(tau_start) > 0.9 && (y_start - s.y).dot(s.tau) >= 0 && (y_start - next.y).dot(next.tau) <= 0) {
+          next.tau.dot(tau_start) > kClosedLoopCos && (y_start - s.y).dot(s.tau) >= 0 &&
+          (y_start - next.y).dot(next.tau) <= 0) {
         events.push_back({BranchEventKind::ClosedLoop, next.point, "back at the first point: a closed branch"});
         return true;
       }
       points.push_back(next.point);
       s = std::move(next);
       if (its <= 3) h = std::min(1.5 * h, o_.max_step);
-      creeping = h < 1e-3 * o_.max_step ? creeping + 1 : 0;
-      if (creeping >= 200) {
+      creeping = h < kCreepFraction * o_.max_step ? creeping + 1 : 0;
+      if (creeping >= kCreepSteps) {
         events.push_back({BranchEventKind::Stalled, s.point,
                           "200 steps below 1e-3 max_step: a degenerate point (e.g. a continuum of SPPs at one "
                           "parameter value, or the t1 -> 0 axis)"});
@@ -398,7 +422,7 @@ class BranchWalker {
     }
     const BranchPoint end = stop_edge >= 0 ? stop.p : next.point;
     const V3 end_y = stop_edge >= 0 ? stop.y : next.y;
-    const double end_h = stop_edge >= 0 ? std::min(h, stop_h * 1.0000001) : h;
+    const double end_h = stop_edge >= 0 ? std::min(h, stop_h * kEdgeOvershoot) : h;
 
     struct Found {
       double hp;
@@ -528,11 +552,10 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
 
   Tracer tr(ps, options, t1_min, t2_min);
   BranchWalker walker(tr, options, seed_mu, free_scale);
-  const double match_tol = 1e-7;
   auto matched = [&](int k, double t1, double t2) {
     for (const SeedCrossing& c : walker.crossings)
-      if (c.seed == k && std::abs(c.t1 - t1) <= match_tol * options.t1_max &&
-          std::abs(c.t2 - t2) <= match_tol * options.t2_max)
+      if (c.seed == k && std::abs(c.t1 - t1) <= kSeedMatch * options.t1_max &&
+          std::abs(c.t2 - t2) <= kSeedMatch * options.t2_max)
         return true;
     return false;
   };
@@ -575,7 +598,8 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   for (const SeedCrossing& c : walker.crossings) {
     const auto& sols = seed_sols[c.seed];
     const bool found = std::any_of(sols.begin(), sols.end(), [&](const Solution& s) {
-      return std::abs(s.t1 - c.t1) <= match_tol * options.t1_max && std::abs(s.t2 - c.t2) <= match_tol * options.t2_max;
+      return std::abs(s.t1 - c.t1) <= kSeedMatch * options.t1_max &&
+             std::abs(s.t2 - c.t2) <= kSeedMatch * options.t2_max;
     });
     if (found) {
       ++res.seed_crossings;

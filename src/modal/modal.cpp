@@ -32,7 +32,8 @@ ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_
         Eigen::VectorXd e = Eigen::VectorXd::Zero(j - i);
         e(0) = c.norm();
         Eigen::VectorXd v = c - e;
-        if (v.norm() > 1e-14 * c.norm()) {
+        constexpr double kAligned = 1e-14;  // c already along e1 to rounding: the reflection would be noise
+        if (v.norm() > kAligned * c.norm()) {
           v.normalize();
           Eigen::MatrixXd Hh = Eigen::MatrixXd::Identity(j - i, j - i) - 2.0 * v * v.transpose();
           Phi_all.middleCols(i, j - i) = V * Hh;
@@ -117,6 +118,9 @@ std::pair<double, double> pole_index_range(double f, double lo, double hi) {
 }
 // Beyond 2^52 consecutive indices j, j + 1 are no longer distinct pole positions in double precision.
 constexpr double kLargestPoleIndex = 4503599627370496.0;
+// Poles of two frequencies closer than this (relative) are one pole line: ~5e3 eps, above the
+// rounding of (j + 1/2) pi / f for the largest indices used, so a repeated frequency does not give two lines.
+constexpr double kSamePole = 1e-12;
 }  // namespace
 
 double count_tangent_poles(const Eigen::VectorXd& freqs, double lo, double hi) {
@@ -159,7 +163,7 @@ std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, doubl
   std::sort(poles.begin(), poles.end());
   std::vector<double> merged;
   for (double t : poles)
-    if (merged.empty() || t - merged.back() > 1e-12 * t) merged.push_back(t);
+    if (merged.empty() || t - merged.back() > kSamePole * t) merged.push_back(t);
   return merged;
 }
 

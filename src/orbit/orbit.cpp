@@ -13,6 +13,15 @@
 namespace spp {
 
 namespace {
+/// An end derivative of the gap or force within this fraction of its bound (sum |amp| f^k) is taken as zero and the
+/// next one decides (ends_ok): far above the rounding of the sums (~m eps), far below any derivative that matters.
+constexpr double kEndDerivativeZero = 1e-7;
+/// Golden-section refinement of a sampled minimum stops at this fraction of the interval: rounding level of s.
+constexpr double kGoldenTol = 1e-15;
+/// Samples per phase of the point-symmetric orbits' min_gap and min_force: a report, not a proof (their verdict is
+/// structural).
+constexpr int kAdmissibilitySamples = 2000;
+
 // p, p' after time t of the contact phase from (p0, p0dot), computed in the G basis (O(m^2)).
 void contact_flow(const ModalForm& md, double t, const Eigen::VectorXd& p0, const Eigen::VectorXd& p0dot,
                   Eigen::VectorXd& p, Eigen::VectorXd& pdot) {
@@ -67,7 +76,7 @@ Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::Vecto
 
 Admissibility check_point_admissibility(const ModalForm& md, const Orbit& o) {
   Admissibility adm;
-  const int samples = 2000;
+  const int samples = kAdmissibilitySamples;
   adm.min_gap = std::numeric_limits<double>::infinity();
   adm.min_force = std::numeric_limits<double>::infinity();
   double max_force = -std::numeric_limits<double>::infinity();
@@ -149,7 +158,7 @@ Admissibility check_admissibility(const ModalForm& md, const Orbit& o, double re
 
   // Ends: gap(t1 - s) ~ -g'''(t1) s^3/6 + g''''(t1) s^4/24 (g, g', g'' vanish by construction);
   // force(t2 - s) ~ -f'(t2) s + f''(t2) s^2/2.
-  const double zrel = 1e-7;
+  const double zrel = kEndDerivativeZero;
   const double g3 = gap.derivative(o.t1, 3), g4 = gap.derivative(o.t1, 4);
   const double f1 = force.derivative(o.t2, 1), f2 = force.derivative(o.t2, 2);
   const bool gap_end = g3 < -zrel * gap.bound(3) || (std::abs(g3) <= zrel * gap.bound(3) && g4 >= -zrel * gap.bound(4));
@@ -199,7 +208,7 @@ double sampled_minimum(const F& f, double len, double fastest) {
   for (int k = 0; k < 3; ++k) {
     double a = std::max(0.0, (v[k].second - 1) * h), b = std::min(len, (v[k].second + 1) * h);
     double c = b - g * (b - a), d = a + g * (b - a), fc = f(c), fd = f(d);
-    for (int it = 0; it < 60 && b - a > 1e-15 * len; ++it) {
+    for (int it = 0; it < 60 && b - a > kGoldenTol * len; ++it) {
       if (fc < fd) {
         b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
       } else {

@@ -159,7 +159,7 @@ class CellTracer::Impl {
                     double rel_ftol) {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     Pair e;
-    const double xtol = 4e-16 * (std::abs(lo) + std::abs(hi));
+    const double xtol = kSegmentRootXtol * (std::abs(lo) + std::abs(hi));
     for (int it = 0; it < 200; ++it) {
       e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
       const double f = e.lam;
@@ -206,7 +206,7 @@ class CellTracer::Impl {
     std::shared_ptr<const HPoint> BLt = corner(r.a1, r.A), TRt = corner(r.b1, r.B);
     int nBL = corner_count(*BLt, r.a1, r.A), nTR = corner_count(*TRt, r.b1, r.B);
     for (int tries = 0; tries < 4 && (nBL < 0 || nTR < 0); ++tries) {
-      const double d1 = 1e-9 * (r.b1 - r.a1), d2 = 1e-9 * (r.B - r.A);
+      const double d1 = kCornerMove * (r.b1 - r.a1), d2 = kCornerMove * (r.B - r.A);
       if (nBL < 0) {
         r.a1 -= d1;
         r.A -= d2;
@@ -304,7 +304,7 @@ class CellTracer::Impl {
         prove = false;
         budget = kPieceBudget;
         certified = false;
-        h = std::max(h, 1e-3 * span);
+        h = std::max(h, kFallbackStep * span);
       }
       if (stop_ != nullptr && stop_->load(std::memory_order_relaxed)) {  // stopped: the piece ends here, unproved
         certified = false;
@@ -651,7 +651,7 @@ class CellTracer::Impl {
       if (b.dot(A.b) < 0) b = -b;
       return onset_g(b, e.t2).first;
     };
-    const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, 1e-15 * (std::abs(A.s) + std::abs(B.s) + 1.0));
+    const double s = detail::brent(g_at, A.s, B.s, A.g, B.g, kOnsetRootXtol * (std::abs(A.s) + std::abs(B.s) + 1.0));
     const Pair e = root_between(r, k, A, B, s);
     // A zero of g is continuous: where |g| stays large at the closed bracket, g jumped there (b swung past 90 degrees
     // from A's orientation inside the step, next to an eigenvalue that sweeps past lambda_k near a pole line): the
@@ -678,9 +678,7 @@ class CellTracer::Impl {
   static constexpr int kPieceBudget = 20000;               // trace steps (tried or taken) per curve piece
   static constexpr int kProofBudget = 200000;  // the same with certify_steps, before the midpoint check takes over
   int examine_budget_ = kPieceBudget;
-  EigenCache eigen_cache_;  // full eigenpairs of the certificate at the last trace points
-  static constexpr double kPosErrBordered =
-      1e-8;                                 // relative position error beyond which the bordered form estimates it
+  EigenCache eigen_cache_;                  // full eigenpairs of the certificate at the last trace points
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
   static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped

@@ -27,7 +27,7 @@ Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
   Polished out;
   Vec a;
   const Eigen::ArrayXd c1 = (md.omega().array() * t1).cos();
-  if (b.size() == m && c1.abs().minCoeff() > 1e-3) {
+  if (b.size() == m && c1.abs().minCoeff() > kPolishCosFloor) {
     a = (b.array() / c1).matrix().normalized();
   } else {
     Eigen::JacobiSVD<Mat> svd(eq.N(t1, t2), Eigen::ComputeFullV);
@@ -53,9 +53,9 @@ Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
     Vec dx = J.fullPivLu().solve(-F);
     // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0
     double alpha = 1.0;
-    while (alpha > 1e-6 && (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
-                            std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) >
-                                kPolishReach * (t1_start + t2_start)))
+    while (alpha > kPolishMinAlpha && (t1 + alpha * dx(0) < 0.5 * t1 || t2 + alpha * dx(1) < 0.5 * t2 ||
+                                       std::hypot(t1 + alpha * dx(0) - t1_start, t2 + alpha * dx(1) - t2_start) >
+                                           kPolishReach * (t1_start + t2_start)))
       alpha *= 0.5;
     dx *= alpha;
     t1 += dx(0);
@@ -66,7 +66,7 @@ Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
       best = res;
       out = {false, t1, t2, res, a};
     }
-    if (dx.head(2).norm() <= 1e-15 * (std::abs(t1) + std::abs(t2))) break;
+    if (dx.head(2).norm() <= kPolishStep * (std::abs(t1) + std::abs(t2))) break;
   }
   out.converged = best < kConvergedResidual;
   return out;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "search/tolerances.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
 #include "spp/modal/equation_set.hpp"
@@ -60,7 +61,7 @@ Eigen::VectorXd cell_grid(double a, double b, bool pole_at_a, bool pole_at_b, co
   const int points = std::max(o.min_cell_points, static_cast<int>(std::ceil((hi - lo) / step)) + 1);
   Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(points, lo, hi);
   // Lower ends at 0 are the trivial line t1 = 0 (H singular for every t2) or pure flight: step off them.
-  if (t(0) == 0.0) t(0) = 1e-3 * (t(1) - t(0));
+  if (t(0) == 0.0) t(0) = search::kOffAxis * (t(1) - t(0));
   return t;
 }
 

@@ -239,8 +239,8 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
     sb.dg_lo = std::max(sb.dg_lo, std::min(nlo / Dlo, nlo / Dhi));
     sb.dg_hi = std::min(sb.dg_hi, std::max(nhi / Dlo, nhi / Dhi));
   }
-  // rounding in the bounds themselves
-  const double slack = 1e-9 * (std::abs(sb.dg_lo) + std::abs(sb.dg_hi));
+  constexpr double kBoundSlack = 1e-9;  // rounding in the bounds themselves: ~5e6 eps of sums of O(m) terms
+  const double slack = kBoundSlack * (std::abs(sb.dg_lo) + std::abs(sb.dg_hi));
   sb.dg_lo -= slack;
   sb.dg_hi += slack;
   // Mean value theorem: g(s) = g_x + g'(xi) (s - s_x) on the step of length h from x (forward from a, backward
@@ -435,7 +435,8 @@ StepCertificate certify_step_weyl(const EquationSet& eq, const StepEnd& a, const
     const double c1 = P2 * zn, c2 = (C.d2.cwiseAbs().maxCoeff() + P2 * tau2) * zn;
     L2 = c2 + 2.0 * c1 * L1 + cnorm * bpp;
   }
-  L2 *= 1.0 + 1e-6;  // rounding in the bound itself
+  constexpr double kCurvatureSlack = 1e-6;  // rounding in the bound itself: products of O(m)-term sums
+  L2 *= 1.0 + kCurvatureSlack;
   cert.curvature = L2;
 
   // Errors of the computed g at the ends: the computed b is within residual / gamma of the true one.

@@ -16,6 +16,14 @@ inline constexpr double kStalledResidual = 1e-6;
 inline constexpr double kOnPoleLine = 1e-6;
 /// Newton steps stay within this fraction of t1 + t2 from the candidate (the limit points on the axes attract it).
 inline constexpr double kPolishReach = 1e-3;
+/// Newton stops when its step in (t1, t2) falls below this fraction of t1 + t2: a few ulps, where rounding of N
+/// decides the step.
+inline constexpr double kPolishStep = 1e-15;
+/// The trust region halves a step at most down to this fraction (20 halvings): a smaller step cannot move the root.
+inline constexpr double kPolishMinAlpha = 1e-6;
+/// The start a = p0 ./ cos(W t1) is used only while every |cos(omega_k t1)| exceeds this: below it the division
+/// amplifies the traced vector's rounding by more than 1e3 and the SVD start is safer.
+inline constexpr double kPolishCosFloor = 1e-3;
 /// Two roots closer than this fraction of the window size (t1_max + t2_max) are one root (found from two cells or
 /// two tiles); also the distance at which one unpolished sign change reached twice counts once.
 inline constexpr double kSameRoot = 1e-9;
@@ -41,6 +49,11 @@ inline constexpr double kDefaultLowerCap = 1e-3;
 /// A window edge within this fraction of the fastest quarter period of a pole line is widened past it (the line
 /// becomes interior and its strip is paired; an edge is never snapped onto a pole line).
 inline constexpr double kEdgePole = 1e-4;
+/// The searched region is the window widened by this fraction of its size at each edge: wider than the rounding of
+/// a root computed on a tile edge, so a root on a shared edge is found by both tiles (the half-open rule keeps one).
+inline constexpr double kEdgeSlack = 1e-9;
+/// Smallest pole margin, relative to the pole time: two ulps, so that the margin never rounds to zero at large t.
+inline constexpr double kMinPoleMargin = 4e-16;
 
 // ---- trace (steps 2-3) ----
 /// 1-D solves for lambda_k = 0 stop when |lambda_k| falls below this times |H| (edge roots; diagonal roots of the
@@ -54,5 +67,21 @@ inline constexpr double kJumpFloor = 1e-9;
 /// g values below this at both ends of a step at the minimum length: g touches zero (a near-double root); the step
 /// is reported as not proved.
 inline constexpr double kTouchesZero = 1e-8;
+/// 1-D root solves along a segment stop when the bracket is this fraction of |lo| + |hi| wide: two ulps, the
+/// resolution of the parameter itself.
+inline constexpr double kSegmentRootXtol = 4e-16;
+/// Brent on g between two trace points stops at this fraction of |s_A| + |s_B| + 1: rounding level of s.
+inline constexpr double kOnsetRootXtol = 1e-15;
+/// A corner whose count neither H nor the bordered form proves is moved outwards by this fraction of the cell side
+/// (up to 4 times): far beyond the eigenvalue rounding that made the count uncertain, far inside the pole margin.
+inline constexpr double kCornerMove = 1e-9;
+/// A trace point's relative position error (of max(t1, t2)) beyond which the bordered form estimates it instead of
+/// H's eigenvalue bound (next to a pole line H's bound overestimates by |H|, see cell_trace.cpp).
+inline constexpr double kPosErrBordered = 1e-8;
+/// When a piece's proof budget runs out, the midpoint trace restarts from at least this fraction of the piece.
+inline constexpr double kFallbackStep = 1e-3;
+/// Lower grid ends at 0 (the trivial line t1 = 0, or pure flight) are moved this fraction of the first grid step
+/// off it (root_map.cpp): off the singular line, well inside the first grid interval.
+inline constexpr double kOffAxis = 1e-3;
 
 }  // namespace spp::search

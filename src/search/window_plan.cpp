@@ -16,7 +16,6 @@ namespace spp::search {
 // interior and its thin strip is covered by pairing (a window edge is never snapped onto a pole line).
 AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool widen_lo, double pole_margin,
                    double max_count) {
-  constexpr double kEdgeSlack = 1e-9;  // relative widening of the window edges
   const double fmax = freqs.size() ? freqs.maxCoeff() : 0.0;
   const double kappa = fmax > 0 ? kEdgePole * std::numbers::pi / (2.0 * fmax) : 0.0;
   double rlo = widen_lo ? lo - kEdgeSlack * (hi - lo) : lo, rhi = hi + kEdgeSlack * (hi - lo);
@@ -49,7 +48,7 @@ AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool wide
   for (size_t i = 1; i + 1 < a.bp.size(); ++i) {
     const double left = a.bp[i] - a.bp[i - 1], right = a.bp[i + 1] - a.bp[i];
     a.margin[i] =
-        std::max(std::min(pole_margin * std::max(left, right), 0.25 * std::min(left, right)), 4e-16 * a.bp[i]);
+        std::max(std::min(pole_margin * std::max(left, right), 0.25 * std::min(left, right)), kMinPoleMargin * a.bp[i]);
   }
   return a;
 }

@@ -276,7 +276,8 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   // initial state
   {
     const double g = system_.gap(x);
-    const double gtol = 1e-9 * (std::abs(system_.g0()) + x.norm());
+    constexpr double kInitialGapTol = 1e-9;  // penetration within ~5e6 eps of the gap's scale: on the obstacle
+    const double gtol = kInitialGapTol * (std::abs(system_.g0()) + x.norm());
     if (g < -gtol) {
       std::ostringstream os;
       os << "simulate: the initial state penetrates the obstacle: gap w^T x0 + g0 = " << g << " < 0";
@@ -293,12 +294,14 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
 
   res.status = SimulationStatus::Success;
   int stalled_events = 0;  // consecutive events without time passing
+  constexpr int kMaxStalledEvents = 100;  // zero-time events in a row: an event sequence at one instant
+  // is a few (impact, onset, release); 100 is a loop that time cannot leave
   while (t < opt.duration) {
     if (static_cast<long>(res.events.size()) >= opt.max_events) {
       res.status = SimulationStatus::EventLimit;
       break;
     }
-    if (stalled_events > 100) {
+    if (stalled_events > kMaxStalledEvents) {
       res.status = SimulationStatus::Stalled;
       break;
     }

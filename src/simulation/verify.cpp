@@ -12,6 +12,10 @@ namespace spp {
 
 namespace {
 
+/// Golden-section search for the closest time of a trajectory stops at this fraction of 1 + t: ~50 eps, finer than
+/// the simulator's event times, so the distance measured is the trajectory's, not the search's.
+constexpr double kGoldenTol = 1e-14;
+
 Eigen::VectorXd stack(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
   Eigen::VectorXd X(x.size() + v.size());
   X << x, v;
@@ -118,7 +122,7 @@ class OrbitDistance {
     const double g = (std::sqrt(5.0) - 1.0) / 2.0;
     double a = t_[i0], b = t_[i1];
     double c = b - g * (b - a), d = a + g * (b - a), fc = dist_at(c), fd = dist_at(d);
-    for (int it = 0; it < 60 && b - a > 1e-14 * (1.0 + b); ++it) {
+    for (int it = 0; it < 60 && b - a > kGoldenTol * (1.0 + b); ++it) {
       if (fc < fd) {
         b = d, d = c, fd = fc, c = b - g * (b - a), fc = dist_at(c);
       } else {
@@ -171,8 +175,9 @@ const char* to_string(VerifyStatus s) {
 
 std::string VerifyResult::brief_report() const {
   std::ostringstream os;
-  os << "verify: " << to_string(status) << ", " << checks.size() << " SPPs, " << returned << " return to their initial state, " << left
-     << " leave the orbit; " << inconsistent << " disagree with the solver's admissibility";
+  os << "verify: " << to_string(status) << ", " << checks.size() << " SPPs, " << returned
+     << " return to their initial state, " << left << " leave the orbit; " << inconsistent
+     << " disagree with the solver's admissibility";
   return os.str();
 }
 
@@ -184,9 +189,11 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
     const SppCandidate& c = spps[i];
     if (c.x0.size() != system.n() || c.v0.size() != system.n())
       detail::invalid("verify: solution " + std::to_string(i) + ": x0 and v0 must have " + std::to_string(system.n()) +
-           " entries (the system's dofs), got " + std::to_string(c.x0.size()) + " and " + std::to_string(c.v0.size()));
+                      " entries (the system's dofs), got " + std::to_string(c.x0.size()) + " and " +
+                      std::to_string(c.v0.size()));
     if (!(c.t1 > 0.0 && c.t2 > 0.0))
-      detail::invalid("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0, got " + fmt(c.t1) + " and " + fmt(c.t2));
+      detail::invalid("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0, got " + fmt(c.t1) + " and " +
+                      fmt(c.t2));
     const double T = c.period();
     SppCheck chk;
     chk.candidate = c;
