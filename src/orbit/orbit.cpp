@@ -74,7 +74,7 @@ Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::Vecto
   return scaled_orbit(eq, t1, t2, a_in, -md.g0() / (md.beta() * r));  // eq. (5.2): w^T x0 = -g0
 }
 
-Admissibility check_point_admissibility(const ModalForm& md, const Orbit& o) {
+Admissibility sample_point_admissibility(const ModalForm& md, const Orbit& o) {
   Admissibility adm;
   const int samples = kAdmissibilitySamples;
   adm.min_gap = std::numeric_limits<double>::infinity();
@@ -90,9 +90,9 @@ Admissibility check_point_admissibility(const ModalForm& md, const Orbit& o) {
   }
   adm.mid_flight_gap = orbit_state(md, o, 2.0 * o.t2 + o.t1).gap;
   adm.mid_contact_force = orbit_state(md, o, o.t2).force;
-  adm.certified = true;  // the verdict is structural: an odd force about t2
   adm.ends_ok = false;
-  adm.admissible = adm.min_force >= 0.0 && max_force <= 0.0;  // only if the force vanishes identically
+  adm.admissible = adm.min_force >= 0.0 && max_force <= 0.0;  // only if the force vanishes at every sample
+  adm.certified = !adm.admissible;  // "never admissible" is structural (an odd force); the converse only sampled
   return adm;
 }
 

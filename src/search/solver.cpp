@@ -133,7 +133,7 @@ Solution build_solution(const System& system, const EquationSet& eq, const Polis
   if (eq.can_be_admissible())
     s.admissibility = check_admissibility(md, s.orbit, opt.admissibility_tol);
   else  // the verdict is structural (point symmetry: an odd force); the minima only sampled
-    s.admissibility = check_point_admissibility(md, s.orbit);
+    s.admissibility = sample_point_admissibility(md, s.orbit);
   if (const char* flag = eq.solution_flag()) s.flags.push_back(flag);
   if (s.orbit.closure_ratio < search::kClosureDegenerate) s.flags.push_back("gap_closure_degenerate");
   s.admissible = s.admissibility.admissible;

@@ -28,7 +28,7 @@ struct Orbit {
 /// Builds the orbit from the null vector a of eq's N(t1, t2) (N_T for point symmetry); a's scale is irrelevant:
 /// it is scaled so that w^T x0 = -g0 (eq. 5.2). Point symmetry (paper §6.2): x(-t1) = 0, x(t2) = 0, and the
 /// obstacle moves at obstacle_velocity during contact. Throws std::invalid_argument if the gap cannot be closed
-/// (u^T W^-1 p0 = 0 exactly) or g0 = 0.
+/// (u^T W^-1 p0 = 0 exactly) or g0 = 0. a: (m), modal; cost O(m^2 + n m).
 Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a);
 
 /// The orbit when its scale is free (g0 = 0, paper §6.1: eq. 5.2 does not fix it): scaled to unit energy, its
@@ -41,7 +41,7 @@ struct OrbitState {
   double gap = 0.0, force = 0.0;
 };
 
-/// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight).
+/// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight). x, v: (n); cost O(m^2 + n m).
 OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
 
 /// One period sampled at `samples` (>= 2) equally spaced times t_k = T k / (samples - 1), both ends included: the
@@ -61,19 +61,21 @@ struct Admissibility {
   double mid_contact_force = 0.0;  ///< force at t = t2
   double onset_force_rate = 0.0;   ///< lambda'(0+): must be >= 0 (equals minus the gap jerk times a positive factor)
   bool ends_ok = false;            ///< leading Taylor terms at the phase ends have the admissible sign
-  /// The verdict `admissible` is proved: axial, both minima certified to tolerance; point symmetry, structural (the
-  /// force is odd about t2, so never admissible), while its minima are only sampled.
+  /// The verdict `admissible` is proved: axial, both minima certified to tolerance; point symmetry, "not
+  /// admissible" is structural (the force is odd about t2), while its minima are only sampled.
   bool certified = false;
 };
 
-/// Checks ineqs. (5.3) with a certified global minimum of each cosine sum; rel_tol scales the tolerance on
-/// the amplitude of each sum.
-/// Symmetry::Point: the force is odd about t2 (it changes sign in the contact phase), so never admissible
-/// (Remark 3.1). min_gap / min_force sampled (2000 points per phase); admissible = false unless the force
-/// vanishes identically.
-Admissibility check_point_admissibility(const ModalForm& modal, const Orbit& orbit);
-
+/// Axial symmetry: checks ineqs. (5.3) with a certified global minimum of each cosine sum (gap over the flight,
+/// force over the contact phase); rel_tol scales the tolerance on the amplitude (sum |terms|) of each sum.
+/// Cost: O(m) per evaluation of a sum, a few hundred evaluations per sum (detail::minimize).
 Admissibility check_admissibility(const ModalForm& modal, const Orbit& orbit, double rel_tol = 1e-9);
+
+/// Point symmetry (Remark 3.1): the force is odd about t2 (it changes sign in the contact phase), so the orbit is
+/// never admissible; min_gap, min_force sampled (2000 points per phase, O(m^2) each: not proved minima); certified
+/// is the structural "not admissible" verdict. Only a force zero at every sample gives admissible = true, and that
+/// verdict rests on the samples alone (certified = false).
+Admissibility sample_point_admissibility(const ModalForm& modal, const Orbit& orbit);
 
 /// Signed admissibility margin, continuous in (t1, t2) and in the system: the smaller of
 ///   min over the flight of  g / (s / t1)^3  and  min over the contact phase of  lambda / (s / t2),
@@ -81,12 +83,13 @@ Admissibility check_admissibility(const ModalForm& modal, const Orbit& orbit, do
 /// terms|). The end zeros of g (order 3) and lambda (order 1) are divided out analytically, so the margin is
 /// >= 0 exactly when ineqs. (5.3) hold, ends included, and it crosses zero where admissibility is lost or
 /// gained (an interior minimum touching zero, or a leading end coefficient changing sign). Sampled and refined
-/// (not certified like check_admissibility): meant for locating boundaries along branches.
+/// (not certified like check_admissibility): meant for locating boundaries along branches. Cost O(m) per sample,
+/// 200 to 200000 samples per phase (40 per half-period of its fastest term).
 double admissibility_margin(const ModalForm& modal, const Orbit& orbit);
 
 /// Relative periodicity error |X(T) - X(0)| / |X(0)| of (x0, v0) after one period, propagated with the
 /// physical first-order flows exp(t A) of M x'' + K x = 0 and M x'' + K~ x = 0 (paper's eqs. 3.9-3.13),
-/// independently of the modal form.
+/// independently of the modal form. Cost O(n^3): two matrix exponentials of size 2n.
 double return_error(const System& system, const Orbit& orbit);
 
 }  // namespace spp
