@@ -99,6 +99,9 @@ struct ContinuationResult {
   std::string brief_report() const;
 };
 
+/// Every branch through the SPPs solve() finds at the seed values, followed over the parameter's range. Cost:
+/// `seeds` solves, then per branch step a few corrector iterations, each a few bordered solves and modal forms of
+/// size n (O(n^3)); corrector_solves counts them. Throws std::invalid_argument for invalid options.
 ContinuationResult continue_branches(const ParametricSystem& system, const ContinueOptions& options);
 
 /// The GapClosure events of a result (one per SPP), sorted by mu: with g0 = 0, the SPPs of paper §6.1.

@@ -24,7 +24,8 @@ class ParametricSystem {
                    Eigen::VectorXd w_constant, Eigen::VectorXd w_mu, double g0, Parameter parameter,
                    std::string name = "");
 
-  /// The system at mu (need not lie in the range); throws std::invalid_argument naming the parameter value.
+  /// The system at mu (need not lie in the range), validated like any System (O(n^3)); throws
+  /// std::invalid_argument naming the parameter value.
   System at(double mu) const;
 
   int n() const { return static_cast<int>(M0_.rows()); }

@@ -1,7 +1,9 @@
 #pragma once
 // The mechanical system of the paper (Thorin, Delezoide, Legrand 2017, eqs. 1.1-1.2):
 //   M x'' + K x = w lambda,  g(x) = w^T x + g0 >= 0,  lambda >= 0,  g lambda = 0.
-// An immutable value, validated once when built.
+// An immutable value, validated once when built. Units: any consistent set (x in length, M in mass, K in
+// mass / time^2); every time the library reports (t1, t2, periods) is in the time unit of M and K, every frequency
+// in rad per that unit.
 
 #include <Eigen/Dense>
 #include <string>
@@ -12,6 +14,7 @@ namespace spp {
 class System {
  public:
   /// Validates and stores the system; w and g0 are divided by |w| (the gap keeps its sign and zero set).
+  /// M, K: n x n symmetric positive definite; w: n, not zero. Cost O(n^3) (the definiteness test: eigenvalues).
   /// Throws std::invalid_argument naming the field and the rule on any invalid input.
   System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, std::string name = "");
 
@@ -28,7 +31,7 @@ class System {
   double w_input_norm() const { return w_input_norm_; }  ///< |w| as given; 1 means w was already unit
   const std::string& name() const { return name_; }
 
-  /// K~ of Theorem 2.1, eq. (2.4): the stiffness that mimics the contact phase.
+  /// K~ of Theorem 2.1, eq. (2.4): the stiffness that mimics the contact phase (n x n, O(n^3): solves with M).
   Eigen::MatrixXd contact_stiffness() const;
 
   /// Gap g(x) = w^T x + g0 (w unit, g0 divided by |w| as given). The contact force of eq. (2.7) is in orbit.hpp

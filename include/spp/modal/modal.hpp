@@ -25,15 +25,16 @@ class ModalForm {
  public:
   /// decoupling_tol: a mode with |u_k| below it is treated as not seeing the contact.
   /// repeat_tol: relative gap below which two frequencies are treated as one repeated frequency.
+  /// Cost O(n^3) (two symmetric eigenproblems, ~1 s at n = 1000): build it once and pass it on.
   explicit ModalForm(const System& system, double decoupling_tol = 1e-10, double repeat_tol = 1e-9);
 
   int n() const { return n_; }                               ///< dofs of the system
   int m() const { return static_cast<int>(omega_.size()); }  ///< modes that see the contact
-  const Eigen::VectorXd& omega() const { return omega_; }    ///< coupled free-flight frequencies, ascending
+  const Eigen::VectorXd& omega() const { return omega_; }    ///< (m) coupled free-flight frequencies, ascending
   const Eigen::VectorXd& u() const { return u_; }            ///< unit coupling vector (coupled modes)
   const Eigen::VectorXd& z() const { return z_; }            ///< z = W u
-  const Eigen::VectorXd& d() const { return d_; }            ///< contact-phase frequencies, d(0) = 0
-  const Eigen::MatrixXd& G() const { return G_; }            ///< S = G D^2 G^T
+  const Eigen::VectorXd& d() const { return d_; }            ///< (m) contact-phase frequencies, d(0) = 0
+  const Eigen::MatrixXd& G() const { return G_; }            ///< m x m orthogonal, S = G D^2 G^T
   const Eigen::MatrixXd& Phi() const { return Phi_; }        ///< n x m coupled mode shapes, M-normalised
   const Eigen::VectorXd& omega_decoupled() const { return omega_dec_; }
   const Eigen::MatrixXd& Phi_decoupled() const { return Phi_dec_; }
@@ -42,13 +43,13 @@ class ModalForm {
   /// Number of repeated-frequency groups that were rotated (diagnostic).
   int repeated_groups() const { return repeated_groups_; }
 
-  /// Matrix functions of the contact phase, G f(D) G^T, for the flows.
+  /// Matrix functions of the contact phase, G f(D) G^T, for the flows: m x m, O(m^3) each.
   Eigen::MatrixXd contact_cos(double t) const;   ///< cos(S^{1/2} t)
   Eigen::MatrixXd contact_sinc(double t) const;  ///< S^{-1/2} sin(S^{1/2} t)  (t at d = 0)
   Eigen::MatrixXd contact_msin(double t) const;  ///< S^{1/2} sin(S^{1/2} t)
 
   /// Poles of tan(W t1) (flight) and tan(D t2) (contact) in the open interval (lo, hi), ascending, merged
-  /// when closer than merge_tol (relative).
+  /// as tangent_poles merges them.
   std::vector<double> flight_poles(double lo, double hi) const;
   std::vector<double> contact_poles(double lo, double hi) const;
 

@@ -40,7 +40,8 @@ struct RootMap {
   long evaluations = 0;  ///< grid points evaluated
 };
 
-/// Samples both conditions over the window, cell by cell. Throws std::invalid_argument for invalid options.
+/// Samples both conditions over the window, cell by cell: two symmetric eigenproblems (m x m, m - 1 x m - 1) per
+/// grid point, O(m^3) each, about t1_points x t2_points of them. Throws std::invalid_argument for invalid options.
 RootMap root_map(const System& system, const RootMapOptions& options);
 
 }  // namespace spp

@@ -115,9 +115,9 @@ struct SolveStats {
   /// Dismissed, not reported.
   long pole_line_artifacts = 0;
   // Causes of an Incomplete status, counted:
-  long uncertified_steps = 0;  ///< steps not proved: those the midpoint check took outside the axis bands, the
-                               ///< steps of monotone runs no point of proved sign closed, and steps at the minimum
-                               ///< length where g touches zero (near-double roots)
+  long uncertified_steps = 0;    ///< steps not proved: those the midpoint check took outside the axis bands, the
+                                 ///< steps of monotone runs no point of proved sign closed, and steps at the minimum
+                                 ///< length where g touches zero (near-double roots)
   long uncertified_corners = 0;  ///< cell corners with an eigenvalue within its error bound of 0 after nudging
   long unpaired_crossings = 0;   ///< curve crossings of a pole line that could not be paired
   long unresolved_pieces = 0;    ///< curve pieces whose null vector could not be followed (budget, or turn at min step)
@@ -166,16 +166,20 @@ std::pair<double, double> fundamental_box(const ModalForm& modal);
 std::pair<double, double> axis_band(const ModalForm& modal);
 
 /// Finds every potential SPP in the window, builds its initial conditions and checks admissibility.
-/// Throws std::invalid_argument for invalid options or g0 = 0 (the zero-gap case needs a parameter).
+/// Cost: the modal form (O(n^3)), then about 120 (midpoint trace) to 480 (certify_steps) symmetric eigenproblems of
+/// H (m x m, O(m^3)) per cell, cells = (flight pole lines + 1) x (contact pole lines + 1); estimate_window gives the
+/// number before the search. Throws std::invalid_argument for invalid options or g0 = 0 (the zero-gap case needs a
+/// parameter).
 SolveResult solve(const System& system, const SolveOptions& options);
 // (SolveResult::symmetry records which equations were solved.)
 /// The same with the modal form of `system` given by the caller, who computes it once (O(n^3): ~1 s at n = 1000) for
 /// several calls. Throws std::invalid_argument when `modal` is not that of `system` (dofs or gap differ).
 SolveResult solve(const System& system, const ModalForm& modal, const SolveOptions& options);
 
-/// The SPP nearest to (t1, t2): Newton on the bordered pole-free system from that point, then initial
-/// conditions and admissibility. Throws std::invalid_argument if Newton does not converge to a root within
-/// 1e-3 (t1 + t2) of the given point.
+/// The SPP nearest to (t1, t2) (half-durations of flight and contact, in the system's time unit): Newton on the
+/// bordered pole-free system from that point (at most 12 steps, O(m^3) each), then initial conditions and
+/// admissibility. Throws std::invalid_argument if Newton does not converge to a root within 1e-3 (t1 + t2) of the
+/// given point.
 Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options = {});
 Solution solution_at(const System& system, const ModalForm& modal, double t1, double t2,
                      const SolveOptions& options = {});
@@ -189,10 +193,6 @@ struct NearestSpp {
   long candidates = 0;                                ///< SPPs in that window
 };
 
-/// Refines a guess read off the root map (within a few percent): the complete solver on the window
-/// (t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the SPP nearest to the guess
-/// (relative distance). found = false when the window holds none: a status, not an exception. Throws
-/// std::invalid_argument for a non-positive guess or radius outside (0, 1), and as solve() does.
 /// The work of a window, known before the search (spp solve --dry-run): its pole lines and cells (as solve() plans
 /// them), the measured cost of one evaluation of H here, and a rough time: cells x evaluations per cell (about 120 on
 /// the benchmarks' chains and random systems with the midpoint trace, about 4x that with certify_steps) x that cost,
@@ -209,6 +209,11 @@ struct WindowEstimate {
 /// Throws std::invalid_argument like solve() for an invalid window, or one beyond options.max_cells.
 WindowEstimate estimate_window(const System& system, const ModalForm& modal, const SolveOptions& options);
 
+/// Refines a guess read off the root map (within a few percent): the complete solver on the window
+/// (t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the SPP nearest to the guess
+/// (relative distance). found = false when the window holds none: a status, not an exception. Throws
+/// std::invalid_argument for a non-positive guess or radius outside (0, 1), and as solve() does. Cost: solve() on
+/// that small window.
 NearestSpp nearest_spp(const System& system, double t1, double t2, double radius = 0.05,
                        const SolveOptions& options = {});
 NearestSpp nearest_spp(const System& system, const ModalForm& modal, double t1, double t2, double radius = 0.05,

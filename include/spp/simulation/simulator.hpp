@@ -79,10 +79,12 @@ struct SimulationResult {
 /// The two phase flows of a system, computed once (model/workspace split): reuse it for many simulations.
 class Simulator {
  public:
+  /// Cost O(n^3): the eigenproblems of both phases.
   explicit Simulator(const System& system);
 
-  /// Simulates from (x0, v0) at t = 0. Throws std::invalid_argument if the sizes are wrong, a value is not
-  /// finite or the initial state penetrates the obstacle.
+  /// Simulates from (x0, v0) at t = 0 (both (n), in the system's units). Cost O(n^2) per event and per sample.
+  /// Throws std::invalid_argument if the sizes are wrong, a value is not finite or the initial state penetrates the
+  /// obstacle.
   SimulationResult run(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const SimulateOptions& options) const;
 
   const System& system() const { return system_; }

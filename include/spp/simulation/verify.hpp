@@ -21,6 +21,7 @@ struct VerifyOptions {
   double return_tol = 1e-9;      ///< an admissible SPP must come back to this relative error after one period
   double follow_tol = 1e-6;      ///< later periods count as followed while the return error stays below this
   double event_time_tol = 1e-6;  ///< relative to the period: events within it of the expected times match
+  /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
 };
 
@@ -32,6 +33,7 @@ struct SppCandidate {
   double energy = 0.0;  ///< 1/2 v0^T M v0 + 1/2 x0^T K x0 (NaN when read from a result without it)
   double period() const { return 2.0 * (t1 + t2); }
 };
+/// Every solution of a result as a candidate, in the result's order.
 std::vector<SppCandidate> candidates(const SolveResult& result);
 
 enum class Verdict {
@@ -70,7 +72,9 @@ struct VerifyResult {
   std::string brief_report() const;
 };
 
-/// Re-simulates each candidate from (x0, v0). Throws std::invalid_argument on sizes that do not match the system.
+/// Re-simulates each candidate from (x0, v0) (both (n)) for `periods` periods: one Simulator (O(n^3)), then O(n^2)
+/// per event, a few events per period; with a perturbation, the orbit sampled at 512 points and one golden-section
+/// search of the nearest point per period. Throws std::invalid_argument on sizes that do not match the system.
 VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps, const VerifyOptions& options);
 
 }  // namespace spp
