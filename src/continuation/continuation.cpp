@@ -12,6 +12,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "continuation/corrector.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
@@ -88,15 +89,12 @@ using Mat = Eigen::MatrixXd;
 using V3 = Eigen::Vector3d;
 
 // Tolerances of the branch tracer, in the scaled coordinates y = (t1 / t1_max, t2 / t2_max, (mu - min) / range).
-/// Central-difference step of the Jacobian, relative to max(1, |y_k|): ~eps^(1/3), the step that balances
-/// truncation (h^2) against rounding (eps / h) of F.
+/// Central-difference step of the Jacobian's mu column, relative to max(1, |y_mu|): ~eps^(1/3), the step that
+/// balances truncation (h^2) against rounding (eps / h) of F.
 constexpr double kDifferenceStep = 1e-6;
-/// Newton iterations of one corrector solve: converging correctors need 3 to 5; more means the predictor was off.
-constexpr int kCorrectorIterations = 12;
-/// A Newton step longer than this (scaled units) left the branch: the step is refused and the arclength halved.
-constexpr double kCorrectorMaxStep = 0.2;
-/// Newton stops when its step falls below this (scaled units): the rounding level of y (~1e2 eps).
-constexpr double kCorrectorStepTol = 1e-14;
+/// The corrector (continuation/corrector.hpp): 12 iterations (3 to 5 when converging), a step longer than 0.2 in
+/// scaled units left the branch (the arclength is halved), converged at a step of 1e-14 (~1e2 eps of y ~ 1).
+constexpr continuation::CorrectorOptions kCorrector{12, 0.2, 1e-14};
 /// Steps shorter than this fraction of max_step count as creeping; kCreepSteps of them in a row is a stall.
 constexpr double kCreepFraction = 1e-3;
 constexpr int kCreepSteps = 200;
@@ -159,7 +157,9 @@ class Tracer {
     return *cache_.front().second;
   }
 
-  Eval eval(const V3& y, const Vec& xref) {
+  // F at y and, when J is given, its Jacobian in y: analytic in t1 and t2 (derivatives of the bordered solve, on
+  // the same LU), central differences in mu (the modal form's dependence on mu has no closed form here).
+  Eval eval(const V3& y, const Vec& xref, Eigen::Matrix<double, 2, 3>* J = nullptr) {
     const Cached& c = at(mu(y));
     const ModalForm& md = c.modal;
     const EquationSet& eq = *c.equations;
@@ -172,31 +172,38 @@ class Tracer {
     B.bottomLeftCorner(1, m) = b.transpose();
     Vec rhs = Vec::Zero(m + 1);
     rhs(m) = 1.0;
-    const Vec sol = B.partialPivLu().solve(rhs);
+    const Eigen::PartialPivLU<Mat> lu = B.partialPivLu();
+    const Vec sol = lu.solve(rhs);
     Eval e;
     e.a = sol.head(m);
     e.F(0) = sol(m);
-    e.F(1) = md.z().dot(eq.onset_position(t1(y), e.a)) / md.z().norm();
+    const double zn = md.z().norm();
+    e.F(1) = md.z().dot(eq.onset_position(t1(y), e.a)) / zn;
+    if (J == nullptr) return e;
+    // B (a, s) = e_m with b fixed: B d(a, s)/dt = -(dN/dt a, 0), and F(1) is linear in a (onset_position).
+    const double T1 = t1(y), T2 = t2(y);
+    Vec r = Vec::Zero(m + 1);
+    r.head(m) = -(eq.dN_dt1(T1, T2) * e.a);
+    Vec ds = lu.solve(r);
+    (*J)(0, 0) = ds(m) * L_(0);
+    (*J)(1, 0) = md.z().dot(eq.onset_position_dt1(T1, e.a) + eq.onset_position(T1, ds.head(m))) / zn * L_(0);
+    r.head(m) = -(eq.dN_dt2(T1, T2) * e.a);
+    ds = lu.solve(r);
+    (*J)(0, 1) = ds(m) * L_(1);
+    (*J)(1, 1) = md.z().dot(eq.onset_position(T1, ds.head(m))) / zn * L_(1);
+    // last: evaluations at other mu may evict `c` from the cache
+    const double h = kDifferenceStep * std::max(1.0, std::abs(y(2)));
+    V3 yp = y, ym = y;
+    yp(2) += h;
+    ym(2) -= h;
+    J->col(2) = (eval(yp, xref).F - eval(ym, xref).F) / (2.0 * h);
     return e;
   }
 
-  Eigen::Matrix<double, 2, 3> jacobian(const V3& y, const Vec& xref) {
-    Eigen::Matrix<double, 2, 3> J;
-    for (int k = 0; k < 3; ++k) {
-      const double h = kDifferenceStep * std::max(1.0, std::abs(y(k)));
-      V3 yp = y, ym = y;
-      yp(k) += h;
-      ym(k) -= h;
-      J.col(k) = (eval(yp, xref).F - eval(ym, xref).F) / (2.0 * h);
-    }
-    return J;
-  }
-
   V3 tangent(const V3& y, const Vec& xref, const V3& orient) {
-    const auto J = jacobian(y, xref);
-    V3 t = V3(J.row(0).transpose()).cross(V3(J.row(1).transpose()));
-    t.normalize();
-    return t.dot(orient) < 0 ? V3(-t) : t;
+    Eigen::Matrix<double, 2, 3> J;
+    eval(y, xref, &J);
+    return continuation::curve_tangent(J, orient);
   }
 
   // Newton on F(y) = 0, tau . (y - ypred) = 0 from ypred. Returns false if it does not converge.
@@ -212,22 +219,19 @@ class Tracer {
 
   bool correct_unchecked(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
     ++corrector_solves;
-    y = ypred;
-    for (its = 1; its <= kCorrectorIterations; ++its) {
-      e = eval(y, xref);
-      Eigen::Matrix3d A;
-      A.topRows(2) = jacobian(y, xref);
-      A.row(2) = tau.transpose();
-      V3 r;
-      r << e.F, tau.dot(y - ypred);
-      const V3 dy = A.fullPivLu().solve(-r);
-      if (!dy.allFinite() || dy.norm() > kCorrectorMaxStep) return false;
-      y += dy;
-      if (dy.norm() <= kCorrectorStepTol) break;
-    }
-    if (its > kCorrectorIterations) return false;
+    auto linearize = [&](const Vec& yk, Vec& F, Mat& J) {
+      Eigen::Matrix<double, 2, 3> Jk;
+      F = eval(V3(yk), xref, &Jk).F;
+      J = Jk;
+    };
+    Vec yc;
+    const continuation::CorrectorResult r =
+        continuation::correct_pseudo_arclength(linearize, ypred, tau, yc, kCorrector);
+    its = r.iterations;
+    if (!r.converged) return false;
+    y = yc;
     e = eval(y, xref);
-    return y.allFinite();
+    return true;
   }
 
   BranchPoint point(const V3& y, const Eval& e) {
