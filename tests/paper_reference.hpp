@@ -90,14 +90,14 @@ Eigen::MatrixXd random_spd(int n, Rng& rng, double lo = 0.5, double hi = 3.0) {
   return Q * ev.asDiagonal() * Q.transpose();
 }
 
-/// Random system of n dofs with gap g0: contact direction w ~ N(0, 1), then K, then M random SPD (that order: the
-/// systems the modal tests were checked on).
-inline System random_system(int n, unsigned seed, double g0 = 0.7) {
+/// Random system of n dofs with gap g0: contact direction w ~ N(0, 1), then K (eigenvalues in [k_lo, k_hi]), then M
+/// (in [0.5, 3]) random SPD (that order: the systems the modal and completeness tests were checked on).
+inline System random_system(int n, unsigned seed, double g0 = 0.7, double k_lo = 0.5, double k_hi = 3.0) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> nd;
   Eigen::VectorXd w(n);
   for (int i = 0; i < n; ++i) w(i) = nd(rng);
-  const Eigen::MatrixXd K = random_spd(n, rng);
+  const Eigen::MatrixXd K = random_spd(n, rng, k_lo, k_hi);
   const Eigen::MatrixXd M = random_spd(n, rng);
   return System(M, K, w, g0);
 }

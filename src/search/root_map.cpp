@@ -69,7 +69,11 @@ Eigen::VectorXd cell_grid(double a, double b, bool pole_at_a, bool pole_at_b, co
 
 RootMap root_map(const System& system, const RootMapOptions& options) {
   options.validate();
-  const ModalForm modal(system);
+  return root_map(ModalForm(system), options);
+}
+
+RootMap root_map(const ModalForm& modal, const RootMapOptions& options) {
+  options.validate();
   const std::unique_ptr<EquationSet> eq = make_equations(modal, Symmetry::Axial);  // eqs. (5.1a-b)
   RootMap map;
   map.flight_poles = modal.flight_poles(options.t1_min, options.t1_max);

@@ -105,24 +105,13 @@ void compare(const System& s, double T1, double T2, int N) {
             << grid_missed << " missed by the grid, confirmed by the paper's equations)\n";
 }
 
-System random_system(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> nd;
-  Eigen::VectorXd w(n);
-  for (int i = 0; i < n; ++i) w(i) = nd(rng);
-  // K first, then M (explicit order: the systems the suite was checked on)
-  const Eigen::MatrixXd K = ref::random_spd(n, rng, 0.5, 6.0);
-  const Eigen::MatrixXd M = ref::random_spd(n, rng);
-  return System(M, K, w, 1.0);
-}
-
 }  // namespace
 
 class Completeness : public ::testing::TestWithParam<std::pair<int, unsigned>> {};
 
 TEST_P(Completeness, SameRootsAsBruteForceOnRandomSystem) {
   const auto [n, seed] = GetParam();
-  const System s = random_system(n, seed);
+  const System s = ref::random_system(n, seed, 1.0, 0.5, 6.0);  // K's spread wider than the default
   const ModalForm md(s);
   // a few fundamental boxes in each direction (more for n = 2, which has few roots)
   const double boxes = n == 2 ? 5.0 : 2.0;

@@ -25,6 +25,7 @@ TEST(RootMap, BothConditionsVanishAtEverySpp) {
   so.t2_max = 6.0;
   const SolveResult r = solve(s, so);
   ASSERT_GT(r.solutions.size(), 5u);
+  const ModalForm modal(s);  // once for every map
   for (const Solution& sol : r.solutions) {
     RootMapOptions o;
     const double h = 1e-4;
@@ -34,7 +35,7 @@ TEST(RootMap, BothConditionsVanishAtEverySpp) {
     o.t2_max = sol.t2 + h;
     o.t1_points = o.t2_points = 17;
     o.min_cell_points = 2;
-    const RootMap map = root_map(s, o);
+    const RootMap map = root_map(modal, o);
     if (!map.flight_poles.empty() || !map.contact_poles.empty()) continue;  // an SPP on a pole line
     ASSERT_EQ(map.cells.size(), 1u);
     const RootMapCell& c = map.cells[0];
@@ -54,8 +55,8 @@ TEST(RootMap, CellsKeepOffThePoleLines) {
   o.t1_max = 12.0;
   o.t2_max = 12.0;
   o.t1_points = o.t2_points = 60;
-  const RootMap map = root_map(chain5(), o);
   const ModalForm modal(chain5());
+  const RootMap map = root_map(modal, o);
   EXPECT_EQ(map.flight_poles, modal.flight_poles(0.0, 12.0));
   EXPECT_EQ(map.contact_poles, modal.contact_poles(0.0, 12.0));
   EXPECT_EQ(map.cells.size(), (map.flight_poles.size() + 1) * (map.contact_poles.size() + 1));
@@ -84,7 +85,7 @@ TEST(RootMap, SignChangesAlongALineAreTheCountedRoots) {
   o.t1_points = 16;
   o.t2_points = 4000;
   o.min_cell_points = 2;
-  const RootMap map = root_map(s, o);
+  const RootMap map = root_map(modal, o);
   auto negatives = [&](double t1, double t2) {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(eq->H(t1, t2), Eigen::EigenvaluesOnly);
     return static_cast<int>((es.eigenvalues().array() < 0).count());
@@ -96,6 +97,23 @@ TEST(RootMap, SignChangesAlongALineAreTheCountedRoots) {
   }
   EXPECT_GT(counted, 5);
   EXPECT_EQ(changes, counted);
+}
+
+TEST(RootMap, FromTheSystemIsTheMapOfItsModalForm) {
+  // The convenience overload builds the modal form and maps it: the same numbers, bit for bit.
+  RootMapOptions o;
+  o.t1_max = 6.0;
+  o.t2_max = 6.0;
+  o.t1_points = o.t2_points = 24;
+  const RootMap a = root_map(chain5(), o), b = root_map(ModalForm(chain5()), o);
+  ASSERT_EQ(a.cells.size(), b.cells.size());
+  EXPECT_EQ(a.flight_poles, b.flight_poles);
+  EXPECT_EQ(a.contact_poles, b.contact_poles);
+  for (size_t i = 0; i < a.cells.size(); ++i) {
+    EXPECT_EQ(a.cells[i].t1, b.cells[i].t1);
+    EXPECT_EQ(a.cells[i].symmetric, b.cells[i].symmetric);
+    EXPECT_EQ(a.cells[i].onset, b.cells[i].onset);
+  }
 }
 
 TEST(RootMap, RefusesBadOptions) {
