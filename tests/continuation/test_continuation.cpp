@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "continuation/corrector.hpp"
 #include "spp/continuation/continuation.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
@@ -178,4 +179,45 @@ TEST(Continuation, BranchesCutShortMakeTheResultIncompleteWithTheirCount) {
   EXPECT_GT(stalled, 0);
   EXPECT_EQ(r.stalled_branches, stalled);
   EXPECT_NE(r.brief_report().find("incomplete"), std::string::npos) << r.brief_report();
+}
+
+// The generic corrector on a curve known in closed form: the ellipse y0^2 + y1^2 = 1, y2 = y0 (F: R^3 -> R^2).
+TEST(Corrector, NewtonLandsOnTheCurveInThePredictorsHyperplane) {
+  auto linearize = [](const Eigen::VectorXd& y, Eigen::VectorXd& F, Eigen::MatrixXd& J) {
+    F = Eigen::Vector2d(y(0) * y(0) + y(1) * y(1) - 1.0, y(2) - y(0));
+    J.resize(2, 3);
+    J << 2 * y(0), 2 * y(1), 0, -1, 0, 1;
+  };
+  const double a = 0.7;  // the curve point (cos a, sin a, cos a) and its tangent (-sin a, cos a, -sin a) / |.|
+  const Eigen::Vector3d on(std::cos(a), std::sin(a), std::cos(a));
+  const Eigen::Vector3d tau = Eigen::Vector3d(-std::sin(a), std::cos(a), -std::sin(a)).normalized();
+  const Eigen::VectorXd pred = on + 0.05 * tau;
+  Eigen::VectorXd y;
+  const continuation::CorrectorResult r = continuation::correct_pseudo_arclength(linearize, pred, tau, y);
+  ASSERT_TRUE(r.converged);
+  EXPECT_LE(r.iterations, 6);  // quadratic convergence with the exact Jacobian
+  Eigen::VectorXd F;
+  Eigen::MatrixXd J;
+  linearize(y, F, J);
+  EXPECT_LT(F.norm(), 1e-14);
+  EXPECT_LT(std::abs(tau.dot(y - pred)), 1e-14);
+  // The tangent there: the kernel of J, oriented along tau.
+  const Eigen::VectorXd t = continuation::curve_tangent(J, tau);
+  EXPECT_NEAR(t.norm(), 1.0, 1e-14);
+  EXPECT_LT((J * t).norm(), 1e-14);
+  EXPECT_GT(t.dot(tau), 0.9);
+  EXPECT_LT(continuation::curve_tangent(J, -tau).dot(tau), -0.9);
+}
+
+TEST(Corrector, NoCurveInReachIsNotConverged) {
+  // y0^2 + y1^2 = -1 has no real point: the Newton steps do not settle (or leave the branch), never "converged".
+  auto linearize = [](const Eigen::VectorXd& y, Eigen::VectorXd& F, Eigen::MatrixXd& J) {
+    F = Eigen::Vector2d(y(0) * y(0) + y(1) * y(1) + 1.0, y(2));
+    J.resize(2, 3);
+    J << 2 * y(0), 2 * y(1), 0, 0, 0, 1;
+  };
+  Eigen::VectorXd y;
+  EXPECT_FALSE(continuation::correct_pseudo_arclength(linearize, Eigen::Vector3d(0.3, 0.2, 0.0),
+                                                      Eigen::Vector3d(1.0, 0.0, 0.0), y)
+                   .converged);
 }
