@@ -18,6 +18,11 @@ namespace {
 constexpr double kEndDerivativeZero = 1e-7;
 /// Golden-section refinement of a sampled minimum stops at this fraction of the interval: rounding level of s.
 constexpr double kGoldenTol = 1e-15;
+/// admissibility_margin samples each phase at this many points per half-period of its fastest term (within
+/// [kMarginSamplesMin, kMarginSamplesMax]) before refining the three lowest: the margin's minimum moves by O(h^2)
+/// between samples, so a sign change of the margin is not stepped over at the resolution the events are located.
+constexpr double kMarginSamplesPerHalfPeriod = 40.0;
+constexpr int kMarginSamplesMin = 200, kMarginSamplesMax = 200000;
 /// Samples per phase of the point-symmetric orbits' min_gap and min_force: a report, not a proof (their verdict is
 /// structural).
 constexpr int kAdmissibilitySamples = 2000;
@@ -197,7 +202,8 @@ double sinc(double x) {
 // around the three best samples.
 template <typename F>
 double sampled_minimum(const F& f, double len, double fastest) {
-  const int samples = std::clamp(static_cast<int>(40.0 * fastest * len / std::numbers::pi), 200, 200000);
+  const int samples = std::clamp(static_cast<int>(kMarginSamplesPerHalfPeriod * fastest * len / std::numbers::pi),
+                                 kMarginSamplesMin, kMarginSamplesMax);
   const double h = len / samples;
   std::vector<std::pair<double, int>> v;
   v.reserve(samples + 1);

@@ -160,7 +160,7 @@ class CellTracer::Impl {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     Pair e;
     const double xtol = kSegmentRootXtol * (std::abs(lo) + std::abs(hi));
-    for (int it = 0; it < 200; ++it) {
+    for (int it = 0; it < kSegmentRootIterations; ++it) {
       e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
       const double f = e.lam;
       if (std::abs(f) <= rel_ftol * e.scale) break;
@@ -684,7 +684,10 @@ class CellTracer::Impl {
   static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped
   static constexpr int kRetraceDepth = 4;   // nested retraces at most
   static constexpr int kApproach = 3;       // 4x falls of |g| and of the step towards a root before one step crosses it
-  static constexpr int kNewtonSteps = 12;   // plain Newton steps of a 1-D root before every other one bisects
+  // 1-D root iterations at most: from kNewtonSteps on every other one bisects, ~94 halvings, more than a bracket of
+  // doubles can take before reaching kSegmentRootXtol
+  static constexpr int kSegmentRootIterations = 200;
+  static constexpr int kNewtonSteps = 12;  // plain Newton steps of a 1-D root before every other one bisects
   Vec zhat_;
 };
 

@@ -37,7 +37,7 @@ Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
   const double t1_start = t1, t2_start = t2;
   double best = residual_of(eq, t1, t2, a);
   out = {false, t1, t2, best, a};
-  for (int it = 0; it < 12; ++it) {
+  for (int it = 0; it < kPolishIterations; ++it) {
     const Mat N = eq.N(t1, t2);
     Vec F(m + 2);
     F.head(m) = N * a;

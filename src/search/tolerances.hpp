@@ -19,6 +19,8 @@ inline constexpr double kPolishReach = 1e-3;
 /// Newton stops when its step in (t1, t2) falls below this fraction of t1 + t2: a few ulps, where rounding of N
 /// decides the step.
 inline constexpr double kPolishStep = 1e-15;
+/// Newton iterations of polish: quadratic convergence needs 3 to 5 from a traced root; the best iterate is kept.
+inline constexpr int kPolishIterations = 12;
 /// The trust region halves a step at most down to this fraction (20 halvings): a smaller step cannot move the root.
 inline constexpr double kPolishMinAlpha = 1e-6;
 /// The start a = p0 ./ cos(W t1) is used only while every |cos(omega_k t1)| exceeds this: below it the division
