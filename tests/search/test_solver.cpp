@@ -282,6 +282,19 @@ TEST(Solver, NullVectorThatSwingsAwayAndBackWithinAStepKeepsItsRoots) {
   EXPECT_EQ(found, 1);
 }
 
+TEST(Solver, PointAdmissibilityFromSamplesAloneIsNotCertified) {
+  // sample_point_admissibility claimed certified for every orbit: a force zero at every sample (here the zero orbit)
+  // reads as admissible, and that verdict rests on the samples only.
+  const ModalForm md(load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json"));
+  Orbit o;
+  o.t1 = o.t2 = 1.0;
+  o.symmetry = Symmetry::Point;
+  o.a = o.c = o.p0 = o.p0dot = Eigen::VectorXd::Zero(md.m());
+  const Admissibility adm = sample_point_admissibility(md, o);
+  EXPECT_TRUE(adm.admissible);
+  EXPECT_FALSE(adm.certified);
+}
+
 TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
   // det T2 = 0 (paper §6.2): x(-t1) = 0 and x(t2) = 0, the force odd about t2, never admissible, and with
   // g0 != 0 the obstacle moving at w^T v0 = g0 / t2 during contact. Checked with the physical flows (matrix
@@ -309,6 +322,7 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
     const double f1 = orbit_state(md, x.orbit, 0.3 * x.t2).force, f2 = orbit_state(md, x.orbit, 1.7 * x.t2).force;
     EXPECT_NEAR(f1, -f2, 1e-8 * (std::abs(f1) + 1e-3));
     EXPECT_LT(x.min_force, 0.0);
+    EXPECT_TRUE(x.admissibility.certified);  // "not admissible" is structural, not read off the samples
     EXPECT_NEAR(x.orbit.obstacle_velocity, s.g0() / x.t2, 1e-9 * s.g0() / x.t2);
   }
   // Brute force in the paper's style (its fig. 4 trick), independent of the search: on a 240 x 240 grid, cells
