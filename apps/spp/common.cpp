@@ -16,9 +16,16 @@ void check_output(const std::string& out, const std::string& opt, const std::vec
     const bool same = (fs::exists(out, ec) && fs::equivalent(out, in, ec)) ||
                       fs::weakly_canonical(out, ec) == fs::weakly_canonical(in, ec);
     if (same)
-      throw std::invalid_argument(opt + ": \"" + out + "\" is also \"" + in + "\" of this run: write the output to "
+      throw std::invalid_argument(opt + ": \"" + out + "\" is also \"" + in +
+                                  "\" of this run: write the output to "
                                   "another file");
   }
+  // an existing path that is not a regular file (a directory, /dev/null, a pipe) would be replaced by the rename of
+  // the atomic write: refused (found by an independent attack: --out /dev/full replaced the device)
+  const fs::file_status st = fs::status(out, ec);
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    throw std::invalid_argument(opt + ": \"" + out + "\" exists and is not a regular file (a directory or a device): " +
+                                "write the output to a file");
   const fs::path dir = fs::path(out).parent_path();
   if (!dir.empty() && !fs::is_directory(dir, ec))
     throw std::invalid_argument(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");

@@ -8,12 +8,17 @@
 #include <new>
 
 #include "command.hpp"
+#include "spp/detail/dense_products.hpp"
 #include "spp/detail/out_of_memory.hpp"
 
 int main(int argc, char** argv) {
+  // OpenBLAS on the calling thread only, for the whole run: its results depend on its thread count (rounding), so
+  // a run gives the same numbers on every machine; and its thread pool's start-up made --dry-run's timing probe
+  // read 50-100x high (found by an independent attack).
+  const spp::detail::SingleThreadedBlas single_threaded_blas;
   CLI::App app{"spp: periodic orbits with one lasting contact phase per period (SPPs) of vibro-impact systems"};
   app.require_subcommand(1);
-  std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app),    spp::cli::add_continue(app),
+  std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app), spp::cli::add_continue(app),
                                                 spp::cli::add_trajectory(app), spp::cli::add_simulate(app),
                                                 spp::cli::add_verify(app)};
   for (spp::cli::Subcommand& f : spp::cli::add_figures(app)) commands.push_back(std::move(f));

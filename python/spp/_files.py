@@ -9,6 +9,8 @@ def atomic_path(path):
     """Yields a temporary path in path's directory; on success renames it to path with the usual permissions
     (0666 minus the umask, as open() would give), on failure removes it."""
     path = os.fspath(path)
+    if os.path.exists(path) and not os.path.isfile(path):  # the rename would replace a device or a directory
+        raise ValueError(f"cannot write {path!r}: it exists and is not a regular file (a directory or a device)")
     fd, tmp = tempfile.mkstemp(prefix=".tmp.", suffix=os.path.splitext(path)[1],
                                dir=os.path.dirname(os.path.abspath(path)))
     os.close(fd)

@@ -26,7 +26,14 @@ std::string read_file(const std::string& path) {
 void write_file_atomic(const std::string& path, const std::string& content) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) invalid("cannot write \"" + path + "\": directory \"" + dir.string() + "\" does not exist");
+  if (!fs::is_directory(dir))
+    invalid("cannot write \"" + path + "\": directory \"" + dir.string() + "\" does not exist");
+  // the rename below replaces whatever is at path: a directory entry of another kind (a device such as /dev/null, a
+  // pipe, a directory) is refused rather than replaced by a regular file
+  std::error_code st_ec;
+  const fs::file_status st = fs::status(target, st_ec);
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    invalid("cannot write \"" + path + "\": it exists and is not a regular file (a directory or a device)");
   const fs::path tmp = dir / (".tmp." + target.filename().string() + "." + std::to_string(::getpid()));
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

@@ -275,7 +275,7 @@ TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, 
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const size_t nthreads = std::min<size_t>(J, opt.threads > 0 ? static_cast<size_t>(opt.threads) : hw);
   std::vector<std::thread> pool;
-  const detail::SingleThreadedBlas single_threaded_blas;  // the workers call BLAS / LAPACK at once
+  const detail::SingleThreadedBlas single_threaded_blas;  // the workers call BLAS / LAPACK at once (no-op if done)
   if (!opt.progress) {
     for (size_t t = 1; t < nthreads; ++t) pool.emplace_back(worker);
     worker();
@@ -478,6 +478,8 @@ void finalize(const SolveOptions& options, SolveResult& res) {
 SolveResult solve(const System& system, const SolveOptions& options) {
   options.validate();
   require_nonzero_gap(system);
+  // the modal form too: OpenBLAS's results depend on its thread count (rounding), a solve must not
+  const detail::SingleThreadedBlas single_threaded_blas;
   return solve(system, ModalForm(system), options);
 }
 

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -65,6 +66,26 @@ TEST(Io, ErrorsNameTheFieldAndFile) {
   expect(R"({"M": [[1,0],[0,1]], "K": [[2,"x"],[-1,1]], "w": [0,-1], "g0": 1})", "\"K\"[0][1] must be a number");
   expect(R"({"M": [[1,0],[0,1]], "K": {"matrix_market": "nope.mtx"}, "w": [0,-1], "g0": 1})", "nope.mtx");
   expect(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,0], "g0": 1})", "w must be non-zero");
+}
+
+TEST(Io, AtomicWriteRefusesToReplaceADeviceOrAPipe) {
+  // Found by an independent attack: the rename of the atomic write replaced /dev/full (as root) by a regular file.
+  // A FIFO stands for any entry that is not a regular file.
+  const fs::path d = tmpdir() / "atomic_fifo";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const fs::path fifo = d / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    write_file_atomic(fifo.string(), "{}");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d)) ++entries;
+  EXPECT_EQ(entries, 1u) << "a temporary file was left in " << d;
 }
 
 TEST(Io, AtomicWriteLeavesNoFileOnFailure) {

@@ -13,7 +13,7 @@ namespace spp::detail {
 /// setting is restored at the end. For the solver's worker threads, which call BLAS at the same time: OpenBLAS's
 /// own threads would oversubscribe the cores (measured: 4 threads x 40 decompositions at m = 160 took 33-118 s
 /// instead of 1 s). A process-wide setting: Python code calling numpy during a solve runs single-threaded too.
-/// No effect with another BLAS.
+/// No effect with another BLAS. Nested guards are no-ops.
 class SingleThreadedBlas {
  public:
   SingleThreadedBlas();
