@@ -1,9 +1,8 @@
-#include "spp/io/continuation_file.hpp"
-#include "spp/io/verify_file.hpp"
-
 #include <cmath>
 
 #include "io/json.hpp"
+#include "spp/io/continuation_file.hpp"
+#include "spp/io/verify_file.hpp"
 
 namespace spp::io {
 
@@ -97,12 +96,9 @@ json verify_to_json(const VerifyResult& r) {
     }
     checks.push_back(o);
   }
-  return {{"status", to_string(r.status)},
-          {"checks", checks},
-          {"returned", r.returned},
-          {"left", r.left},
-          {"inconsistent", r.inconsistent},
-          {"all_consistent", r.all_consistent()}};
+  return {{"status", to_string(r.status)},  {"checks", checks},
+          {"returned", r.returned},         {"left", r.left},
+          {"inconsistent", r.inconsistent}, {"all_consistent", r.all_consistent()}};
 }
 
 }  // namespace spp::io

@@ -35,7 +35,9 @@ void check_fields(const json& j, std::initializer_list<const char*> known, const
   }
 }
 
-json read_json_file(const std::string& path) { return parse_json_text(read_file(path), path); }
+json read_json_file(const std::string& path) {
+  return parse_json_text(read_file(path), path);
+}
 
 namespace {
 // Deepest nesting of arrays and objects a file may have. spp's own files nest at most 5 deep (a result's
@@ -118,7 +120,8 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
     for (size_t c = 0; c < cols; ++c) {
       if (!v[i][c].is_number()) {
         std::ostringstream os;
-        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got " << describe(v[i][c]);
+        os << where << ": field \"" << key << "\"[" << i << "][" << c << "] must be a number, got "
+           << describe(v[i][c]);
         invalid(os.str());
       }
       A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) = v[i][c].get<double>();

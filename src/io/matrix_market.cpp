@@ -173,7 +173,7 @@ Eigen::MatrixXd read_matrix_market(const std::string& path) {
   return A;
 }
 
-Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path) {
+Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path, long expected_size) {
   std::vector<Eigen::Triplet<double>> entries;
   // (lower index, upper index, which triangle) of every off-diagonal entry of a symmetric file: one triangle only
   std::vector<std::tuple<long, long, signed char>> sides;
@@ -182,6 +182,9 @@ Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path) {
   parse_matrix_market(
       path, false,
       [&](long r, long c, bool symmetric, const auto&) {
+        if (expected_size >= 0 && (r != expected_size || c != expected_size))
+          invalid(path + ": declares a " + std::to_string(r) + " x " + std::to_string(c) + " matrix, expected " +
+                  std::to_string(expected_size) + " x " + std::to_string(expected_size) + " (the length of w)");
         rows = r;
         cols = c;
         sym = symmetric;

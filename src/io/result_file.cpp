@@ -82,12 +82,13 @@ json result_to_json(const System& s, const SolveResult& r) {
               {"admissibility_ends_ok", x.admissibility.ends_ok},
               {"flags", x.flags},
               // the orbit in modal coordinates (modal form §2), so that load_result rebuilds the same Solution
-              {"orbit", {{"a", vec(x.orbit.a)},
-                         {"c", vec(x.orbit.c)},
-                         {"p0", vec(x.orbit.p0)},
-                         {"p0dot", vec(x.orbit.p0dot)},
-                         {"closure_ratio", x.orbit.closure_ratio},
-                         {"energy", x.orbit.energy}}}};
+              {"orbit",
+               {{"a", vec(x.orbit.a)},
+                {"c", vec(x.orbit.c)},
+                {"p0", vec(x.orbit.p0)},
+                {"p0dot", vec(x.orbit.p0dot)},
+                {"closure_ratio", x.orbit.closure_ratio},
+                {"energy", x.orbit.energy}}}};
     if (x.orbit.symmetry == Symmetry::Point) o["obstacle_velocity"] = x.orbit.obstacle_velocity;
     sols.push_back(o);
   }
@@ -143,7 +144,8 @@ SolveResult result_from_json(const json& r, const std::string& where) {
   if (!unc.is_array()) invalid(where + ": field \"uncertified\" must be a list, got " + describe(unc));
   for (size_t i = 0; i < unc.size(); ++i) {
     const Reader u{unc[i], where + ": field \"uncertified\"[" + std::to_string(i) + "]"};
-    res.uncertified.push_back({u.number("t1_lo"), u.number("t1_hi"), u.number("t2_lo"), u.number("t2_hi"), u.text("cause")});
+    res.uncertified.push_back(
+        {u.number("t1_lo"), u.number("t1_hi"), u.number("t2_lo"), u.number("t2_hi"), u.text("cause")});
   }
   const json& sols = top.at("solutions");
   const long n = embedded_dofs(r);

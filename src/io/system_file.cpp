@@ -36,7 +36,7 @@ auto affine_field(const json& j, const char* key, const std::string& name, const
     for (const auto& [k, _] : v.items())
       if (k != "constant" && k != name)
         invalid(where + ": field \"" + key + "\" has a part \"" + k + "\": expected only \"constant\" and \"" + name +
-             "\" (the declared parameter)");
+                "\" (the declared parameter)");
     const std::string part = where + ": field \"" + key + "\"";  // errors name both, e.g. "K": "k2"[0][1]
     T c = read(v, "constant", part);
     T m = v.contains(name) ? read(v, name.c_str(), part) : T();
@@ -166,7 +166,7 @@ std::vector<std::string> system_file_inputs(const std::string& path) {
 
 namespace {
 Eigen::SparseMatrix<double> sparse_matrix_field(const io::json& j, const char* key, const std::string& where,
-                                                const std::string& dir) {
+                                                const std::string& dir, long n) {
   if (!j.contains(key)) io::invalid(where + ": missing field \"" + key + "\"");
   const io::json& v = j.at(key);
   if (!v.is_object()) return io::matrix_field(j, key, where, dir).sparseView();  // a (small) list of rows
@@ -176,7 +176,7 @@ Eigen::SparseMatrix<double> sparse_matrix_field(const io::json& j, const char* k
   std::filesystem::path p = v.at("matrix_market").get<std::string>();
   if (p.is_relative()) p = std::filesystem::path(dir) / p;
   try {
-    return read_sparse_matrix_market(p.string());
+    return read_sparse_matrix_market(p.string(), n);
   } catch (const std::invalid_argument& e) {
     io::invalid(where + ": field \"" + key + "\": " + e.what());
   }
@@ -191,9 +191,11 @@ SparseSystem load_sparse_system(const std::string& path) {
   io::check_fields(j, {"name", "description", "M", "K", "w", "g0"}, path, {"n", "w_normalized", "w_input_norm"});
   const std::string d = std::filesystem::path(path).parent_path().string();
   const std::string dir = d.empty() ? "." : d;
-  Eigen::SparseMatrix<double> M = sparse_matrix_field(j, "M", path, dir);
-  Eigen::SparseMatrix<double> K = sparse_matrix_field(j, "K", path, dir);
+  // w first: its length fixes n, which each Matrix Market file's size line must match before it is read
   Eigen::VectorXd w = io::vector_field(j, "w", path);
+  const long n = static_cast<long>(w.size());
+  Eigen::SparseMatrix<double> M = sparse_matrix_field(j, "M", path, dir, n);
+  Eigen::SparseMatrix<double> K = sparse_matrix_field(j, "K", path, dir, n);
   if (!j.contains("g0")) io::invalid(path + ": missing field \"g0\" (the gap at rest)");
   if (!j.at("g0").is_number()) io::invalid(path + ": field \"g0\" must be a number, got " + io::describe(j.at("g0")));
   std::string name;

@@ -424,3 +424,21 @@ TEST(Io, SparseMatrixMarketReaderFollowsTheDenseOne) {
   EXPECT_THROW(read_matrix_market((d / "big.mtx").string()), std::invalid_argument);
   EXPECT_EQ(read_sparse_matrix_market((d / "big.mtx").string()).coeff(99999, 99999), 1.0);
 }
+
+TEST(Io, SparseSystemRefusesASizeLineOtherThanWsLengthBeforeAllocatingIt) {
+  // Found by an independent attack: an 11-entry file declaring 1e8 x 1e8 took 3.9 GB (setFromTriplets' outer
+  // index and the checks of SparseSystem) before it was refused. The size line is now checked against w's length.
+  const fs::path d = tmpdir() / "sparse_size";
+  fs::create_directories(d);
+  write(d / "huge.mtx", "%%MatrixMarket matrix coordinate real symmetric\n100000000 100000000 1\n1 1 1\n");
+  write(d / "K.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 2\n2 1 -1\n2 2 1\n");
+  write(d / "s.json", R"({"M": {"matrix_market": "huge.mtx"}, "K": {"matrix_market": "K.mtx"}, "w": [0, 1], "g0": 1})");
+  try {
+    load_sparse_system((d / "s.json").string());
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("expected 2 x 2 (the length of w)"), std::string::npos) << what;
+    EXPECT_NE(what.find("\"M\""), std::string::npos) << what;
+  }
+}

@@ -14,7 +14,9 @@ namespace spp {
 Eigen::MatrixXd read_matrix_market(const std::string& path);
 
 /// The same file held sparse (any size; a symmetric file is expanded to both triangles; stored zeros dropped).
-Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path);
+/// expected_size >= 0: the file must declare expected_size x expected_size, checked on its size line, before anything
+/// of that size is allocated (a 1 kB file declaring 1e8 x 1e8 took 3.9 GB before its entries were found wanting).
+Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path, long expected_size = -1);
 
 /// "coordinate real symmetric" (the lower triangle of A, A assumed symmetric) or "general" text of A, 17 digits (reads
 /// back bit for bit); `comment` (one line, may be empty) goes after the banner.
