@@ -72,6 +72,12 @@ int run(const ReduceArgs& a) {
   }
 
   const SparseSystem model = load_sparse_system(a.model);
+  // the reduced model keeps g0: with g0 = 0 spp solve would refuse it after the reduction's work
+  if (model.g0() == 0.0)
+    throw std::invalid_argument(a.model +
+                                ": g0 = 0 (obstacle touching the rest position): spp solve refuses such a "
+                                "model (SPPs then exist only for special parameter values, paper §6.1), so it is not "
+                                "reduced; give the gap at rest a non-zero g0");
   std::cout << model.name() << ": " << model.n() << " dofs, " << model.K().nonZeros() << " non-zeros in K\n";
 
   // one factorisation and one eigensolve (for the largest m) serve every m

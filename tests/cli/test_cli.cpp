@@ -642,6 +642,10 @@ TEST(Cli, ReduceRefusesBadModesAndWritesNothing) {
   expect_refused(bar.string() + " --modes 4,2", "--modes: expected increasing numbers");
   expect_refused((dir() / "nope.json").string(), "nope.json");
   expect_refused(bar.string() + " --spp-csv x.csv", "--spp-csv: needs --window");
+  // g0 = 0: spp solve would refuse the reduced model (found by an independent attack: it was reduced and written)
+  const fs::path bar0 = dir() / "bar20g0.json";
+  ASSERT_EQ(run("generate bar --n 20 --g0 0 --out " + bar0.string()).code, 0);
+  expect_refused(bar0.string() + " --modes 3", "g0 = 0");
   // the output may not replace the model's Matrix Market file
   const CliRun r = run("reduce " + bar.string() + " --modes 3 --out " + (dir() / "bar20.K.mtx").string());
   EXPECT_EQ(r.code, 1) << r.out;
