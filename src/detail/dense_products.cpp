@@ -2,20 +2,9 @@
 
 #include <algorithm>
 #include <climits>
-#include <cstddef>
 
+#include "detail/lapack.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
-
-// BLAS's Fortran symbol (OpenBLAS ships it); the trailing size_t are gfortran's hidden character lengths.
-extern "C" {
-void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
-            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
-            const int* ldc, std::size_t, std::size_t);
-#ifdef SPP_OPENBLAS
-void openblas_set_num_threads(int);
-int openblas_get_num_threads(void);
-#endif
-}
 
 namespace spp::detail {
 

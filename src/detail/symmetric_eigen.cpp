@@ -1,39 +1,11 @@
 #include "spp/detail/symmetric_eigen.hpp"
 
 #include <climits>
-#include <cstddef>
-#include <vector>
+#include <utility>
 
-// LAPACK's Fortran symbols (OpenBLAS ships them); the trailing size_t are gfortran's hidden lengths of the
-// character arguments.
-extern "C" {
-void dsyevd_(const char* jobz, const char* uplo, const int* n, double* a, const int* lda, double* w, double* work,
-             const int* lwork, int* iwork, const int* liwork, int* info, std::size_t, std::size_t);
-void dsygvd_(const int* itype, const char* jobz, const char* uplo, const int* n, double* a, const int* lda, double* b,
-             const int* ldb, double* w, double* work, const int* lwork, int* iwork, const int* liwork, int* info,
-             std::size_t, std::size_t);
-}
+#include "detail/lapack.hpp"
 
 namespace spp::detail {
-
-namespace {
-
-// The workspace query (lwork = liwork = -1), then the call.
-template <class Call>
-bool call_with_workspace(Call call) {
-  int lwork = -1, liwork = -1, info = 0, iwork_size = 0;
-  double work_size = 0.0;
-  call(&work_size, &lwork, &iwork_size, &liwork, &info);
-  if (info != 0) return false;
-  lwork = static_cast<int>(work_size) + 1;
-  liwork = iwork_size;
-  std::vector<double> work(static_cast<std::size_t>(lwork));
-  std::vector<int> iwork(static_cast<std::size_t>(liwork));
-  call(work.data(), &lwork, iwork.data(), &liwork, &info);
-  return info == 0;
-}
-
-}  // namespace
 
 SymmetricEigen symmetric_eigen(const Eigen::MatrixXd& A, bool vectors) {
   SymmetricEigen r;

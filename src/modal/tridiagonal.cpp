@@ -2,38 +2,23 @@
 
 #include <climits>
 #include <cmath>
-#include <cstddef>
 #include <limits>
-#include <vector>
 
+#include "detail/lapack.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
-
-// LAPACK's Householder tridiagonalisation and the product with its Q (OpenBLAS ships them; blocked, level-3
-// BLAS: ~2x Eigen's unblocked one at m = 1000). The trailing size_t are gfortran's hidden character lengths.
-extern "C" {
-void dsytrd_(const char* uplo, const int* n, double* a, const int* lda, double* d, double* e, double* tau, double* work,
-             const int* lwork, int* info, std::size_t);
-void dormtr_(const char* side, const char* uplo, const char* trans, const int* m, const int* n, const double* a,
-             const int* lda, const double* tau, double* c, const int* ldc, double* work, const int* lwork, int* info,
-             std::size_t, std::size_t, std::size_t);
-}
 
 namespace spp::detail {
 
 namespace {
 
-// dsytrd with uplo = 'L' (reflectors below the sub-diagonal, as Eigen's); false if LAPACK reports an error.
+// dsytrd with uplo = 'L' (reflectors below the sub-diagonal, as Eigen's; blocked, level-3 BLAS); false if LAPACK
+// reports an error.
 bool lapack_tridiagonalize(Eigen::MatrixXd& a, Eigen::VectorXd& diag, Eigen::VectorXd& sub, Eigen::VectorXd& tau) {
   const int n = static_cast<int>(a.rows());
   const char uplo = 'L';
-  int lwork = -1, info = 0;
-  double work_size = 0.0;
-  dsytrd_(&uplo, &n, a.data(), &n, diag.data(), sub.data(), tau.data(), &work_size, &lwork, &info, 1);
-  if (info != 0) return false;
-  lwork = static_cast<int>(work_size) + 1;
-  std::vector<double> work(static_cast<std::size_t>(lwork));
-  dsytrd_(&uplo, &n, a.data(), &n, diag.data(), sub.data(), tau.data(), work.data(), &lwork, &info, 1);
-  return info == 0;
+  return call_with_workspace([&](double* work, const int* lwork, int*, const int*, int* info) {
+    dsytrd_(&uplo, &n, a.data(), &n, diag.data(), sub.data(), tau.data(), work, lwork, info, 1);
+  });
 }
 
 }  // namespace
@@ -45,12 +30,10 @@ SymmetricTridiagonal::SymmetricTridiagonal(const Eigen::MatrixXd& A) {
   a_.resize(m);
   b_.resize(m > 1 ? m - 1 : 0);
   lapack_ = m >= kLapackFrom && m <= INT_MAX && lapack_tridiagonalize(householder_, a_, b_, hcoeffs_);
-  if (lapack_) {
-    // done
-  } else if (m > 1) {
-    householder_ = A;
+  if (!lapack_ && m > 1) {
+    householder_ = A;  // (a failed dsytrd may have written into it)
     Eigen::internal::tridiagonalization_inplace(householder_, a_, b_, hcoeffs_, false);
-  } else {
+  } else if (m == 1) {
     a_(0) = A(0, 0);
   }
   double bmax2 = 0.0;
