@@ -36,6 +36,27 @@ Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample
   return out;
 }
 
+// Result statuses and kinds as Python enums (spp._outcome.Outcome: str subclasses) whose members are the C++
+// to_string names: one mechanism for every result enum, its members taken from C++ so that they cannot drift.
+template <class E>
+py::handle& outcome_class() {
+  static py::handle cls;  // owned by the module (m.attr), never freed before it
+  return cls;
+}
+template <class E>
+void bind_outcome(py::module_& m, const char* name, std::initializer_list<E> values, const char* doc) {
+  py::list members;
+  for (const E v : values) members.append(py::make_tuple(spp::to_string(v), spp::to_string(v)));
+  py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
+  cls.attr("__doc__") = doc;
+  m.attr(name) = cls;
+  outcome_class<E>() = cls;
+}
+template <class E>
+py::object outcome(E v) {
+  return outcome_class<E>()(spp::to_string(v));
+}
+
 // The options (or their defaults) with the keyword arguments set on them, field by field: one mechanism for every
 // function that takes an Options struct. An unknown keyword is refused with the list of fields; the list is the bound
 // attributes (not the dunders nor validate), so it cannot drift from the binding.
@@ -75,6 +96,25 @@ std::string fields_repr(const py::object& o, const char* type_name) {
 PYBIND11_MODULE(_spp, m) {
   m.doc() = "spp: periodic orbits with one lasting contact phase (SPPs) of vibro-impact systems";
   m.attr("__version__") = SPP_VERSION;
+  bind_outcome(m, "SolveStatus", {spp::SolveStatus::NotRun, spp::SolveStatus::Success, spp::SolveStatus::Incomplete},
+               "SolveResult.status (and NearestSpp.search_status): success (every check of completeness passed) or "
+               "incomplete (SolveResult.uncertified says where and why)");
+  bind_outcome(m, "SimulationStatus",
+               {spp::SimulationStatus::NotRun, spp::SimulationStatus::Success, spp::SimulationStatus::EventLimit,
+                spp::SimulationStatus::Stalled},
+               "SimulationResult.status");
+  bind_outcome(m, "EventKind", {spp::EventKind::Impact, spp::EventKind::ContactOnset, spp::EventKind::Release},
+               "Event.kind");
+  bind_outcome(m, "VerifyStatus", {spp::VerifyStatus::Success, spp::VerifyStatus::Inconsistent},
+               "VerifyResult.status: inconsistent when a simulation disagrees with the solver's admissibility");
+  bind_outcome(m, "Verdict", {spp::Verdict::Returns, spp::Verdict::Leaves}, "SppCheck.verdict");
+  bind_outcome(m, "ContinuationStatus", {spp::ContinuationStatus::Success, spp::ContinuationStatus::Incomplete},
+               "ContinuationResult.status");
+  bind_outcome(m, "BranchEventKind",
+               {spp::BranchEventKind::LeavesWindow, spp::BranchEventKind::RangeEnd, spp::BranchEventKind::Fold,
+                spp::BranchEventKind::AdmissibilityLost, spp::BranchEventKind::AdmissibilityGained,
+                spp::BranchEventKind::GapClosure, spp::BranchEventKind::ClosedLoop, spp::BranchEventKind::Stalled},
+               "BranchEvent.kind");
 
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
       .def(py::init([](const py::object& M, const py::object& K, const py::object& w, double g0,
@@ -168,7 +208,7 @@ PYBIND11_MODULE(_spp, m) {
   // Results of solve() carry their system (attribute `system`), so that they pickle (as their result file's text,
   // the one format that holds every field) and can be plotted, verified or written without it being passed again.
   py::class_<spp::SolveResult>(m, "SolveResult", py::dynamic_attr())
-      .def_property_readonly("status", [](const spp::SolveResult& r) { return std::string(spp::to_string(r.status)); })
+      .def_property_readonly("status", [](const spp::SolveResult& r) { return outcome(r.status); })
       .def_readonly("solutions", &spp::SolveResult::solutions)
       .def_readonly("warnings", &spp::SolveResult::warnings)
       .def_readonly("t1_min", &spp::SolveResult::t1_min)
@@ -474,8 +514,7 @@ PYBIND11_MODULE(_spp, m) {
   py::class_<spp::NearestSpp>(m, "NearestSpp", "Result of nearest_spp: the SPP nearest to a guess")
       .def_readonly("found", &spp::NearestSpp::found)
       .def_readonly("solution", &spp::NearestSpp::solution)
-      .def_property_readonly("search_status",
-                             [](const spp::NearestSpp& r) { return std::string(spp::to_string(r.search_status)); })
+      .def_property_readonly("search_status", [](const spp::NearestSpp& r) { return outcome(r.search_status); })
       .def_readonly("candidates", &spp::NearestSpp::candidates, "SPPs in the window searched")
       .def_property_readonly(
           "window", [](const spp::NearestSpp& r) { return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi); });
@@ -494,7 +533,7 @@ PYBIND11_MODULE(_spp, m) {
 
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)
-      .def_property_readonly("kind", [](const spp::Event& e) { return spp::to_string(e.kind); })
+      .def_property_readonly("kind", [](const spp::Event& e) { return outcome(e.kind); })
       .def_readonly("x", &spp::Event::x)
       .def_readonly("v_before", &spp::Event::v_before)
       .def_readonly("v_after", &spp::Event::v_after)
@@ -503,7 +542,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("force", &spp::Event::force);
 
   py::class_<spp::SimulationResult>(m, "SimulationResult")
-      .def_property_readonly("status", [](const spp::SimulationResult& r) { return spp::to_string(r.status); })
+      .def_property_readonly("status", [](const spp::SimulationResult& r) { return outcome(r.status); })
       .def_property_readonly(
           "t", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::t); }, "(N,) sample times")
       .def_property_readonly(
@@ -668,7 +707,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("x0", &spp::BranchPoint::x0)
       .def_readonly("v0", &spp::BranchPoint::v0);
   py::class_<spp::BranchEvent>(m, "BranchEvent")
-      .def_property_readonly("kind", [](const spp::BranchEvent& e) { return std::string(spp::to_string(e.kind)); })
+      .def_property_readonly("kind", [](const spp::BranchEvent& e) { return outcome(e.kind); })
       .def_readonly("at", &spp::BranchEvent::at)
       .def_readonly("detail", &spp::BranchEvent::detail);
   py::class_<spp::Branch>(m, "Branch")
@@ -684,8 +723,7 @@ PYBIND11_MODULE(_spp, m) {
           },
           "(N, 4): mu, t1, t2, margin of every point");
   py::class_<spp::ContinuationResult>(m, "ContinuationResult")
-      .def_property_readonly("status",
-                             [](const spp::ContinuationResult& r) { return std::string(spp::to_string(r.status)); })
+      .def_property_readonly("status", [](const spp::ContinuationResult& r) { return outcome(r.status); })
       .def_readonly("incomplete_seed_solves", &spp::ContinuationResult::incomplete_seed_solves)
       .def_readonly("stalled_branches", &spp::ContinuationResult::stalled_branches)
       .def_readonly("unlisted_crossings", &spp::ContinuationResult::unlisted_crossings)
@@ -741,7 +779,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.candidate.t1; })
       .def_property_readonly("t2", [](const spp::SppCheck& c) { return c.candidate.t2; })
       .def_property_readonly("admissible", [](const spp::SppCheck& c) { return c.candidate.admissible; })
-      .def_property_readonly("verdict", [](const spp::SppCheck& c) { return spp::to_string(c.verdict); })
+      .def_property_readonly("verdict", [](const spp::SppCheck& c) { return outcome(c.verdict); })
       .def_readonly("consistent", &spp::SppCheck::consistent)
       .def_readonly("return_errors", &spp::SppCheck::return_errors)
       .def_readonly("periods_followed", &spp::SppCheck::periods_followed)
@@ -751,7 +789,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period);
 
   py::class_<spp::VerifyResult>(m, "VerifyResult")
-      .def_property_readonly("status", [](const spp::VerifyResult& r) { return std::string(spp::to_string(r.status)); })
+      .def_property_readonly("status", [](const spp::VerifyResult& r) { return outcome(r.status); })
       .def_readonly("checks", &spp::VerifyResult::checks)
       .def_readonly("returned", &spp::VerifyResult::returned)
       .def_readonly("left", &spp::VerifyResult::left)

@@ -1,8 +1,8 @@
 // spp: command-line tool. Each subcommand (one file each: solve.cpp, continue.cpp, trajectory.cpp, simulate.cpp,
 // verify.cpp, figures.cpp, generate.cpp, reduce.cpp) registers its options and runs: parse -> options -> validate ->
 // run -> write (atomically, every output prepared before any is written).
-// Exit codes: 0 success, 1 invalid input, usage error or failed run (message on stderr), 3 verify: a simulation
-// disagrees with the solver's admissibility.
+// Exit codes: 0 success, 1 invalid input, usage error, failed run or internal error (message on stderr; an internal
+// error, a defect of spp, says so), 3 verify: a simulation disagrees with the solver's admissibility.
 
 #include <iostream>
 #include <new>
@@ -18,6 +18,11 @@ int main(int argc, char** argv) {
   const spp::detail::SingleThreadedBlas single_threaded_blas;
   CLI::App app{"spp: periodic orbits with one lasting contact phase per period (SPPs) of vibro-impact systems"};
   app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success (spp solve also when its status is incomplete: read the status); 1 invalid input, usage "
+      "error, failed run, out of memory or internal error (one message on stderr naming what and where; no output "
+      "file written); 3 spp verify: a simulation disagrees with the solver's admissibility; 130 spp solve stopped "
+      "by Ctrl-C (what was found is written, status incomplete).");
   std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app), spp::cli::add_continue(app),
                                                 spp::cli::add_trajectory(app), spp::cli::add_simulate(app),
                                                 spp::cli::add_verify(app)};

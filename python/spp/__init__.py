@@ -6,11 +6,12 @@ function takes its options struct (SolveOptions, SimulateOptions, VerifyOptions,
 any of its fields as keywords. Arrays are numpy; invalid input raises ValueError with the C++ message.
 """
 from ._spp import __version__
-from ._spp import (Branch, BranchEvent, BranchPoint, ContinuationResult, ContinueOptions, Event, NearestSpp,
-                   ParametricSystem, RootMap, RootMapCell, RootMapOptions, SimulateOptions, SimulationResult, Solution,
-                   SolveOptions, SolveProgress, SolveResult, SppCandidate, SppCheck, Symmetry, System, VerifyOptions,
-                   VerifyResult, chain, continue_branches, fundamental_box, load_result, modal_frequencies,
-                   nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
+from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, ContinuationResult, ContinuationStatus,
+                   ContinueOptions, Event, EventKind, NearestSpp, ParametricSystem, RootMap, RootMapCell,
+                   RootMapOptions, SimulateOptions, SimulationResult, SimulationStatus, Solution, SolveOptions,
+                   SolveProgress, SolveResult, SolveStatus, SppCandidate, SppCheck, Symmetry, System, Verdict,
+                   VerifyOptions, VerifyResult, VerifyStatus, chain, continue_branches, fundamental_box, load_result,
+                   modal_frequencies, nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
 from . import _spp
 from ._progress import Bar as _Bar
 
@@ -35,4 +36,5 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "RootMapOptions", "chain", "rod_with_slip", "two_dof", "solve", "simulate", "verify", "load_result",
            "root_map", "ParametricSystem", "continue_branches", "ContinueOptions", "Branch", "BranchEvent",
            "BranchPoint", "ContinuationResult", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
-           "trajectory", "SolveProgress", "__version__"]
+           "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
+           "ContinuationStatus", "BranchEventKind", "__version__"]

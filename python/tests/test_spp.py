@@ -1,5 +1,7 @@
 """The Python package mirrors the C++ tests: the paper's examples, simulation, verification, errors."""
+import json
 import os
+import pickle
 import sys
 
 import numpy as np
@@ -438,3 +440,26 @@ def test_system_in_other_units_per_dof_is_accepted_through_python():
     a, b = spp.System(M, K, w, 1.0), spp.System(D @ M @ D, D @ K @ D, D @ w, 1.0)
     fa, fb = spp.modal_frequencies(a), spp.modal_frequencies(b)
     assert np.allclose(fa["flight"], fb["flight"], rtol=1e-9) and np.allclose(fa["contact"], fb["contact"], rtol=1e-9)
+
+
+def test_result_statuses_and_kinds_are_enums_that_read_as_their_names():
+    s = chain5()
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    assert r.status is spp.SolveStatus.success and r.status == "success" and f"{r.status}" == "success"
+    assert repr(r.status) == "SolveStatus.success" and json.loads(json.dumps({"s": r.status})) == {"s": "success"}
+    assert pickle.loads(pickle.dumps(r.status)) is spp.SolveStatus.success
+    assert spp.nearest_spp(s, 3.216, 4.0).search_status is spp.SolveStatus.success
+    sol = next(x for x in r.solutions if x.admissible)
+    sim = spp.simulate(s, sol.x0, sol.v0, sol.period)
+    assert sim.status is spp.SimulationStatus.success
+    assert [e.kind for e in sim.events][:2] == [spp.EventKind.contact_onset, spp.EventKind.release]
+    v = spp.verify(s, r)
+    assert v.status is spp.VerifyStatus.success
+    assert {c.verdict for c in v.checks} == {spp.Verdict.returns, spp.Verdict.leaves}
+    ps = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                              np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 0.0, "k2", 1.0, 10.0)
+    c = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    assert c.status is spp.ContinuationStatus.success
+    kinds = {e.kind for b in c.branches for e in b.events}
+    assert spp.BranchEventKind.gap_closure in kinds and all(isinstance(k, spp.BranchEventKind) for k in kinds)
+    assert [m.value for m in spp.SolveStatus] == ["not_run", "success", "incomplete"]

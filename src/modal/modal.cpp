@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "spp/detail/dense_products.hpp"
+#include "spp/detail/internal_error.hpp"
 #include "spp/detail/out_of_memory.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
 
@@ -15,7 +16,7 @@ namespace spp {
 // (a function-try-block: the eigensolvers' n x n workspaces are what runs out first for a large n)
 ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) try : n_(system.n()) {
   detail::SymmetricEigen ges = detail::generalized_symmetric_eigen(system.K(), system.M());
-  if (!ges.ok) throw std::runtime_error("modal form: the generalized eigenproblem K v = omega^2 M v did not converge");
+  if (!ges.ok) detail::internal_error("modal form: the generalized eigenproblem K v = omega^2 M v did not converge");
   Eigen::VectorXd omega_all = ges.values.cwiseMax(0.0).cwiseSqrt();
   Eigen::MatrixXd Phi_all = std::move(ges.vectors);  // M-normalised
   const Eigen::VectorXd& w = system.w();
@@ -73,8 +74,7 @@ ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_
   z_ = omega_.cwiseProduct(u_);
   Eigen::MatrixXd S = Eigen::MatrixXd(omega_.array().square().matrix().asDiagonal()) - z_ * z_.transpose();
   detail::SymmetricEigen es = detail::symmetric_eigen(S);
-  if (!es.ok)
-    throw std::runtime_error("modal form: the contact-phase eigenproblem of S = W^2 - z z^T did not converge");
+  if (!es.ok) detail::internal_error("modal form: the contact-phase eigenproblem of S = W^2 - z z^T did not converge");
   d_ = es.values.cwiseMax(0.0).cwiseSqrt();
   G_ = std::move(es.vectors);
   if (m > 0) {

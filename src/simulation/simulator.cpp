@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "spp/detail/cosine_sum.hpp"
+#include "spp/detail/internal_error.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
 
@@ -24,7 +25,7 @@ Simulator::Phase make_phase(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, 
   }
   const Eigen::MatrixXd Mr = T.transpose() * M * T, Kr = T.transpose() * K * T;
   const detail::SymmetricEigen es = detail::generalized_symmetric_eigen(Kr, Mr);  // Psi^T Mr Psi = I
-  if (!es.ok) throw std::runtime_error("simulator: generalized eigenproblem failed");
+  if (!es.ok) detail::internal_error("simulator: the generalized eigenproblem of a phase did not converge");
   p.omega = es.values.cwiseMax(0.0).cwiseSqrt();
   p.Phi = T * es.vectors;
   return p;
@@ -117,7 +118,7 @@ std::vector<double> uniform_times(double duration, double per_unit) {
   return t;
 }
 
-std::string to_string(EventKind kind) {
+const char* to_string(EventKind kind) {
   switch (kind) {
     case EventKind::Impact: return "impact";
     case EventKind::ContactOnset: return "contact_onset";
@@ -126,7 +127,7 @@ std::string to_string(EventKind kind) {
   return "unknown";
 }
 
-std::string to_string(SimulationStatus status) {
+const char* to_string(SimulationStatus status) {
   switch (status) {
     case SimulationStatus::NotRun: return "not_run";
     case SimulationStatus::Success: return "success";
@@ -293,7 +294,7 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   }
 
   res.status = SimulationStatus::Success;
-  int stalled_events = 0;  // consecutive events without time passing
+  int stalled_events = 0;                 // consecutive events without time passing
   constexpr int kMaxStalledEvents = 100;  // zero-time events in a row: an event sequence at one instant
   // is a few (impact, onset, release); 100 is a loop that time cannot leave
   while (t < opt.duration) {

@@ -165,7 +165,7 @@ std::vector<SppCandidate> candidates(const SolveResult& result) {
   return out;
 }
 
-std::string to_string(Verdict v) {
+const char* to_string(Verdict v) {
   return v == Verdict::Returns ? "returns" : "leaves";
 }
 

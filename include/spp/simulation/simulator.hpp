@@ -39,7 +39,7 @@ enum class EventKind {
   ContactOnset,  ///< gap and normal velocity zero, constraint force non-negative: lasting contact begins
   Release        ///< the contact force would turn negative: free flight begins
 };
-std::string to_string(EventKind kind);
+const char* to_string(EventKind kind);
 
 struct Event {
   double t = 0.0;
@@ -62,7 +62,7 @@ enum class SimulationStatus {
   EventLimit,  ///< stopped at max_events before t = duration (samples end at the last event)
   Stalled      ///< over 100 events in a row without time passing (samples end there): a defect to report
 };
-std::string to_string(SimulationStatus status);
+const char* to_string(SimulationStatus status);
 
 struct SimulationResult {
   SimulationStatus status = SimulationStatus::NotRun;

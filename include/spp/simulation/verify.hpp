@@ -40,7 +40,7 @@ enum class Verdict {
   Returns,  ///< over the first period: the expected events, and a return error below return_tol
   Leaves,   ///< the simulation departs from the orbit within the first period (departure_* say when and how)
 };
-std::string to_string(Verdict v);
+const char* to_string(Verdict v);
 
 struct SppCheck {
   SppCandidate candidate;
