@@ -1,6 +1,7 @@
 // spp solve: every SPP of a window (or, for a parametric system with g0 = 0, of (t1, t2, parameter), paper §6.1).
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -55,6 +56,9 @@ std::function<bool(const SolveProgress&)> cli_progress(bool quiet, bool& shown) 
   };
 }
 
+// From this many dofs, spp solve announces its stages before the search (each O(n^3) stage takes seconds).
+constexpr int kStageNotesFrom = 500;
+
 // A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
 int run_zero_gap(const SolveArgs& a) {
   if (a.box) throw std::invalid_argument("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
@@ -83,12 +87,12 @@ int run_zero_gap(const SolveArgs& a) {
 }
 
 int run(SolveArgs& a) {
-  a.options.symmetry = a.symmetry == "point" ? Symmetry::Point : Symmetry::Axial;
+  a.options.symmetry = *symmetry_named(a.symmetry);  // CLI11 checked the name
   const bool maxes = a.t1_max_given->count() > 0 || a.t2_max_given->count() > 0;
   if (a.box && maxes) throw std::invalid_argument("--box sets the window's upper ends: give it or --t1-max/--t2-max");
   if (!a.box && !(a.t1_max_given->count() > 0 && a.t2_max_given->count() > 0))
     throw std::invalid_argument("--t1-max and --t2-max are required (or --box: the fundamental box)");
-  if (!a.box) a.options.validate();  // with --box, once the box is known (below)
+  if (!a.box) a.options.validate();                                // with --box, once the box is known (below)
   std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
   check_output(a.json, "--json", inputs);
   inputs.push_back(a.json);
@@ -108,21 +112,32 @@ int run(SolveArgs& a) {
       std::cerr << "note: --at " << a.at << " lies outside the range [" << par.min << ", " << par.max << "] that "
                 << a.system << " declares for " << par.name << "\n";
   }
+  // Large systems spend minutes before the search reports progress (reading, the O(n^3) checks and modal form):
+  // each stage is announced on stderr with its time, so that the run is never silent.
+  const auto clock_start = std::chrono::steady_clock::now();
+  auto elapsed = [&clock_start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  };
   const System sys = parametric ? ps->at(a.at) : load_system(a.system);
+  const bool stages = !a.quiet && sys.n() >= kStageNotesFrom;
+  if (stages)
+    std::cerr << "spp: " << sys.n() << " dofs read and checked in " << std::setprecision(3) << elapsed()
+              << " s; computing the modal form (O(n^3): two eigenproblems of size n)\n";
   const ModalForm modal(sys);
+  if (stages) std::cerr << "spp: modal form done at " << std::setprecision(3) << elapsed() << " s\n";
   if (a.box) {
     std::tie(a.options.t1_max, a.options.t2_max) = fundamental_box(modal);
     if (a.options.t1_min >= a.options.t1_max || a.options.t2_min >= a.options.t2_max) {
       std::ostringstream m;
       m << std::setprecision(10) << "--box: the fundamental box t1 <= " << a.options.t1_max
-        << ", t2 <= " << a.options.t2_max << " does not reach beyond --t1-min " << a.options.t1_min
-        << " / --t2-min " << a.options.t2_min;
+        << ", t2 <= " << a.options.t2_max << " does not reach beyond --t1-min " << a.options.t1_min << " / --t2-min "
+        << a.options.t2_min;
       throw std::invalid_argument(m.str());
     }
     a.options.validate();
     if (!a.quiet)
-      std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max << ", t2 <= pi / d_1 = "
-                << a.options.t2_max << "\n";
+      std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max
+                << ", t2 <= pi / d_1 = " << a.options.t2_max << "\n";
   }
   if (a.dry_run) {  // the work, before any: pole lines, cells, a rough time; nothing written
     const WindowEstimate e = estimate_window(sys, modal, a.options);
@@ -131,8 +146,8 @@ int run(SolveArgs& a) {
               << " contact pole lines, " << e.cells << " cells\n"
               << std::setprecision(2) << "one evaluation of H here: " << e.seconds_per_evaluation * 1e3
               << " ms; estimate: " << e.cells << " cells x ~" << static_cast<long>(e.evaluations_per_cell)
-              << " evaluations per cell (benchmarks' mean" << (a.options.certify_steps ? ", certified" : "")
-              << ") / " << e.threads << " thread(s) ~ " << e.seconds
+              << " evaluations per cell (benchmarks' mean" << (a.options.certify_steps ? ", certified" : "") << ") / "
+              << e.threads << " thread(s) ~ " << e.seconds
               << " s (an order of magnitude: it varies several-fold between systems)\n";
     return 0;
   }
@@ -144,7 +159,7 @@ int run(SolveArgs& a) {
   // prepare every output before writing any
   const std::string json_text = a.json.empty() ? "" : result_json(sys, res);
   const std::string csv_text = a.csv.empty() ? "" : result_to_csv(res);
-  if (std::abs(sys.w_input_norm() - 1.0) > 1e-12)  // (a unit w's norm may round to 1 - 1 ulp)
+  if (std::abs(sys.w_input_norm() - 1.0) > kSameToRounding)  // (a unit w's norm may round to 1 - 1 ulp)
     std::cerr << "note: w was normalised (|w| = " << sys.w_input_norm() << "); g0 divided by it: g0 = " << sys.g0()
               << "\n";
   if (!a.quiet) std::cout << result_table(res);

@@ -84,6 +84,13 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
     os << "system: w must have " << n << " entries like M, got " << w.size();
     detail::invalid(os.str());
   }
+  if (n > kMaxDenseDofs) {
+    std::ostringstream os;
+    os << "system: n = " << n << " dofs is beyond the dense solver (at most " << kMaxDenseDofs
+       << " dofs: its O(n^3) modal form would take hours); reduce the model first (spp reduce MODEL --modes m --out "
+          "REDUCED.json, or spp::reduce)";
+    detail::invalid(os.str());
+  }
   check_finite(M, "M");
   check_finite(K, "K");
   check_finite(w, "w");
@@ -125,7 +132,7 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
 
 System System::normalized(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, double input_norm,
                           std::string name) {
-  if (!(std::abs(w.stableNorm() - 1.0) <= 1e-12)) {
+  if (!(std::abs(w.stableNorm() - 1.0) <= kSameToRounding)) {
     std::ostringstream os;
     os << "system: a stored (normalised) w must have |w| = 1, got |w| = " << w.stableNorm();
     detail::invalid(os.str());

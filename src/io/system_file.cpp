@@ -51,9 +51,16 @@ System system_from_json(const json& j, const std::string& where, const std::stri
   if (!j.is_object()) invalid(where + ": expected a JSON object with fields M, K, w, g0");
   // (a result's "system" also carries what result_to_json adds)
   check_fields(j, {"name", "description", "M", "K", "w", "g0"}, where, {"n", "w_normalized", "w_input_norm"});
+  // w first: its length is n, refused beyond the dense solver's reach before M and K (maybe Matrix Market files of
+  // gigabytes) are read
+  Eigen::VectorXd w = vector_field(j, "w", where);
+  if (w.size() > kMaxDenseDofs)
+    invalid(where + ": field \"w\" has " + std::to_string(w.size()) + " entries: a system of more than " +
+            std::to_string(kMaxDenseDofs) +
+            " dofs is beyond the dense solver (its O(n^3) modal form would take hours); reduce it first: spp reduce " +
+            where + " --modes m --out REDUCED.json");
   Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
   Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
-  Eigen::VectorXd w = vector_field(j, "w", where);
   const double g0 = g0_field(j, where);
   try {
     return System(std::move(M), std::move(K), std::move(w), g0, name_field(j, where));

@@ -14,7 +14,8 @@ namespace spp {
 class System {
  public:
   /// Validates and stores the system; w and g0 are divided by |w| (the gap keeps its sign and zero set).
-  /// M, K: n x n symmetric positive definite; w: n, not zero. Cost O(n^3) (the definiteness test: eigenvalues).
+  /// M, K: n x n symmetric positive definite, n <= kMaxDenseDofs; w: n, not zero. Cost O(n^3) (the definiteness
+  /// test: eigenvalues).
   /// Throws std::invalid_argument naming the field and the rule on any invalid input.
   System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, std::string name = "");
 
@@ -45,6 +46,17 @@ class System {
   double w_input_norm_ = 1.0;
   std::string name_;
 };
+
+/// Largest n a (dense) System takes. Its O(n^3) steps (the definiteness test, the modal form's two eigenproblems) take
+/// ~15 min at this size on one core and each n x n matrix 0.8 GB; beyond, a model is reduced first (spp reduce,
+/// reduction/craig_bampton.hpp: sparse, to its contact coordinate plus m modes). The constructor refuses more.
+inline constexpr int kMaxDenseDofs = 10000;
+
+/// Relative difference below which two values that should be equal are the same to rounding: a unit w's norm, a
+/// system compared with the one a result file holds (written with 17 digits), a parametric system's affine parts
+/// (each a sum of a few rounded terms: ~1e-15 apart; 1e-12 leaves room for n-term sums, and is far below any
+/// meaningful change of a model).
+inline constexpr double kSameToRounding = 1e-12;
 
 /// Relative tolerance used to accept M and K as symmetric: |A - A^T|_max <= tol * |A|_max.
 inline constexpr double kSymmetryTolerance = 1e-10;
