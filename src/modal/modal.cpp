@@ -2,21 +2,51 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 #include "spp/detail/dense_products.hpp"
 #include "spp/detail/internal_error.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/detail/out_of_memory.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
 
 namespace spp {
 
+namespace {
+// The eigensolver's error on each omega^2 is ~ eps omega_max^2 (backward stable): the slowest omega^2 is resolved to
+// kSpectrumDigits relative only if omega_max^2 / omega_min^2 <= kSpectrumDigits / eps (omega ratio ~6.7e4). Beyond,
+// the slow modes, which carry the SPPs, are rounding: found by an independent review (a chain with one mass 1e-30
+// gave "success, 0 SPPs" in a NaN window; frequencies 0.304, 0.903 for 0.289, 0.898). Refused, not solved.
+constexpr double kSpectrumDigits = 1e-6;
+void check_resolved_spectrum(const Eigen::VectorXd& omega2) {  // ascending
+  const double lo = omega2(0), hi = omega2(omega2.size() - 1);
+  if (lo > 0.0 && std::isfinite(hi) && std::numeric_limits<double>::epsilon() * hi <= kSpectrumDigits * lo) return;
+  std::ostringstream os;
+  if (!(lo > 0.0) || !std::isfinite(hi) || !std::isfinite(lo))
+    os << std::setprecision(3) << "system: K v = omega^2 M v gives omega^2 from " << lo << " to " << hi
+       << ", not positive and finite: M or K is singular to rounding although each passed the definiteness test (a "
+          "near-zero mass or stiffness? check M and K)";
+  else
+    os << std::setprecision(3) << "system: its frequencies span omega_max / omega_min = "
+       << std::sqrt(std::max(hi, 0.0)) / std::sqrt(std::max(lo, 0.0))
+       << " (omega_min = " << std::sqrt(std::max(lo, 0.0)) << ", omega_max = " << std::sqrt(std::max(hi, 0.0))
+       << "): beyond what double precision resolves (at most "
+       << std::sqrt(kSpectrumDigits / std::numeric_limits<double>::epsilon())
+       << ", for 6 significant digits of the slowest omega^2). A mode that much stiffer is quasi-static: condense it "
+          "out (static condensation), or check M and K (units, a near-zero mass)";
+  detail::invalid(os.str());
+}
+}  // namespace
+
 // (a function-try-block: the eigensolvers' n x n workspaces are what runs out first for a large n)
 ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) try : n_(system.n()) {
   detail::SymmetricEigen ges = detail::generalized_symmetric_eigen(system.K(), system.M());
   if (!ges.ok) detail::internal_error("modal form: the generalized eigenproblem K v = omega^2 M v did not converge");
+  check_resolved_spectrum(ges.values);
   Eigen::VectorXd omega_all = ges.values.cwiseMax(0.0).cwiseSqrt();
   Eigen::MatrixXd Phi_all = std::move(ges.vectors);  // M-normalised
   const Eigen::VectorXd& w = system.w();
@@ -91,6 +121,12 @@ ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_
 
 const char* to_string(Symmetry s) {
   return s == Symmetry::Axial ? "axial" : "point";
+}
+
+std::optional<Symmetry> symmetry_named(std::string_view name) {
+  for (const Symmetry s : {Symmetry::Axial, Symmetry::Point})
+    if (name == to_string(s)) return s;
+  return std::nullopt;
 }
 
 Eigen::MatrixXd ModalForm::contact_cos(double t) const {

@@ -159,3 +159,24 @@ TEST(Modal, TangentPolesAreOddMultiplesOfHalfPiMerged) {
   EXPECT_TRUE(std::is_sorted(p.begin(), p.end()));
   EXPECT_EQ(std::count_if(p.begin(), p.end(), [](double t) { return std::abs(t - std::numbers::pi / 2) < 1e-12; }), 1);
 }
+
+TEST(ModalForm, RefusesASpectrumDoublePrecisionCannotResolve) {
+  // Found by an independent review: a chain with one mass 1e-30 passed validation (each of M, K is definite after
+  // unit-diagonal scaling), then solve said "success, 0 SPPs" in a NaN window, and the slow frequencies came out
+  // 0.304, 0.903 for 0.289, 0.898. A mass of 1e-8 (omega ratio 4.9e4) is still solved.
+  const System c = spp::chain(5, {1.0}, {1.0}, 4, spp::ContactSide::Upper, 1.0);
+  for (const double tiny : {1e-320, 1e-100, 1e-30, 1e-16}) {
+    Eigen::MatrixXd M = c.M();
+    M(0, 0) = tiny;
+    const spp::System sys(M, c.K(), c.w(), c.g0());
+    try {
+      const spp::ModalForm md(sys);
+      FAIL() << "mass " << tiny << ": expected a refusal";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("M and K"), std::string::npos) << e.what();
+    }
+  }
+  Eigen::MatrixXd M = c.M();
+  M(0, 0) = 1e-8;
+  EXPECT_NO_THROW(spp::ModalForm(spp::System(M, c.K(), c.w(), c.g0())));
+}

@@ -9,6 +9,8 @@
 // an SPP (their amplitude must be zero for the gap to close at rest position g0 != 0).
 
 #include <Eigen/Dense>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include "spp/core/system.hpp"
@@ -20,12 +22,17 @@ namespace spp {
 /// option; make_equations (equation_set.hpp) turns it into the equations of its case.
 enum class Symmetry { Axial, Point };
 const char* to_string(Symmetry s);
+/// The Symmetry whose to_string is `name` ("axial", "point"); nullopt for any other name (the one parser of the CLI,
+/// the result files and Python).
+std::optional<Symmetry> symmetry_named(std::string_view name);
 
 class ModalForm {
  public:
   /// decoupling_tol: a mode with |u_k| below it is treated as not seeing the contact.
   /// repeat_tol: relative gap below which two frequencies are treated as one repeated frequency.
   /// Cost O(n^3) (two symmetric eigenproblems, ~1 s at n = 1000): build it once and pass it on.
+  /// Throws std::invalid_argument when double precision cannot resolve the spectrum: omega_max / omega_min above
+  /// ~6.7e4 (the slowest omega^2 would keep fewer than 6 digits), or omega^2 not positive and finite.
   explicit ModalForm(const System& system, double decoupling_tol = 1e-10, double repeat_tol = 1e-9);
 
   int n() const { return n_; }                               ///< dofs of the system
