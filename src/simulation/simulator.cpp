@@ -189,6 +189,16 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     detail::invalid(os.str());
   }
   if (!x0.allFinite() || !v0.allFinite()) detail::invalid("simulate: x0 and v0 must be finite numbers");
+  // Event finding squares modal amplitudes and multiplies them by powers of omega: a state whose energy is near the
+  // overflow threshold gave an energy of inf, NaN bounds and an endless event loop (found by an independent review:
+  // x0 = 1e308 spun forever, 1e300 ended "success" with energy -nan). Refused well before.
+  constexpr double kMaxEnergy = 1e250;
+  if (const double e0 = energy(x0, v0); !(e0 <= kMaxEnergy)) {
+    std::ostringstream os;
+    os << "simulate: the initial state's energy 1/2 v0^T M v0 + 1/2 x0^T K x0 is " << e0 << ": beyond " << kMaxEnergy
+       << ", where the event computations overflow (change the units of x, M or K)";
+    detail::invalid(os.str());
+  }
   const Eigen::MatrixXd& M = system_.M();
   const Eigen::VectorXd& w = system_.w();
   const double e = opt.restitution;

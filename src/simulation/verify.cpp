@@ -191,9 +191,9 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
       detail::invalid("verify: solution " + std::to_string(i) + ": x0 and v0 must have " + std::to_string(system.n()) +
                       " entries (the system's dofs), got " + std::to_string(c.x0.size()) + " and " +
                       std::to_string(c.v0.size()));
-    if (!(c.t1 > 0.0 && c.t2 > 0.0))
-      detail::invalid("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0, got " + fmt(c.t1) + " and " +
-                      fmt(c.t2));
+    if (!(c.t1 > 0.0 && c.t2 > 0.0 && std::isfinite(opt.periods * c.period())))
+      detail::invalid("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0 with a finite period, got " +
+                      fmt(c.t1) + " and " + fmt(c.t2));
     const double T = c.period();
     SppCheck chk;
     chk.candidate = c;
@@ -202,7 +202,13 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
     o.restitution = opt.restitution;
     o.sample_events = false;
     for (int k = 1; k <= opt.periods; ++k) o.sample_times.push_back(std::min(k * T, o.duration));
-    const SimulationResult r = sim.run(c.x0, c.v0, o);
+    const SimulationResult r = [&] {  // a state the simulator refuses (e.g. its energy overflows): name the solution
+      try {
+        return sim.run(c.x0, c.v0, o);
+      } catch (const std::invalid_argument& e) {
+        detail::invalid("verify: solution " + std::to_string(i) + ": " + e.what());
+      }
+    }();
     chk.impacts = r.impacts;
     chk.contact_onsets = r.contact_onsets;
     chk.releases = r.releases;

@@ -198,3 +198,26 @@ TEST(Simulator, RejectsBadInput) {
   o.duration = -1.0;
   EXPECT_THROW(sim.run(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), o), std::invalid_argument);
 }
+
+TEST(Simulator, RefusesAStateWhoseEnergyOverflowsTheEventComputations) {
+  // Found by an independent review: x0 = 1e308 looped forever (inf energy, NaN event bounds); 1e300 ended
+  // "success" with energy -nan. 1e120 (energy 1e240) is still simulated exactly.
+  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  SimulateOptions o;
+  o.duration = 10.0;
+  for (const double big : {1e308, 1e300, 1e150}) {
+    Eigen::VectorXd x0 = Eigen::VectorXd::Zero(5);
+    x0(0) = big;
+    try {
+      simulate(s, x0, Eigen::VectorXd::Zero(5), o);
+      FAIL() << big << ": expected a refusal";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("energy"), std::string::npos) << e.what();
+    }
+  }
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(5);
+  x0(0) = 1e120;
+  const SimulationResult r = simulate(s, x0, Eigen::VectorXd::Zero(5), o);
+  EXPECT_EQ(r.status, SimulationStatus::Success);
+  EXPECT_NEAR(r.energy_final / r.energy_initial, 1.0, 1e-9);
+}

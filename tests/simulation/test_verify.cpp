@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <cmath>
 
 #include "spp/io.hpp"
@@ -109,4 +108,30 @@ TEST(Verify, AnSppMislabelledAdmissibleMakesTheResultInconsistent) {
   EXPECT_EQ(r.status, VerifyStatus::Inconsistent) << r.brief_report();
   EXPECT_EQ(r.inconsistent, 1);
   EXPECT_FALSE(r.all_consistent());
+}
+
+TEST(Verify, ACandidateTheSimulatorRefusesIsNamedByItsIndex) {
+  // Found by an independent review: a result whose solution 0 had x0[0] = 1e308 hung spp verify; with t1 = 1e308,
+  // the message said "simulate: duration must be finite" without naming the solution.
+  const System s = rod4();
+  std::vector<SppCandidate> spps = spps_of(s, 8.0, 3.0);
+  ASSERT_GE(spps.size(), 2u);
+  VerifyOptions o;
+  auto message = [&](const std::vector<SppCandidate>& c) {
+    try {
+      verify(s, c, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no refusal");
+  };
+  std::vector<SppCandidate> huge = spps;
+  huge[1].x0(0) = 1e308;
+  EXPECT_NE(message(huge).find("verify: solution 1: simulate: the initial state's energy"), std::string::npos)
+      << message(huge);
+  std::vector<SppCandidate> long_period = spps;
+  long_period[1].t1 = 1e308;
+  EXPECT_NE(message(long_period).find("verify: solution 1: t1 and t2 must be > 0 with a finite period"),
+            std::string::npos)
+      << message(long_period);
 }
