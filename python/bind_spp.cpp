@@ -350,8 +350,7 @@ PYBIND11_MODULE(_spp, m) {
   auto symmetry_of = [](const py::object& v) {
     if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
     const std::string name = py::str(v);
-    if (name == "axial") return spp::Symmetry::Axial;
-    if (name == "point") return spp::Symmetry::Point;
+    if (const std::optional<spp::Symmetry> s = spp::symmetry_named(name)) return *s;
     throw std::invalid_argument("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" +
                                 name + "\"");
   };

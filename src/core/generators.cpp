@@ -126,9 +126,9 @@ ParametricSystem parametrize(const std::function<System(double)>& make, const Pa
   const Eigen::VectorXd w0 = a.w() - p.min * w1;
   const double mu = 0.5 * (p.min + p.max);
   const double scale = a.M().norm() + a.K().norm() + b.M().norm() + b.K().norm() + 1.0;
-  const bool affine = (M0 + mu * M1 - mid.M()).norm() <= 1e-12 * scale &&
-                      (K0 + mu * K1 - mid.K()).norm() <= 1e-12 * scale && (w0 + mu * w1 - mid.w()).norm() <= 1e-12 &&
-                      a.g0() == b.g0() && a.g0() == mid.g0();
+  const bool affine = (M0 + mu * M1 - mid.M()).norm() <= kSameToRounding * scale &&
+                      (K0 + mu * K1 - mid.K()).norm() <= kSameToRounding * scale &&
+                      (w0 + mu * w1 - mid.w()).norm() <= kSameToRounding && a.g0() == b.g0() && a.g0() == mid.g0();
   if (!affine)
     throw std::invalid_argument("parameter \"" + p.name +
                                 "\": the system is not affine in it (M, K and w must be affine, g0 fixed)");

@@ -180,7 +180,9 @@ std::vector<ReductionResult> reduce(const SparseSystem& system, const std::vecto
                     std::to_string(p + 1) + " clamped failed");
   const Eigen::VectorXd psi = -Kf.llt.solve(Kip);      // static constraint mode
   const double static_stiffness = Kpp + Kip.dot(psi);  // Schur complement of K_ii
-  if (!(static_stiffness > 1e-12 * std::abs(Kpp)))
+  // the Schur complement loses ~cond digits to cancellation: below 1e-12 of K_pp it is rounding, not a stiffness
+  constexpr double kStaticStiffnessFloor = 1e-12;
+  if (!(static_stiffness > kStaticStiffnessFloor * std::abs(Kpp)))
     detail::invalid("reduce: K must be positive definite: its static stiffness at dof " + std::to_string(p + 1) +
                     " (the Schur complement K_pp - K_pi K_ii^-1 K_ip) is " + fmt(static_stiffness) +
                     " against K_pp = " + fmt(Kpp));

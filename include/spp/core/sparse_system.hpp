@@ -15,6 +15,8 @@ class SparseSystem {
   /// Validates sizes, finiteness, symmetry of M and K (relative tolerance kSymmetryTolerance of system.hpp), positive
   /// diagonals of M and K, w finite and non-zero, g0 finite. Positive definiteness needs a factorisation: reduce()
   /// checks it with the ones it computes. Throws std::invalid_argument naming the field and the rule.
+  /// M, K: n x n (column-major sparse, any one or both triangles given: stored as both); w: (n); units as System.
+  /// Cost O(nnz) (no factorisation).
   SparseSystem(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> K, Eigen::VectorXd w, double g0,
                std::string name = "");
 
