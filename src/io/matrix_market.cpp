@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -46,15 +47,43 @@ std::vector<std::string> tokens(const std::string& line) {
 // Dense storage the reader may allocate (entries): larger sizes are refused with their size, not std::bad_alloc.
 constexpr double kMaxDenseEntries = 4e8;  // 3.2 GB of doubles
 
+// Longest line of a Matrix Market file: a data line holds two indices and a value (< 80 characters), an array line a
+// few values; only a comment could be longer. A file without newlines (/dev/zero, a binary file) is refused at this
+// many characters instead of being read into one string until memory runs out (found by an independent attack).
+constexpr size_t kMaxLineBytes = size_t{1} << 20;  // 1 MiB
+
+// std::getline with a cap of kMaxLineBytes: false at the end of the file, refused past the cap.
+bool read_line(std::istream& in, std::string& line, const std::string& path, int lineno) {
+  line.clear();
+  std::streambuf* sb = in.rdbuf();
+  for (;;) {
+    const int c = sb->sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      in.setstate(std::ios::eofbit);
+      return !line.empty();
+    }
+    if (c == '\n') return true;
+    if (line.size() >= kMaxLineBytes)
+      invalid(path + ":" + std::to_string(lineno) + ": a line longer than " + std::to_string(kMaxLineBytes) +
+              " bytes (the limit of a Matrix Market line: a data line is two indices and a value); not a Matrix "
+              "Market file?");
+    line.push_back(static_cast<char>(c));
+  }
+}
+
 // The one parser of both readers: checks the banner and the size line, calls on_size(rows, cols) once, then
 // on_entry(i, j, v) (0-based, as stored: one triangle of a symmetric file) for every stored entry. `where` names the
 // current line.
 template <typename OnSize, typename OnEntry>
 void parse_matrix_market(const std::string& path, bool dense, OnSize on_size, OnEntry on_entry) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    invalid("Matrix Market file \"" + path + "\" is not a regular file (a directory, a device or a pipe)");
   std::ifstream in(path);
   if (!in) invalid("cannot open Matrix Market file \"" + path + "\"");
   std::string line;
-  if (!std::getline(in, line) || line.rfind("%%MatrixMarket", 0) != 0)
+  if (!read_line(in, line, path, 1) || line.rfind("%%MatrixMarket", 0) != 0)
     invalid(path + ": line 1 must start with %%MatrixMarket");
   std::istringstream hs(line);
   std::string banner, object, format, field, symmetry;
@@ -70,7 +99,7 @@ void parse_matrix_market(const std::string& path, bool dense, OnSize on_size, On
     invalid(path + ": expected symmetry general or symmetric, got \"" + shorten(symmetry) + "\"");
   int lineno = 1;
   auto next_data_line = [&](std::string& l) {  // skips comments and blank lines
-    while (std::getline(in, l)) {
+    while (read_line(in, l, path, lineno + 1)) {
       ++lineno;
       if (!tokens(l).empty() && l[l.find_first_not_of(" \t\r\v\f")] != '%') return true;
     }

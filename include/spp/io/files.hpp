@@ -2,11 +2,20 @@
 // Whole files: every writer of spp goes through write_file_atomic (a temporary file renamed over the target), so that
 // a failure never leaves a half-written output.
 
+#include <cstdint>
 #include <string>
 
 namespace spp {
 
-/// The file's bytes. Throws std::invalid_argument naming the file when it cannot be opened.
+/// Largest input file (system, result, continuation file) read whole: 1 GiB. A dense system of 5000 dofs (M and K,
+/// 5e7 numbers of ~20 characters) is ~1 GB of JSON text, and parsing holds the text and its tree at once (~3x);
+/// larger models are given as Matrix Market files and reduced first (spp reduce). Named in the refusal.
+inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{1} << 30;
+inline constexpr const char* kMaxInputFileReason =
+    "1 GiB: a dense 5000-dof system; give a larger model as Matrix Market files and reduce it with spp reduce";
+
+/// The bytes of a regular file of at most kMaxInputFileBytes. Throws std::invalid_argument naming the file when it
+/// cannot be opened, is not a regular file (a device such as /dev/zero, a pipe) or is larger.
 std::string read_file(const std::string& path);
 /// Writes `content` to a temporary file in the target's directory and renames it over `path`. Throws
 /// std::invalid_argument naming the file (missing directory, write or rename failure); the target is then untouched.
