@@ -44,6 +44,8 @@ namespace {
 // solutions[k].orbit.x0); nlohmann parses iteratively, but copying, comparing or dumping a value recurses once per
 // level, so a 100 000-deep array (fuzzing) must stop at the parser, not overflow the stack later.
 constexpr int kMaxJsonDepth = 64;
+// Characters of a parser's message quoted in ours: its position and reason fit, an echoed token is cut.
+constexpr size_t kMaxParserMessage = 200;
 struct TooDeep {};  // thrown out of the parser callback: stops the parse at the first level too deep
 }  // namespace
 
@@ -67,7 +69,8 @@ json parse_json_text(const std::string& text, const std::string& path) {
   try {
     j = json::parse(text, seen);
   } catch (const json::exception& e) {
-    invalid(path + ": malformed JSON: " + e.what());
+    // nlohmann quotes the offending token whole ("number overflow parsing '1000...'" with 100 000 digits): shortened
+    invalid(path + ": malformed JSON: " + shorten(e.what(), kMaxParserMessage));
   } catch (const TooDeep&) {
     invalid(path + ": expected JSON nested at most " + std::to_string(kMaxJsonDepth) +
             " levels deep (lists in lists, objects in objects), got deeper");
