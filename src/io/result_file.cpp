@@ -26,6 +26,109 @@ void check_solution(const Reader& o, double t1, double t2, const Eigen::VectorXd
             std::to_string(x0.size()) + " and " + std::to_string(v0.size()));
 }
 
+// The causes of an uncertified region (SolveResult::uncertified, solver.hpp).
+constexpr const char* kCauses[] = {"step", "corner", "budget", "pairing", "polish", "interrupted"};
+
+// What result_to_json writes and nothing else: an unknown field is refused, not ignored (a misspelt field was read as
+// absent), and so is a value that contradicts another (a period other than 2 (t1 + t2), "success" beside uncertified
+// regions, an empty window, a negative count; all read silently before, found by an independent review). Fields
+// missing are left to the readers, which name them.
+void check_result(const json& r, const std::string& where) {
+  check_fields(r, {"system", "window", "status", "symmetry", "warnings", "stats", "uncertified", "solutions"}, where);
+  if (r.contains("window")) {
+    const std::string at = where + ": field \"window\"";
+    if (!r.at("window").is_object())
+      invalid(at + " must be an object with t1_min, t1_max, t2_min, t2_max, got " + describe(r.at("window")));
+    check_fields(r.at("window"), {"t1_min", "t1_max", "t2_min", "t2_max"}, at);
+    const Reader win{r.at("window"), at};
+    for (const auto& [lo_key, hi_key] : {std::make_pair("t1_min", "t1_max"), std::make_pair("t2_min", "t2_max")}) {
+      const double lo = win.number(lo_key), hi = win.number(hi_key);
+      if (!(lo >= 0.0 && lo < hi && std::isfinite(hi)))
+        invalid(at + ": expected 0 <= " + lo_key + " < " + hi_key + " < inf, got " + lo_key + " = " + num(lo) +
+                " and " + hi_key + " = " + num(hi));
+    }
+  }
+  if (r.contains("stats")) {
+    const std::string at = where + ": field \"stats\"";
+    const json& st = r.at("stats");
+    if (!st.is_object()) invalid(at + " must be an object of counts, got " + describe(st));
+    const std::initializer_list<const char*> counts = {"flight_pole_lines",
+                                                       "contact_pole_lines",
+                                                       "rectangles",
+                                                       "curve_pieces",
+                                                       "roots",
+                                                       "evaluations",
+                                                       "strip_pairs",
+                                                       "certified_steps",
+                                                       "heuristic_steps",
+                                                       "uncertified_steps",
+                                                       "uncertified_corners",
+                                                       "unpaired_crossings",
+                                                       "unresolved_pieces",
+                                                       "unpolished_roots",
+                                                       "unsearched_cells",
+                                                       "pole_line_artifacts",
+                                                       "decoupled_modes",
+                                                       "repeated_frequency_groups"};
+    check_fields(st, counts, at, {"seconds"});
+    const Reader sr{st, at};
+    for (const char* k : counts)
+      if (st.contains(k) && sr.integer(k) < 0)
+        invalid(at + ": field \"" + k + "\" must be a count >= 0, got " + std::to_string(sr.integer(k)));
+    if (st.contains("seconds") && !(sr.number("seconds") >= 0.0))
+      invalid(at + ": field \"seconds\" must be >= 0, got " + num(sr.number("seconds")));
+  }
+  if (r.contains("uncertified") && r.at("uncertified").is_array()) {
+    const json& unc = r.at("uncertified");
+    for (size_t i = 0; i < unc.size(); ++i) {
+      const std::string at = where + ": field \"uncertified\"[" + std::to_string(i) + "]";
+      if (!unc[i].is_object()) invalid(at + " must be an object, got " + describe(unc[i]));
+      check_fields(unc[i], {"t1_lo", "t1_hi", "t2_lo", "t2_hi", "cause"}, at);
+      const Reader u{unc[i], at};
+      const std::string cause = u.text("cause");
+      bool known = false;
+      std::string list;
+      for (const char* c : kCauses) {
+        known = known || cause == c;
+        list += std::string(list.empty() ? "" : ", ") + c;
+      }
+      if (!known) invalid(at + ": field \"cause\" must be one of " + list + ", got \"" + shorten(cause) + "\"");
+      if (!(u.number("t1_lo") <= u.number("t1_hi") && u.number("t2_lo") <= u.number("t2_hi")))
+        invalid(at + ": expected t1_lo <= t1_hi and t2_lo <= t2_hi, got (" + num(u.number("t1_lo")) + ", " +
+                num(u.number("t1_hi")) + ") and (" + num(u.number("t2_lo")) + ", " + num(u.number("t2_hi")) + ")");
+    }
+    if (!unc.empty() && r.contains("status") && r.at("status") == "success")
+      invalid(where + ": field \"status\" is \"success\" but field \"uncertified\" lists " +
+              std::to_string(unc.size()) + " region(s): a search with uncertified regions is \"incomplete\"");
+  }
+  if (r.contains("solutions") && r.at("solutions").is_array()) {
+    const json& sols = r.at("solutions");
+    for (size_t i = 0; i < sols.size(); ++i) {
+      const std::string at = where + ": field \"solutions\"[" + std::to_string(i) + "]";
+      const json& o = sols[i];
+      if (!o.is_object()) invalid(at + " must be an object, got " + describe(o));
+      check_fields(o,
+                   {"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy", "residual",
+                    "return_error", "mid_flight_gap", "mid_contact_force", "onset_force_rate",
+                    "admissibility_certified", "admissibility_ends_ok", "flags", "orbit", "obstacle_velocity"},
+                   at);
+      if (o.contains("orbit")) {
+        if (!o.at("orbit").is_object())
+          invalid(at + ": field \"orbit\" must be an object, got " + describe(o.at("orbit")));
+        check_fields(o.at("orbit"), {"a", "c", "p0", "p0dot", "closure_ratio", "energy"}, at + ": field \"orbit\"");
+      }
+      if (o.contains("period") && o.contains("t1") && o.contains("t2")) {
+        const Reader so{o, at};
+        const double t1 = so.number("t1"), t2 = so.number("t2"), period = so.number("period");
+        const double expected = 2.0 * (t1 + t2);  // one flight and one contact phase, each 2 t_i (eq. 2.4)
+        // (t1, t2 not positive and finite: refused by check_solution, naming them)
+        if (t1 > 0.0 && t2 > 0.0 && std::isfinite(expected) && !(std::abs(period - expected) <= 1e-12 * expected))
+          invalid(at + ": field \"period\" must be 2 (t1 + t2) = " + num(expected) + ", got " + num(period));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 json result_to_json(const System& s, const SolveResult& r) {
@@ -99,6 +202,7 @@ json result_to_json(const System& s, const SolveResult& r) {
 SolveResult result_from_json(const json& r, const std::string& where) {
   if (!r.is_object() || !r.contains("system") || !r.contains("solutions"))
     invalid(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
+  check_result(r, where);
   SolveResult res;
   const Reader top{r, where};
   const std::string status = top.text("status");
@@ -197,6 +301,7 @@ System result_system(const json& r, const std::string& where) {
     invalid(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
   if (!r.at("system").contains("M") || !r.at("system").contains("K"))
     invalid(where + ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): run spp solve again");
+  check_result(r, where);
   const std::string at = where + ": field \"system\"";
   const System s = system_from_json(r.at("system"), at);
   if (!r.at("system").contains("w_input_norm")) return s;
@@ -212,6 +317,7 @@ System result_system(const json& r, const std::string& where) {
 std::vector<SppCandidate> result_candidates(const json& r, const std::string& where) {
   if (!r.is_object() || !r.contains("solutions") || !r.at("solutions").is_array())
     invalid(where + ": missing field \"solutions\" (expected a result of spp solve)");
+  check_result(r, where);
   std::vector<SppCandidate> out;
   const json& sols = r.at("solutions");
   const long n = embedded_dofs(r);

@@ -303,6 +303,70 @@ TEST(Io, ResultSolutionsOfTheWrongSizeOrSignAreRefused) {
   fs::remove(p);
 }
 
+// D8 of an independent review: a result file with an unknown field, an empty window, a period other than
+// 2 (t1 + t2), "success" beside uncertified regions, an unknown cause or a negative count was read silently by
+// load_result (spp plot, SolveResult.from_json) and load_result_candidates (spp verify, trajectory). Each is refused,
+// naming the file, the solution (or list entry) and the field.
+TEST(Io, ResultWithUnknownFieldsOrContradictionsIsRefused) {
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  ASSERT_FALSE(good["solutions"].empty());
+  const fs::path p = tmpdir() / "contradictions.json";
+  write_file_atomic(p.string(), good.dump());
+  EXPECT_NO_THROW(load_result(p.string()));
+  EXPECT_NO_THROW(load_result_candidates(p.string()));
+  EXPECT_NO_THROW(load_result_system(p.string()));
+  auto expect_refused = [&](const io::json& j, const std::string& what) {
+    write_file_atomic(p.string(), j.dump());
+    for (int reader = 0; reader < 3; ++reader) {
+      try {
+        if (reader == 0) load_result(p.string());
+        if (reader == 1) load_result_candidates(p.string());
+        if (reader == 2) load_result_system(p.string());
+        ADD_FAILURE() << "expected a refusal: " << what << " (reader " << reader << ")";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(p.string() + ": " + what), std::string::npos) << e.what();
+      }
+    }
+  };
+  io::json j = good;
+  j["solutions"][0]["foo"] = 1;
+  expect_refused(j, "field \"solutions\"[0]: unknown field \"foo\" (expected: t1, t2, period");
+  j = good;
+  j["solutions"][0]["orbit"]["bar"] = 1;
+  expect_refused(j, "field \"solutions\"[0]: field \"orbit\": unknown field \"bar\"");
+  j = good;
+  j["extra"] = true;
+  expect_refused(j, "unknown field \"extra\" (expected: system, window");
+  j = good;
+  j["window"]["t1_max"] = -5;
+  expect_refused(j, "field \"window\": expected 0 <= t1_min < t1_max < inf, got t1_min = ");
+  j = good;
+  j["window"]["t3"] = 1;
+  expect_refused(j, "field \"window\": unknown field \"t3\"");
+  j = good;
+  j["solutions"][0]["period"] = 123;
+  expect_refused(j, "field \"solutions\"[0]: field \"period\" must be 2 (t1 + t2) = ");
+  j = good;
+  j["status"] = "success";
+  j["uncertified"] = io::json::array({{{"t1_lo", 1}, {"t1_hi", 2}, {"t2_lo", 1}, {"t2_hi", 2}, {"cause", "step"}}});
+  expect_refused(j, "field \"status\" is \"success\" but field \"uncertified\" lists 1 region(s)");
+  j["status"] = "incomplete";
+  j["uncertified"][0]["cause"] = "nonsense";
+  expect_refused(j,
+                 "field \"uncertified\"[0]: field \"cause\" must be one of step, corner, budget, pairing, "
+                 "polish, interrupted, got \"nonsense\"");
+  j = good;
+  j["stats"]["roots"] = -3;
+  expect_refused(j, "field \"stats\": field \"roots\" must be a count >= 0, got -3");
+  j = good;
+  j["stats"]["seconds"] = -1.0;
+  expect_refused(j, "field \"stats\": field \"seconds\" must be >= 0");
+  fs::remove(p);
+}
+
 namespace {
 // load_system of `json` (written to bad.json) must throw std::invalid_argument containing `part`.
 void expect_load_refused(const std::string& json, const std::string& part) {
