@@ -27,12 +27,13 @@ int run(TrajectoryArgs& a) {
     throw std::invalid_argument("trajectory: give SYSTEM.json with --t1 and --t2, or --result and --solution");
   // a result file holds the system it was solved for: SYSTEM.json is then optional, and must be that system
   const System sys = a.system.empty() ? load_result_system(a.result) : load_system(a.system);
+  check_trajectory_csv_size(a.samples, sys.n(), "--samples");  // before the search and any sample is computed
   if (!a.system.empty() && !a.result.empty()) {
     const System solved = load_result_system(a.result);
     if (solved.n() != sys.n() || !solved.M().isApprox(sys.M(), 1e-12) || !solved.K().isApprox(sys.K(), 1e-12) ||
         !solved.w().isApprox(sys.w(), 1e-12) || std::abs(solved.g0() - sys.g0()) > 1e-12 * std::abs(sys.g0()))
-      throw std::invalid_argument(a.result + ": was solved for another system than " + a.system +
-                                  " (omit " + a.system + ": the result file holds its system)");
+      throw std::invalid_argument(a.result + ": was solved for another system than " + a.system + " (omit " + a.system +
+                                  ": the result file holds its system)");
   }
   const ModalForm md(sys);  // once, for the search and the samples
   if (!a.result.empty()) {
@@ -84,7 +85,9 @@ Subcommand add_trajectory(CLI::App& app) {
   auto* res = t->add_option("--result", a->result, "result JSON of spp solve");
   t->add_option("--solution", a->solution, "index of the solution in --result");
   t->add_option("--csv", a->csv, "output CSV")->required();
-  t->add_option("--samples", a->samples, "number of samples over one period")->check(CLI::Range(2, 10000000));
+  t->add_option("--samples", a->samples,
+                "number of samples over one period (default 1001; at most 2e7 values, samples x (2n + 3), in the CSV)")
+      ->check(CLI::Range(2, 10000000));
   a->t1_given->needs(t2);
   t2->needs(a->t1_given);
   res->excludes(a->t1_given);

@@ -22,6 +22,38 @@ from ._files import atomic_path
 from ._spp import simulate
 
 LAYOUTS = ("auto", "chain", "plane", "dofs")
+FIGSIZE_IN = (6.4, 4.8)  # every frame
+MAX_DPI = 600  # 3840 x 2880 pixels a frame; beyond, matplotlib's renderer fails (dpi 100000: an IndexError)
+MAX_FRAMES = 10000  # frames x periods: 400 s at 25 fps, each frame drawn by matplotlib (~20 ms)
+# A GIF's frames are held in memory until the file is written (matplotlib's PillowWriter): RGBA, 4 bytes a pixel.
+MAX_GIF_BYTES = 2 * 1024 ** 3
+
+
+def check_options(path, frames=120, periods=1, fps=25, dpi=80, layout="auto"):
+    """Raises ValueError naming the option when an animation of these options is not possible or would not fit in
+    memory; called before anything is computed or allocated."""
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in (".gif", ".mp4"):
+        raise ValueError(f"{path}: the animation file must end in .gif or .mp4")
+    if ext == ".mp4" and shutil.which("ffmpeg") is None:
+        raise ValueError(f"{path}: MP4 needs ffmpeg (apt-get install ffmpeg); write a .gif instead")
+    for name, value, lo, hi in (("frames", frames, 2, MAX_FRAMES), ("periods", periods, 1, MAX_FRAMES // 2),
+                                ("fps", fps, 1, 1000), ("dpi", dpi, 20, MAX_DPI)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not lo <= value <= hi:
+            raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {value!r}")
+    if frames * periods > MAX_FRAMES:
+        raise ValueError(f"frames x periods must be at most {MAX_FRAMES} (each frame is drawn by matplotlib), got "
+                         f"{frames} x {periods} = {frames * periods}")
+    if ext == ".gif":
+        frame_bytes = 4 * round(FIGSIZE_IN[0] * dpi) * round(FIGSIZE_IN[1] * dpi)
+        if frames * periods * frame_bytes > MAX_GIF_BYTES:
+            raise ValueError(f"{path}: {frames * periods} frames of {frame_bytes / 2 ** 20:.3g} MiB (dpi {dpi}) are "
+                             f"more than the {MAX_GIF_BYTES // 2 ** 30} GiB a GIF may hold in memory while written: "
+                             f"fewer frames or periods, a lower dpi, or an .mp4")
+    if layout not in LAYOUTS:
+        raise ValueError(f"layout must be one of {', '.join(LAYOUTS)}, got {layout!r}")
+
 
 
 def layout_of(system):
@@ -165,17 +197,9 @@ class _Dofs:
 def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=80, layout="auto"):
     """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
     (ffmpeg). frames: per period. Returns the number of frames written. Raises ValueError on bad arguments."""
+    check_options(path, frames=frames, periods=periods, fps=fps, dpi=dpi, layout=layout)
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()
-    if ext not in (".gif", ".mp4"):
-        raise ValueError(f"{path}: the animation file must end in .gif or .mp4")
-    if ext == ".mp4" and shutil.which("ffmpeg") is None:
-        raise ValueError(f"{path}: MP4 needs ffmpeg (apt-get install ffmpeg); write a .gif instead")
-    for name, value, lo in (("frames", frames, 2), ("periods", periods, 1), ("fps", fps, 1), ("dpi", dpi, 20)):
-        if not isinstance(value, (int, np.integer)) or value < lo:
-            raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
-    if layout not in LAYOUTS:
-        raise ValueError(f"layout must be one of {', '.join(LAYOUTS)}, got {layout!r}")
     kind = layout_of(system) if layout == "auto" else layout
     if kind == "chain" and layout_of(system) != "chain":
         raise ValueError("layout 'chain' needs a diagonal M, a tridiagonal K and w on one dof")
@@ -190,7 +214,7 @@ def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=80, layout="au
     t, x, gap, force = sim.t, sim.x, sim.gap, sim.force
     at = np.clip(np.searchsorted(t, times), 0, len(t) - 1)
 
-    fig = plt.figure(figsize=(6.4, 4.8))
+    fig = plt.figure(figsize=FIGSIZE_IN)
     grid = fig.add_gridspec(2, 2 if kind == "plane" else 1, height_ratios=[1.6, 1])
     if kind == "plane":
         scene = _Plane(fig.add_subplot(grid[0, 0]), system, x, force, fig.add_subplot(grid[0, 1]))

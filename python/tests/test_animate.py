@@ -71,7 +71,14 @@ def test_bad_arguments_are_refused_before_any_file(tmp_path):
     for kwargs, words in ((dict(path=tmp_path / "a.png"), ".gif or .mp4"),
                           (dict(path=tmp_path / "a.gif", frames=1), "frames"),
                           (dict(path=tmp_path / "a.gif", layout="plane"), "two dofs"),
-                          (dict(path=tmp_path / "a.gif", layout="nope"), "layout")):
+                          (dict(path=tmp_path / "a.gif", layout="nope"), "layout"),
+                          # found by an independent review: dpi 100000 ended in matplotlib's IndexError, and
+                          # 1e8 frames allocated 1.6 GB before a refusal
+                          (dict(path=tmp_path / "a.gif", dpi=100000), r"dpi must be an integer in \[20, 600\]"),
+                          (dict(path=tmp_path / "a.gif", frames=10 ** 8), r"frames must be an integer in \[2, 10000\]"),
+                          (dict(path=tmp_path / "a.gif", frames=4000, periods=3), "frames x periods"),
+                          (dict(path=tmp_path / "a.gif", frames=3000, dpi=200), "a GIF may hold in memory"),
+                          (dict(path=tmp_path / "a.gif", fps=True), "fps")):
         with pytest.raises(ValueError, match=words):
             animate.animate(system, sol, **kwargs)
     assert list(tmp_path.iterdir()) == []

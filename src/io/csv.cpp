@@ -6,6 +6,7 @@
 
 namespace spp {
 
+using io::invalid;
 using io::num;
 
 std::string result_to_csv(const SolveResult& r) {
@@ -26,7 +27,19 @@ std::string result_to_csv(const SolveResult& r) {
   return os.str();
 }
 
+void check_trajectory_csv_size(long samples, long n, const std::string& what) {
+  const double values = static_cast<double>(samples) * (2.0 * static_cast<double>(n) + 3.0);
+  if (samples < 2 || values > kMaxCsvValues) {
+    std::ostringstream os;
+    os << what << ": expected 2 to " << static_cast<long>(kMaxCsvValues / (2.0 * static_cast<double>(n) + 3.0))
+       << " samples for a " << n << "-dof system (at most " << kMaxCsvValues << " values, samples x (2n + 3), in one "
+       << "CSV, ~0.5 GB of text), got " << samples;
+    invalid(os.str());
+  }
+}
+
 std::string trajectory_csv(const ModalForm& md, const Orbit& o, int samples) {
+  check_trajectory_csv_size(samples, md.n(), "trajectory_csv: samples");
   std::ostringstream os;
   const int n = md.n();
   os << "t";
