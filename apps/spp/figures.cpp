@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -11,12 +12,30 @@ namespace spp::cli {
 
 namespace {
 
-// Replaces this process by /usr/bin/python3 -m spp <args>, the build tree's package first on the path, then wherever
-// Debian's python3 finds an installed one. Returns only on failure.
+// The Python package that belongs to this executable, found from where the executable is, not from a path fixed at
+// compile time (a copied or installed binary ran whatever stale build tree it was compiled in): in a build tree, the
+// executable is build/spp and the package build/python/spp (the layout CMakeLists.txt makes), so "python" beside the
+// executable is put first on PYTHONPATH. Elsewhere (an installed or copied binary) nothing is added: python3 finds the
+// installed package (cmake --install build --component python, or pip install .) on its normal path, after the
+// user's PYTHONPATH. Empty when there is no build-tree package beside the executable.
+std::string build_tree_python_dir() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);  // Linux: the running file, links resolved
+  if (ec) return "";
+  const fs::path dir = exe.parent_path() / "python";
+  return fs::is_regular_file(dir / "spp" / "__main__.py", ec) ? dir.string() : "";
+}
+
+// Replaces this process by /usr/bin/python3 -m spp <args>, with the package of build_tree_python_dir() first on the
+// path when there is one. Returns only on failure.
 [[noreturn]] void exec_python(std::vector<std::string> args) {
-  const char* old = std::getenv("PYTHONPATH");
-  const std::string path = std::string(SPP_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
-  ::setenv("PYTHONPATH", path.c_str(), 1);
+  const std::string own = build_tree_python_dir();
+  if (!own.empty()) {
+    const char* old = std::getenv("PYTHONPATH");
+    const std::string path = own + (old && *old ? std::string(":") + old : "");
+    ::setenv("PYTHONPATH", path.c_str(), 1);
+  }
   args.insert(args.begin(), {"/usr/bin/python3", "-m", "spp"});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
