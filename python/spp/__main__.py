@@ -16,6 +16,9 @@ matplotlib.use("Agg")  # headless: files only (the library modules leave the bac
 from ._spp import load_result
 
 
+MAX_ROOT_MAP_POINTS = 4000  # per axis: 1.6e7 grid values per condition, minutes of evaluations; the default is 400
+
+
 def _plot(a):
     from . import plot
     import matplotlib.pyplot as plt
@@ -23,10 +26,15 @@ def _plot(a):
     bad = [f for f in formats if f not in ("png", "svg", "pdf")]
     if bad or not formats:
         raise ValueError(f"--formats: expected png, svg or pdf, got {a.formats!r}")
-    if a.root_map_points != 0 and a.root_map_points < 16:
-        raise ValueError(f"--root-map-points must be 0 (no root map) or >= 16, got {a.root_map_points}")
+    if a.root_map_points != 0 and not 16 <= a.root_map_points <= MAX_ROOT_MAP_POINTS:
+        raise ValueError(f"--root-map-points must be 0 (no root map) or in [16, {MAX_ROOT_MAP_POINTS}], "
+                         f"got {a.root_map_points}")
+    if os.path.exists(a.out) and not os.path.isdir(a.out):
+        raise ValueError(f"--out {a.out}: exists and is not a directory (plot writes its figures into a directory)")
     system, spps, window = load_result(a.result)
     chosen = _chosen(a.solutions, spps, a.result)
+    # created only now that every option and the result are read; removed again if this run made it and fails empty
+    created = not os.path.exists(a.out)
     os.makedirs(a.out, exist_ok=True)
     written = []
 
@@ -37,11 +45,19 @@ def _plot(a):
             written.append(p)
         plt.close(fig)
 
-    if a.root_map_points:
-        save(plot.root_map_figure(system, spps, window, points=a.root_map_points), "root_map")
-    save(plot.frequency_energy_figure(spps), "frequency_energy")
-    for k in chosen:
-        save(plot.spp_figure(system, spps[k]), f"spp_{k}")
+    try:
+        if a.root_map_points:
+            save(plot.root_map_figure(system, spps, window, points=a.root_map_points), "root_map")
+        save(plot.frequency_energy_figure(spps), "frequency_energy")
+        for k in chosen:
+            save(plot.spp_figure(system, spps[k]), f"spp_{k}")
+    except BaseException:
+        if created and not written:
+            try:
+                os.rmdir(a.out)
+            except OSError:
+                pass
+        raise
     print(f"wrote {len(written)} figures to {a.out}")
 
 
@@ -63,6 +79,10 @@ def _chosen(text, spps, result):
 
 def _animate(a):
     from . import animate
+    animate.check_options(a.out, frames=a.frames, periods=a.periods, fps=a.fps, dpi=a.dpi, layout=a.layout)
+    out_dir = os.path.dirname(os.path.abspath(a.out))
+    if not os.path.isdir(out_dir):
+        raise ValueError(f"--out {a.out}: the directory {out_dir} does not exist")
     system, spps, _ = load_result(a.result)
     if a.solution < 0:
         admissible = [k for k, s in enumerate(spps) if s.admissible]
@@ -103,6 +123,13 @@ def main(argv=None):
         _plot(a) if a.command == "plot" else _animate(a)
     except ValueError as e:
         print(f"spp: error: {e}", file=sys.stderr)
+        return 1
+    except OSError as e:  # a file that cannot be written (permissions, a full disk): its name and the reason
+        where = f"{e.filename}: " if e.filename else ""
+        print(f"spp: error: {where}{e.strerror or e}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("spp: error: out of memory: fewer points, frames or a lower dpi bound the work", file=sys.stderr)
         return 1
     return 0
 
