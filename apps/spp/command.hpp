@@ -28,9 +28,15 @@ Subcommand add_generate(CLI::App& app);
 /// reduce: a large sparse model to a small system file (Craig-Bampton).
 Subcommand add_reduce(CLI::App& app);
 
-/// An output file named by option `opt`: refused before any work when it is one of the inputs or of the run's other
-/// outputs (it would be replaced) or when its directory does not exist (the work would be lost at the end).
-void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs);
+/// An output of a run and the option that names it, e.g. {"--json", "r.json"}.
+struct NamedOutput {
+  std::string option, path;
+};
+/// An output file named by option `opt`: refused before any work when it is one of `inputs` (files the run reads, or
+/// outputs not named in `outputs`) or one of the run's other `outputs` (it would be replaced; the message names the
+/// option of that output), or when its directory does not exist (the work would be lost at the end).
+void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs,
+                  const std::vector<NamedOutput>& outputs = {});
 /// "1,2.5,3" -> {1, 2.5, 3}; anything else is refused naming the option.
 std::vector<double> parse_list(const std::string& s, const char* opt);
 

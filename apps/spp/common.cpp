@@ -6,20 +6,30 @@
 
 namespace spp::cli {
 
-void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs) {
+namespace {
+// out and path name one file: the same file (a link, ./x), or the same path not written yet (two outputs of one run)
+bool same_file(const std::string& out, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  return (fs::exists(out, ec) && fs::equivalent(out, path, ec)) ||
+         fs::weakly_canonical(out, ec) == fs::weakly_canonical(path, ec);
+}
+}  // namespace
+
+void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs,
+                  const std::vector<NamedOutput>& outputs) {
   namespace fs = std::filesystem;
   if (out.empty()) return;
   std::error_code ec;
-  for (const std::string& in : inputs) {
-    if (in.empty()) continue;
-    // the same file (a link, ./x), or the same path not written yet (two outputs of one run)
-    const bool same = (fs::exists(out, ec) && fs::equivalent(out, in, ec)) ||
-                      fs::weakly_canonical(out, ec) == fs::weakly_canonical(in, ec);
-    if (same)
+  for (const std::string& in : inputs)
+    if (!in.empty() && same_file(out, in))
       throw std::invalid_argument(opt + ": \"" + out + "\" is also \"" + in +
-                                  "\" of this run: write the output to "
-                                  "another file");
-  }
+                                  "\", a file this run reads (or another output): it would be replaced; write the " +
+                                  "output to another file");
+  for (const NamedOutput& o : outputs)
+    if (!o.path.empty() && same_file(out, o.path))
+      throw std::invalid_argument(opt + ": \"" + out + "\" is also the output of " + o.option + " (\"" + o.path +
+                                  "\"): two outputs of one run cannot share a file; give each its own");
   // an existing path that is not a regular file (a directory, /dev/null, a pipe) would be replaced by the rename of
   // the atomic write: refused (found by an independent attack: --out /dev/full replaced the device)
   const fs::file_status st = fs::status(out, ec);

@@ -58,18 +58,16 @@ int run(const ReduceArgs& a) {
       throw std::invalid_argument("--window: expected T1MAX,T2MAX (both positive), got \"" + a.window + "\"");
   }
   // outputs: none an input (the model or its Matrix Market files), none another output, directories existing
-  std::vector<std::string> inputs = system_file_inputs(a.model);
-  std::vector<std::string> outputs;
-  for (int m : modes) outputs.push_back(out_name(a.out, m, several));
-  if (!a.csv.empty()) outputs.push_back(a.csv);
+  const std::vector<std::string> inputs = system_file_inputs(a.model);
+  std::vector<NamedOutput> outputs;
+  for (int m : modes) outputs.push_back({"--out", out_name(a.out, m, several)});
+  if (!a.csv.empty()) outputs.push_back({"--csv", a.csv});
   if (!a.spp_csv.empty()) {
     if (window.empty()) throw std::invalid_argument("--spp-csv: needs --window (the SPPs of the reduced models)");
-    outputs.push_back(a.spp_csv);
+    outputs.push_back({"--spp-csv", a.spp_csv});
   }
-  for (const std::string& o : outputs) {
-    check_output(o, "output", inputs);
-    inputs.push_back(o);
-  }
+  for (size_t k = 0; k < outputs.size(); ++k)
+    check_output(outputs[k].path, outputs[k].option, inputs, {outputs.begin(), outputs.begin() + k});
 
   const SparseSystem model = load_sparse_system(a.model);
   // the reduced model keeps g0: with g0 = 0 spp solve would refuse it after the reduction's work

@@ -17,10 +17,9 @@ struct SimulateArgs {
 };
 
 int run(SimulateArgs& a) {
-  std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
+  const std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
   check_output(a.csv, "--csv", inputs);
-  inputs.push_back(a.csv);
-  check_output(a.events, "--events", inputs);
+  check_output(a.events, "--events", inputs, {{"--csv", a.csv}});
   const System sys = load_system(a.system);
   const std::vector<double> x0 = parse_list(a.x0, "--x0"), v0 = parse_list(a.v0, "--v0");
   a.options.validate();

@@ -28,8 +28,14 @@ void ContinueOptions::validate() const {
   if (!(t1_min >= 0.0 && t1_min < t1_max)) detail::invalid_option(where, "t1_min", t1_min, "in [0, t1_max)");
   if (!(t2_min >= 0.0 && t2_min < t2_max)) detail::invalid_option(where, "t2_min", t2_min, "in [0, t2_max)");
   if (seeds < 2 || seeds > 100000) detail::invalid_option(where, "seeds", seeds, "in [2, 100000]");
-  if (!(max_step > 0.0 && max_step <= 0.5)) detail::invalid_option(where, "max_step", max_step, "in (0, 0.5]");
-  if (!(min_step > 0.0 && min_step < max_step)) detail::invalid_option(where, "min_step", min_step, "in (0, max_step)");
+  // min_step first, then max_step against it: a max_step at or below the default min_step names max_step, the option
+  // given (`spp continue --max-step 1e-300` was told about min_step, which it has no option for)
+  if (!(min_step > 0.0 && min_step < 0.5)) detail::invalid_option(where, "min_step", min_step, "in (0, 0.5)");
+  if (!(max_step > min_step && max_step <= 0.5)) {
+    std::ostringstream rule;
+    rule << "in (min_step, 0.5] = (" << min_step << ", 0.5] (a step below min_step stalls the branch)";
+    detail::invalid_option(where, "max_step", max_step, rule.str());
+  }
   if (!(max_turn > 0.0 && max_turn < 1.5)) detail::invalid_option(where, "max_turn", max_turn, "in (0, 1.5)");
   if (max_points < 10) detail::invalid_option(where, "max_points", max_points, ">= 10");
   if (!(locate_tol > 0.0 && locate_tol < 1e-3)) detail::invalid_option(where, "locate_tol", locate_tol, "in (0, 1e-3)");

@@ -573,6 +573,12 @@ NearestSpp nearest_spp(const System& system, const ModalForm& modal, double t1, 
   o.t2_min = t2 * (1 - radius);
   o.t2_max = t2 * (1 + radius);
   o.admissible_only = false;
+  // refused here with what nearest_spp's caller can change (solve's own refusal suggests max_cells, which spp
+  // trajectory has no option for)
+  o.validate();
+  search::check_window_size(modal, o, "nearest_spp (the window searched around the guess)",
+                            "give a guess nearer the origin (the SPPs of a result of spp solve), or a smaller radius "
+                            "(--radius)");
   const SolveResult r = solve(system, modal, o);
   NearestSpp out;
   out.search_status = r.status;

@@ -54,15 +54,15 @@ AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool wide
 }
 
 // Counts the cells before anything is listed: windows beyond max_cells are refused with their count.
-void check_window_size(const ModalForm& md, const SolveOptions& opt) {
+void check_window_size(const ModalForm& md, const SolveOptions& opt, const std::string& where,
+                       const std::string& remedy) {
   const double c1 = count_tangent_poles(md.omega(), opt.t1_min, opt.t1_max) + 1.0;
   const double c2 = count_tangent_poles(md.d(), opt.t2_min, opt.t2_max) + 1.0;
   if (c1 * c2 > static_cast<double>(opt.max_cells)) {
     std::ostringstream os;
-    os << "options: the window (" << opt.t1_min << ", " << opt.t1_max << "] x (" << opt.t2_min << ", " << opt.t2_max
+    os << where << ": the window (" << opt.t1_min << ", " << opt.t1_max << "] x (" << opt.t2_min << ", " << opt.t2_max
        << "] holds about " << c1 * c2 << " cells (" << c1 - 1 << " x " << c2 - 1
-       << " pole lines), more than max_cells = " << opt.max_cells
-       << ": narrow the window, or raise max_cells (--max-cells) if the work is intended";
+       << " pole lines), more than max_cells = " << opt.max_cells << ": " << remedy;
     throw std::invalid_argument(os.str());
   }
 }

@@ -29,8 +29,12 @@ struct AxisPlan {
 AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool widen_lo, double pole_margin,
                    double max_count);
 
-/// Throws std::invalid_argument with the count when the window holds more than max_cells cells. O(m).
-void check_window_size(const ModalForm& md, const SolveOptions& opt);
+/// Throws std::invalid_argument with the count when the window holds more than max_cells cells, the message starting
+/// with `where` and ending with `remedy` (what the caller can change: solve's window and --max-cells, nearest_spp's
+/// guess and radius). O(m).
+void check_window_size(
+    const ModalForm& md, const SolveOptions& opt, const std::string& where = "options",
+    const std::string& remedy = "narrow the window, or raise max_cells (--max-cells) if the work is intended");
 
 struct WindowPlan {
   SolveOptions options;               ///< the caller's, with the automatic lower ends filled in
