@@ -428,7 +428,7 @@ TEST(Cli, InputThatCannotFoolIt) {
   const std::string sys = write("same.json", kGood);
   const CliRun same = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + sys);
   EXPECT_EQ(same.code, 1);
-  EXPECT_NE(same.out.find("is also \"" + sys + "\" of this run"), std::string::npos) << same.out;
+  EXPECT_NE(same.out.find("is also \"" + sys + "\", a file this run reads"), std::string::npos) << same.out;
   // two outputs of one run to the same path (the JSON was replaced by the CSV), and a list with an empty last item
   const std::string out = (dir() / "both.out").string();
   const CliRun both = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + out + " --csv " + out);
@@ -549,7 +549,7 @@ TEST(Cli, OutputEqualToAMatrixMarketInputIsRefused) {
         "simulate " + sys + " --x0 0,0 --v0 0,1 --duration 1 --csv " + mtx}) {
     const CliRun r = run(cmd);
     EXPECT_EQ(r.code, 1) << cmd << ": " << r.out;
-    EXPECT_NE(r.out.find("M_in.mtx\" of this run"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("M_in.mtx\", a file this run reads"), std::string::npos) << r.out;
     std::ifstream in(mtx);
     const std::string now((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_EQ(now, mtx_text) << cmd << " wrote over its input";
@@ -650,4 +650,157 @@ TEST(Cli, ReduceRefusesBadModesAndWritesNothing) {
   const CliRun r = run("reduce " + bar.string() + " --modes 3 --out " + (dir() / "bar20.K.mtx").string());
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("is also"), std::string::npos) << r.out;
+}
+
+namespace {
+// A result of spp solve on the paper's chain (made once per test run).
+std::string chain_result() {
+  static const std::string path = [] {
+    const std::string p = (dir() / "c5_shared.json").string();
+    const CliRun r = run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + p);
+    EXPECT_EQ(r.code, 0) << r.out;
+    return p;
+  }();
+  return path;
+}
+
+// A refused command: exit 1, the message, no output file at `out` (nor a directory), no Python traceback.
+void expect_refused_without_output(const std::string& args, const std::string& message, const fs::path& out,
+                                   const std::string& launcher = "timeout 60 ") {
+  fs::remove_all(out);
+  const CliRun r = run(args, launcher);
+  EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+  EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
+  EXPECT_NE(r.out.find("spp: error: "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("Traceback"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out)) << args << " left " << out;
+}
+}  // namespace
+
+// D3 of an independent review: `spp solve /dev/zero --box` reached 2.9 GB in 3 s (the whole "file" read into memory),
+// and a Matrix Market "file" /dev/zero grew by 1.2 GB/s (one endless line). Now: only regular files are read, at most
+// 1 GiB of JSON, Matrix Market lines at most 1 MiB, each refusal naming the file and the limit.
+TEST(Cli, InputThatIsNotARegularFileOrTooLargeIsRefusedBeforeItIsRead) {
+  const fs::path out = dir() / "d3_out.json";
+  expect_refused_without_output("solve /dev/zero --box --json " + out.string(), "\"/dev/zero\" is not a regular file",
+                                out);
+  const std::string mm = write("d3_mm.json", R"({"M": {"matrix_market": "/dev/zero"}, "K": [[2,-1],[-1,1]],
+                                                  "w": [0,-1], "g0": 1})");
+  expect_refused_without_output("reduce " + mm + " --modes 1 --out " + out.string(),
+                                "Matrix Market file \"/dev/zero\" is not a regular file", out);
+  expect_refused_without_output("solve " + mm + " --t1-max 5 --t2-max 5 --json " + out.string(),
+                                "Matrix Market file \"/dev/zero\" is not a regular file", out);
+  // a regular Matrix Market file without newlines: refused at the line cap, not read whole into one line
+  {
+    std::ofstream f(dir() / "d3_long.mtx");
+    f << "%%MatrixMarket matrix coordinate real general\n" << std::string(3 << 20, '1');
+  }
+  const std::string longline = write("d3_long.json", R"({"M": {"matrix_market": "d3_long.mtx"}, "K": [[2,-1],[-1,1]],
+                                                        "w": [0,-1], "g0": 1})");
+  expect_refused_without_output("solve " + longline + " --t1-max 5 --t2-max 5 --json " + out.string(),
+                                "d3_long.mtx:2: a line longer than 1048576 bytes", out);
+  // a JSON file past the size limit (sparse: no disk used), refused from its size without reading it
+  const fs::path big = dir() / "d3_big.json";
+  { std::ofstream(big) << "{"; }
+  fs::resize_file(big, (std::uintmax_t{1} << 30) + 1);
+  expect_refused_without_output("solve " + big.string() + " --t1-max 5 --t2-max 5 --json " + out.string(),
+                                "has 1073741825 bytes, more than the 1073741824 an input file of spp may have", out);
+  fs::remove(big);
+  expect_refused_without_output("verify " + dir().string() + " --json " + out.string(), "is a directory", out);
+}
+
+// D4: a system file with "g0": 1 followed by 100 000 zeros gave a 100 105-byte message (the parser's token echoed).
+TEST(Cli, ParserMessagesDoNotEchoUnboundedInput) {
+  const std::string sys = write(
+      "d4.json", R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1)" + std::string(100000, '0') + "}");
+  const fs::path out = dir() / "d4_out.json";
+  fs::remove(out);
+  const CliRun r = run("solve " + sys + " --t1-max 5 --t2-max 5 --json " + out.string());
+  EXPECT_EQ(r.code, 1) << r.out.substr(0, 500);
+  EXPECT_NE(r.out.find("number overflow"), std::string::npos) << r.out.substr(0, 500);
+  EXPECT_LT(r.out.size(), 600u) << r.out.substr(0, 500);
+  EXPECT_FALSE(fs::exists(out));
+  const std::string str = write("d4s.json", "{\"M\": \"" + std::string(100000, 'x') + "\n\"}");
+  const CliRun s = run("solve " + str + " --t1-max 5 --t2-max 5 --json " + out.string());
+  EXPECT_EQ(s.code, 1);
+  EXPECT_LT(s.out.size(), 600u) << s.out.substr(0, 500);
+}
+
+// D5: `spp trajectory ... --samples 10000000` built a CSV of 1.3e8 values in memory (> 60 s, > 1.1 GB); `spp animate
+// --frames 100000000` peaked at 1.6 GB before its refusal. Both are refused before any large allocation.
+TEST(Cli, TrajectoryAndAnimateBoundTheirOutputBeforeAllocatingIt) {
+  const std::string res = chain_result();
+  const fs::path csv = dir() / "d5.csv", gif = dir() / "d5.gif";
+  expect_refused_without_output(
+      "trajectory --result " + res + " --solution 0 --csv " + csv.string() + " --samples 10000000",
+      "--samples: expected 2 to 1538461 samples for a 5-dof system (at most 2e+07 values, samples x (2n + 3)", csv);
+  expect_refused_without_output("animate " + res + " --out " + gif.string() + " --frames 100000000",
+                                "frames must be an integer in [2, 10000], got 100000000", gif);
+  expect_refused_without_output("animate " + res + " --out " + gif.string() + " --frames 6000 --periods 2",
+                                "frames x periods must be at most 10000", gif);
+  expect_refused_without_output("animate " + res + " --out " + gif.string() + " --frames 4000 --dpi 300",
+                                "a GIF may hold in memory", gif);
+}
+
+// D6: spp plot/animate ran the Python package at the build tree's path compiled into the binary, ahead of the user's
+// PYTHONPATH: a copied or installed binary ran a stale build tree. Now the package beside the executable
+// (build/spp -> build/python/spp) is the one run.
+TEST(Cli, PlotRunsThePythonPackageBesideTheExecutableNotTheCompiledInOne) {
+  const fs::path bin = dir() / "d6_bin";
+  fs::create_directories(bin / "python" / "spp");
+  fs::copy_file(SPP_CLI, bin / "spp", fs::copy_options::overwrite_existing);
+  std::ofstream(bin / "python" / "spp" / "__init__.py") << "";
+  std::ofstream(bin / "python" / "spp" / "__main__.py")
+      << "import os, sys\nprint('package beside the executable:', os.path.dirname(os.path.abspath(__file__)))\n";
+  const std::string cmd =
+      (bin / "spp").string() + " plot " + chain_result() + " --out " + (dir() / "d6").string() + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  EXPECT_EQ(pclose(p), 0) << out;
+  EXPECT_NE(out.find("package beside the executable: " + (bin / "python" / "spp").string()), std::string::npos) << out;
+}
+
+// D7: expected errors of plot and animate ended in Python tracebacks (an --out that is a file: FileExistsError; dpi
+// 100000: IndexError), and a refused plot left its empty output directory behind.
+TEST(Cli, PlotAndAnimateErrorsAreMessagesNotTracebacks) {
+  const std::string res = chain_result();
+  const std::string file = write("d7_file.json", "{}");
+  const CliRun r = run("plot " + res + " --out " + file, "timeout 60 ");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("spp: error: --out " + file + ": exists and is not a directory"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("Traceback"), std::string::npos) << r.out;
+  const fs::path gif = dir() / "d7.gif", plots = dir() / "d7_plots";
+  expect_refused_without_output("animate " + res + " --out " + gif.string() + " --dpi 100000",
+                                "dpi must be an integer in [20, 600], got 100000", gif);
+  expect_refused_without_output("animate " + res + " --out " + (dir() / "no_dir" / "a.gif").string(), "does not exist",
+                                dir() / "no_dir");
+  expect_refused_without_output("plot " + res + " --out " + plots.string() + " --root-map-points 100000000",
+                                "--root-map-points must be 0 (no root map) or in [16, 4000]", plots);
+  expect_refused_without_output("plot " + kChain + " --out " + plots.string(), "expected a result of spp solve", plots);
+}
+
+// Minor findings of the same review: messages naming an option the user did not give, or unclear.
+TEST(Cli, MessagesNameTheOptionGiven) {
+  const fs::path sys = dir() / "minor_p.json", out = dir() / "minor_out.json";
+  ASSERT_EQ(run("generate two-dof --parameter k2 --range 1,10 --out " + sys.string()).code, 0);
+  // --max-step below the (default) min_step: about --max-step, not min_step
+  expect_refused_without_output(
+      "continue " + sys.string() + " --t1-max 3 --t2-max 1 --max-step 1e-300 --json " + out.string(),
+      "max_step must be in (min_step, 0.5] = (1e-09, 0.5]", out);
+  // trajectory has no --max-cells: its refusal of a huge window says what it can change
+  const fs::path csv = dir() / "minor.csv";
+  const CliRun t = run("trajectory " + kChain + " --t1 1e300 --t2 1 --csv " + csv.string());
+  EXPECT_EQ(t.code, 1) << t.out;
+  EXPECT_NE(t.out.find("nearest_spp (the window searched around the guess)"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("--radius"), std::string::npos) << t.out;
+  EXPECT_EQ(t.out.find("--max-cells"), std::string::npos) << t.out;
+  EXPECT_FALSE(fs::exists(csv));
+  // two outputs of one run on one file: the message names the other output's option
+  const fs::path bar = dir() / "minor_bar.json", red = dir() / "minor_red.json";
+  ASSERT_EQ(run("generate bar --n 20 --out " + bar.string()).code, 0);
+  expect_refused_without_output(
+      "reduce " + bar.string() + " --modes 3 --out " + red.string() + " --csv " + red.string(),
+      "--csv: \"" + red.string() + "\" is also the output of --out", red);
 }
