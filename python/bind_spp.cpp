@@ -91,6 +91,16 @@ std::string fields_repr(const py::object& o, const char* type_name) {
   }
   return out + ">";
 }
+
+// A complex array is refused, naming `what` (pybind11's conversion to double, and numpy's asarray(dtype=float64), keep
+// the real part with a mere ComplexWarning: found by an independent review).
+void require_real(const py::object& a, const std::string& what) {
+  const py::module_ np = py::module_::import("numpy");
+  if (np.attr("iscomplexobj")(a).cast<bool>())
+    throw std::invalid_argument(what + " must be real, got a complex array (dtype " +
+                                py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_spp, m) {
@@ -124,6 +134,7 @@ PYBIND11_MODULE(_spp, m) {
              const py::module_ np = py::module_::import("numpy");
              auto dense = [&](const py::object& a, const char* what) {
                py::object d = py::hasattr(a, "toarray") ? a.attr("toarray")() : a;
+               require_real(d, std::string("System: ") + what);
                py::object arr;
                try {
                  arr = np.attr("asarray")(d, "dtype"_a = "float64");
@@ -678,11 +689,26 @@ PYBIND11_MODULE(_spp, m) {
 
   py::class_<spp::ParametricSystem>(m, "ParametricSystem",
                                     "M(mu) = M_constant + mu M_mu, K(mu) likewise, w(mu) likewise, g0 fixed")
-      .def(py::init([](Eigen::MatrixXd M0, Eigen::MatrixXd M1, Eigen::MatrixXd K0, Eigen::MatrixXd K1,
-                       Eigen::VectorXd w0, Eigen::VectorXd w1, double g0, const std::string& name, double lo, double hi,
-                       const std::string& label) {
-             return spp::ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0),
-                                          std::move(w1), g0, {name, lo, hi}, label);
+      .def(py::init([](const py::object& M0, const py::object& M1, const py::object& K0, const py::object& K1,
+                       const py::object& w0, const py::object& w1, double g0, const std::string& name, double lo,
+                       double hi, const std::string& label) {
+             const std::pair<const py::object*, const char*> parts[] = {{&M0, "M_constant"}, {&M1, "M_mu"},
+                                                                        {&K0, "K_constant"}, {&K1, "K_mu"},
+                                                                        {&w0, "w_constant"}, {&w1, "w_mu"}};
+             for (const auto& [a, what] : parts) require_real(*a, std::string("ParametricSystem: ") + what);
+             auto as = [](const py::object& a, const char* what, auto shape) {
+               try {
+                 return a.cast<decltype(shape)>();
+               } catch (const py::cast_error&) {
+                 throw std::invalid_argument(std::string("ParametricSystem: ") + what +
+                                             " must be an array of numbers, got " +
+                                             py::str(py::type::of(a)).cast<std::string>());
+               }
+             };
+             return spp::ParametricSystem(as(M0, "M_constant", Eigen::MatrixXd()), as(M1, "M_mu", Eigen::MatrixXd()),
+                                          as(K0, "K_constant", Eigen::MatrixXd()), as(K1, "K_mu", Eigen::MatrixXd()),
+                                          as(w0, "w_constant", Eigen::VectorXd()), as(w1, "w_mu", Eigen::VectorXd()),
+                                          g0, {name, lo, hi}, label);
            }),
            "M_constant"_a, "M_mu"_a, "K_constant"_a, "K_mu"_a, "w_constant"_a, "w_mu"_a, "g0"_a, "parameter"_a, "min"_a,
            "max"_a, "name"_a = "",

@@ -463,3 +463,39 @@ def test_result_statuses_and_kinds_are_enums_that_read_as_their_names():
     kinds = {e.kind for b in c.branches for e in b.events}
     assert spp.BranchEventKind.gap_closure in kinds and all(isinstance(k, spp.BranchEventKind) for k in kinds)
     assert [m.value for m in spp.SolveStatus] == ["not_run", "success", "incomplete"]
+
+
+def test_a_complex_matrix_is_refused_not_taken_as_its_real_part():
+    # found by an independent review: a complex M was accepted, its imaginary part dropped with a mere warning
+    M = np.eye(2) + 1e-3j * np.ones((2, 2))
+    K = np.array([[2.0, -1.0], [-1.0, 1.0]])
+    with pytest.raises(ValueError, match="System: M must be real, got a complex array"):
+        spp.System(M, K, np.array([0.0, -1.0]), 1.0)
+    with pytest.raises(ValueError, match="System: w must be real"):
+        spp.System(np.eye(2), K, np.array([0.0, -1.0 + 0j]), 1.0)
+    with pytest.raises(ValueError, match="ParametricSystem: M_constant must be real, got a complex array"):
+        spp.ParametricSystem(M, np.zeros((0, 0)), K, np.array([[1.0, 0], [0, 0]]), np.array([0.0, -1.0]),
+                             np.zeros(0), 1.0, "k1", 0.5, 2.0)
+
+
+def test_solve_result_from_json_refuses_unknown_fields_and_contradictions(tmp_path):
+    # D8 of an independent review: read silently before
+    s = chain5()
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    good = json.loads(r.to_json(s))
+    cases = [(("solutions", 0, "foo"), 1, r'field "solutions"\[0\]: unknown field "foo"'),
+             (("solutions", 0, "period"), 123.0, r'field "solutions"\[0\]: field "period" must be 2 \(t1 \+ t2\)'),
+             (("window", "t1_max"), -5.0, r'field "window": expected 0 <= t1_min < t1_max'),
+             (("stats", "roots"), -1, r'field "stats": field "roots" must be a count >= 0')]
+    for keys, value, message in cases:
+        j = json.loads(json.dumps(good))
+        node = j
+        for k in keys[:-1]:
+            node = node[k]
+        node[keys[-1]] = value
+        p = tmp_path / "bad_result.json"
+        p.write_text(json.dumps(j))
+        with pytest.raises(ValueError, match=message):
+            spp.SolveResult.from_json(str(p))
+        with pytest.raises(ValueError, match=message):
+            spp.load_result(str(p))
