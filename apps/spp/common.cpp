@@ -41,19 +41,26 @@ void check_output(const std::string& out, const std::string& opt, const std::vec
     throw std::invalid_argument(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
 }
 
+namespace {
+// An option's text quoted in a message: at most 80 characters of it (an argument may be 128 kB long).
+std::string quoted(const std::string& s) {
+  return s.size() > 80 ? s.substr(0, 80) + "..." : s;
+}
+}  // namespace
+
 std::vector<double> parse_list(const std::string& s, const char* opt) {
   std::vector<double> v;
   std::stringstream ss(s);
   std::string item;
   if (!s.empty() && s.back() == ',')  // getline drops an empty last item
-    throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + s + "\"");
+    throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
   while (std::getline(ss, item, ',')) {
     try {
       size_t pos = 0;
       v.push_back(std::stod(item, &pos));
       if (pos != item.size()) throw std::invalid_argument("");
     } catch (const std::exception&) {
-      throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + s + "\"");
+      throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
     }
   }
   if (v.empty()) throw std::invalid_argument(std::string(opt) + ": expected at least one number");

@@ -11,6 +11,16 @@
 #include "spp/detail/dense_products.hpp"
 #include "spp/detail/out_of_memory.hpp"
 
+namespace {
+// Every message printed, at most 4000 characters: the last guard against echoing unbounded input (a message quotes
+// the user's text shortened, but CLI11's quote option values whole).
+std::string bounded(const char* what) {
+  const std::string m(what);
+  constexpr size_t kMax = 4000;
+  return m.size() > kMax ? m.substr(0, kMax) + "... (message cut at " + std::to_string(kMax) + " characters)" : m;
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   // OpenBLAS on the calling thread only, for the whole run: its results depend on its thread count (rounding), so
   // a run gives the same numbers on every machine; and its thread pool's start-up made --dry-run's timing probe
@@ -40,21 +50,21 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "spp: error: " << e.what() << "\n(run with --help for the usage)\n";
+    std::cerr << "spp: error: " << bounded(e.what()) << "\n(run with --help for the usage)\n";
     return 1;
   }
   try {
     for (const spp::cli::Subcommand& c : commands)
       if (c.app->parsed()) return c.run();
   } catch (const spp::detail::OutOfMemory& e) {  // names what was too large and its size
-    std::cerr << "spp: error: " << e.what() << "\n";
+    std::cerr << "spp: error: " << bounded(e.what()) << "\n";
     return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "spp: error: out of memory: the system or the window needs more memory than this machine gives "
                  "(a smaller window, or --max-cells, bounds the work)\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "spp: error: " << e.what() << "\n";
+    std::cerr << "spp: error: " << bounded(e.what()) << "\n";
     return 1;
   }
   return 0;

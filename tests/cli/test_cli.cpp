@@ -724,6 +724,16 @@ TEST(Cli, ParserMessagesDoNotEchoUnboundedInput) {
   const CliRun s = run("solve " + str + " --t1-max 5 --t2-max 5 --json " + out.string());
   EXPECT_EQ(s.code, 1);
   EXPECT_LT(s.out.size(), 600u) << s.out.substr(0, 500);
+  // options: a list quoted shortened, and CLI11's messages (which quote a value whole) cut at 4000 characters
+  const std::string huge(100000, '7');
+  const CliRun l = run("simulate " + kChain + " --x0 " + huge + "x --v0 0 --duration 1 --csv " + out.string());
+  EXPECT_EQ(l.code, 1);
+  EXPECT_NE(l.out.find("--x0: expected comma-separated numbers"), std::string::npos) << l.out.substr(0, 500);
+  EXPECT_LT(l.out.size(), 600u) << l.out.substr(0, 500);
+  const CliRun c = run("solve " + kChain + " --t1-max " + huge + "x --t2-max 5 --json " + out.string());
+  EXPECT_EQ(c.code, 1);
+  EXPECT_LT(c.out.size(), 4200u) << c.out.substr(0, 500);
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // D5: `spp trajectory ... --samples 10000000` built a CSV of 1.3e8 values in memory (> 60 s, > 1.1 GB); `spp animate
