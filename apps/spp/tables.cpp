@@ -1,6 +1,7 @@
 #include "tables.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -9,13 +10,18 @@ namespace spp::cli {
 std::string result_table(const SolveResult& r) {
   std::ostringstream os;
   os << std::setw(4) << "#" << std::setw(14) << "t1" << std::setw(14) << "t2" << std::setw(14) << "period"
-     << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force"
+     << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force" << std::setw(12)
+     << "rho" << std::setw(8) << "stable"
      << "\n";
   int i = 0;
   for (const Solution& x : r.solutions) {
     os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1 << std::setw(14) << x.t2 << std::setw(14)
        << x.period << std::setw(12) << (x.admissible ? "yes" : "no") << std::setprecision(3) << std::setw(14)
-       << x.min_gap << std::setw(14) << x.min_force;
+       << x.min_gap << std::setw(14) << x.min_force << std::setprecision(6) << std::setw(12)
+       << x.floquet.spectral_radius << std::setw(8)
+       << (std::isnan(x.floquet.spectral_radius) || !x.admissible ? "-"
+           : x.stable()                                           ? "yes"
+                                                                  : "no");
     for (const auto& f : x.flags) os << "  [" << f << "]";
     os << "\n";
   }

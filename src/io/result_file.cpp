@@ -193,6 +193,15 @@ json result_to_json(const System& s, const SolveResult& r) {
                 {"closure_ratio", x.orbit.closure_ratio},
                 {"energy", x.orbit.energy}}}};
     if (x.orbit.symmetry == Symmetry::Point) o["obstacle_velocity"] = x.orbit.obstacle_velocity;
+    if (!std::isnan(x.floquet.spectral_radius)) {  // stability/floquet.hpp; absent when not computed
+      json mu = json::array();
+      for (const auto& z : x.floquet.multipliers) mu.push_back({z.real(), z.imag()});
+      o["floquet_multipliers"] = mu;
+      o["spectral_radius"] = x.floquet.spectral_radius;
+      o["stability_margin"] = x.floquet.margin;
+      o["stable"] = x.stable();
+      o["floquet_structure_residual"] = x.floquet.structure_residual;
+    }
     sols.push_back(o);
   }
   j["solutions"] = sols;
@@ -291,6 +300,23 @@ SolveResult result_from_json(const json& r, const std::string& where) {
     b.closure_ratio = ob.number("closure_ratio");
     b.energy = ob.number("energy");
     if (res.symmetry == Symmetry::Point) b.obstacle_velocity = o.number("obstacle_velocity");
+    if (o.o.contains("floquet_multipliers")) {  // files written before stability was computed have none
+      const json& mu = o.at("floquet_multipliers");
+      const std::string mw = o.where + ": field \"floquet_multipliers\"";
+      if (!mu.is_array()) invalid(mw + " must be a list of [re, im] pairs, got " + describe(mu));
+      for (size_t k = 0; k < mu.size(); ++k) {
+        if (!mu[k].is_array() || mu[k].size() != 2 || !mu[k][0].is_number() || !mu[k][1].is_number())
+          invalid(mw + "[" + std::to_string(k) + "] must be [re, im], got " + describe(mu[k]));
+        x.floquet.multipliers.emplace_back(mu[k][0].get<double>(), mu[k][1].get<double>());
+      }
+      x.floquet.spectral_radius = o.number("spectral_radius");
+      x.floquet.margin = o.number("stability_margin");
+      x.floquet.stable = x.floquet.spectral_radius < 1.0;
+      x.floquet.structure_residual = o.number("floquet_structure_residual");
+      if (o.boolean("stable") != x.stable())
+        invalid(o.where + ": field \"stable\" must be admissible and spectral_radius < 1, got " +
+                (o.boolean("stable") ? "true" : "false"));
+    }
     res.solutions.push_back(std::move(x));
   }
   return res;

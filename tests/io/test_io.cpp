@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -163,6 +164,14 @@ void expect_same_result(const SolveResult& a, const SolveResult& b) {
     EXPECT_EQ(x.residual, y.residual) << at;
     EXPECT_EQ(x.return_error, y.return_error) << at;
     EXPECT_EQ(x.flags, y.flags) << at;
+    EXPECT_EQ(x.floquet.multipliers, y.floquet.multipliers) << at;
+    EXPECT_EQ(std::isnan(x.floquet.spectral_radius), std::isnan(y.floquet.spectral_radius)) << at;
+    if (!std::isnan(x.floquet.spectral_radius)) {
+      EXPECT_EQ(x.floquet.spectral_radius, y.floquet.spectral_radius) << at;
+      EXPECT_EQ(x.floquet.margin, y.floquet.margin) << at;
+      EXPECT_EQ(x.floquet.structure_residual, y.floquet.structure_residual) << at;
+      EXPECT_EQ(x.stable(), y.stable()) << at;
+    }
     const Admissibility &p = x.admissibility, &q = y.admissibility;
     EXPECT_EQ(p.admissible, q.admissible) << at;
     EXPECT_EQ(p.min_gap, q.min_gap) << at;

@@ -22,6 +22,7 @@
 
 #include "spp/core/system.hpp"
 #include "spp/orbit/orbit.hpp"
+#include "spp/stability/floquet.hpp"
 
 namespace spp {
 
@@ -64,7 +65,10 @@ struct SolveOptions {
   double admissibility_tol = 1e-9;   ///< relative tolerance of ineqs. (5.3) on each cosine sum's amplitude
   bool admissible_only = false;      ///< keep only admissible SPPs in the result
   bool compute_return_error = true;  ///< propagate each SPP over one period with the physical flows
-  int threads = 0;                   ///< worker threads over t2-strips; 0 = every hardware thread
+  /// Floquet multipliers of each axially symmetric SPP under Newton's impact law, e < 1 (stability/floquet.hpp):
+  /// O(m^3) per SPP (a nonsymmetric eigenproblem of size 2m - 2).
+  bool compute_stability = true;
+  int threads = 0;  ///< worker threads over t2-strips; 0 = every hardware thread
   /// Axial: the SPPs (eqs. 5.1). Point: the point-symmetric potential SPPs of det T2 = 0 (paper §6.2), same
   /// search on H_T (see Symmetry); never admissible, and with g0 != 0 they need a moving obstacle.
   Symmetry symmetry = Symmetry::Axial;
@@ -93,6 +97,11 @@ struct Solution {
   double return_error = -1.0;  ///< relative periodicity error after one period (-1: not computed)
   Orbit orbit;
   Admissibility admissibility;
+  /// Multipliers, spectral radius, margin (stability/floquet.hpp); spectral_radius NaN when not computed (point
+  /// symmetry, compute_stability off). Physical only for an admissible SPP: see stable().
+  Floquet floquet;
+  /// Admissible and every multiplier but the two structural 1s inside the unit circle.
+  bool stable() const { return admissible && floquet.stable; }
   /// "point_symmetric" (Symmetry::Point),
   /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip),
   /// "decoupled_mode_resonant" (a mode that never sees the contact has the same period: any amount of it can be added),
