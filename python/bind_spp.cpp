@@ -208,6 +208,20 @@ PYBIND11_MODULE(_spp, m) {
           "obstacle_velocity", [](const spp::Solution& s) { return s.orbit.obstacle_velocity; },
           "point symmetry: normal velocity of the obstacle during contact (g0 / t2); 0 for SPPs")
       .def_property_readonly(
+          "floquet_multipliers",
+          [](const spp::Solution& s) {
+            return Eigen::VectorXcd(Eigen::Map<const Eigen::VectorXcd>(
+                s.floquet.multipliers.data(), static_cast<Eigen::Index>(s.floquet.multipliers.size())));
+          },
+          "(2n,) complex Floquet multipliers under Newton's impact law, e < 1, sorted by modulus (docs/stability.md); "
+          "empty when not computed (point symmetry)")
+      .def_property_readonly(
+          "spectral_radius", [](const spp::Solution& s) { return s.floquet.spectral_radius; },
+          "largest |multiplier| but the two structural 1s (NaN: not computed)")
+      .def_property_readonly(
+          "stability_margin", [](const spp::Solution& s) { return s.floquet.margin; }, "1 - spectral_radius")
+      .def_property_readonly("stable", &spp::Solution::stable, "admissible and spectral_radius < 1")
+      .def_property_readonly(
           "x0", [](const spp::Solution& s) { return s.orbit.x0; }, "(n,) state at contact onset")
       .def_property_readonly(
           "v0", [](const spp::Solution& s) { return s.orbit.v0; }, "(n,)")
@@ -383,6 +397,7 @@ PYBIND11_MODULE(_spp, m) {
       .def_readwrite("admissibility_tol", &spp::SolveOptions::admissibility_tol)
       .def_readwrite("admissible_only", &spp::SolveOptions::admissible_only)
       .def_readwrite("compute_return_error", &spp::SolveOptions::compute_return_error)
+      .def_readwrite("compute_stability", &spp::SolveOptions::compute_stability)
       .def_readwrite("threads", &spp::SolveOptions::threads, "worker threads (0: all)")
       .def_property(
           "symmetry", [](const spp::SolveOptions& o) { return o.symmetry; },
@@ -505,6 +520,20 @@ PYBIND11_MODULE(_spp, m) {
       "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
       "admissible. Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 somewhere). "
       "Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
+  m.def(
+      "monodromy",
+      [](const spp::System& s, double t1, double t2) {
+        const spp::ModalForm md(s);
+        spp::SolveOptions o;
+        o.compute_return_error = false;
+        o.compute_stability = false;
+        const spp::Solution sol = spp::solution_at(s, md, t1, t2, o);
+        return py::make_tuple(spp::monodromy(md, sol.orbit), sol.orbit.x0, sol.orbit.v0, sol.period);
+      },
+      "system"_a, "t1"_a, "t2"_a,
+      "The linearised one-period map of the SPP at (t1, t2) (polished there first) under Newton's impact law, e < 1: "
+      "(Mono, x0, v0, period), Mono (2n, 2n) acting on (dx, dv) from just before the contact onset (x0, v0) "
+      "(docs/stability.md). Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
   m.def(
       "fundamental_box", [](const spp::System& s) { return spp::fundamental_box(spp::ModalForm(s)); }, "system"_a,
       "(t1_max, t2_max) of the fundamental box: t1 <= pi / omega_1 (slowest free-flight mode that sees the contact), "

@@ -1,0 +1,83 @@
+"""Floquet multipliers from Python (docs/stability.md): Solution fields, spp.monodromy, the simulator's finite
+differences, and the result file's round trip."""
+import math
+import os
+import pickle
+import sys
+
+import numpy as np
+import pytest
+
+import spp
+
+SRC = os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(SRC, "tests", "crosscheck"))
+from floquet_convergence import fd_monodromy, mid_flight  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def chain():
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    return s, spp.solve(s, t1_max=12, t2_max=12, admissible_only=True)
+
+
+def test_every_admissible_spp_carries_its_multipliers(chain):
+    s, r = chain
+    for sol in r.solutions:
+        mu = sol.floquet_multipliers
+        assert mu.shape == (2 * s.n,) and mu.dtype == np.complex128
+        assert np.all(np.diff(np.abs(mu)) >= 0)  # sorted by modulus
+        assert np.sum(np.abs(mu) < 1e-10) == 2  # the onset's projection
+        assert np.sum(mu == 1.0) >= 2  # flow direction and energy
+        assert sol.stability_margin == pytest.approx(1.0 - sol.spectral_radius, abs=0.0)
+        assert sol.stable == (sol.admissible and sol.spectral_radius < 1.0)
+        mono, x0, v0, period = spp.monodromy(s, sol.t1, sol.t2)
+        assert np.allclose(x0, sol.x0, atol=1e-10) and period == pytest.approx(sol.period)
+        full = np.linalg.eigvals(mono)
+        for m in mu:
+            tol = 1e-6 if abs(m - 1.0) < 1e-3 else 1e-8  # the Jordan block at 1
+            assert np.min(np.abs(full - m)) < tol
+
+
+def test_finite_differences_of_the_simulator_agree(chain):
+    s, r = chain
+    sol = r.solutions[2]  # stable, rho = 0.98576
+    Xm, mono_mid = mid_flight(s, sol)
+    errs = [np.linalg.norm(fd_monodromy(s, Xm, sol.period, 0.5, d) - mono_mid) / np.linalg.norm(mono_mid)
+            for d in (1e-5, 1e-8)]
+    assert errs[1] < 0.1
+    assert 5.0 < errs[0] / errs[1] < 20.0  # delta^(1/3): a factor 10 over three decades
+
+
+def test_result_file_round_trip_and_switch(chain):
+    s, r = chain
+    back = pickle.loads(pickle.dumps(r))  # a SolveResult pickles as its result file's JSON text
+    assert len(back.solutions) == len(r.solutions)
+    for a, b in zip(r.solutions, back.solutions):
+        assert np.array_equal(a.floquet_multipliers, b.floquet_multipliers)
+        assert a.spectral_radius == b.spectral_radius and a.stable == b.stable
+    off = spp.solve(s, t1_max=7, t2_max=1, admissible_only=True, compute_stability=False)
+    assert off.solutions and math.isnan(off.solutions[0].spectral_radius)
+    assert off.solutions[0].floquet_multipliers.size == 0 and not off.solutions[0].stable
+
+
+def test_figures_mark_stability(chain, tmp_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from spp import plot
+    s, r = chain
+    fig = plot.multipliers_figure(r.solutions, path=tmp_path / "mu.png")
+    drawn = {c.get_gid(): c for c in fig.axes[0].collections}
+    for k, sol in enumerate(r.solutions):
+        mu = sol.floquet_multipliers
+        off = drawn[f"spp_{k}"].get_offsets()
+        assert np.allclose(off[:, 0] + 1j * off[:, 1], mu)
+        assert (len(drawn[f"spp_{k}"].get_facecolors()) > 0 and drawn[f"spp_{k}"].get_facecolors()[0][3] > 0) == sol.stable
+    x, y = fig.axes[0].lines[0].get_data()
+    assert np.allclose(np.hypot(x, y), 1.0)  # the unit circle
+    fe = plot.frequency_energy_figure(r.solutions)
+    marked = {c.get_gid(): c.get_offsets() for c in fe.axes[0].collections}
+    want = np.array([(x.energy, 2 * np.pi / x.period) for x in r.solutions if x.stable])
+    assert len(want) == 2 and np.allclose(np.sort(marked["stable"], axis=0), np.sort(want, axis=0))
+    plt.close("all")
