@@ -230,10 +230,43 @@ def frequency_energy_figure(solutions, path=None, ax=None):
     sols = list(solutions)
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN, 2.8))
     _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
+    # Stability (docs/stability.md), when the solutions carry it (Solution; not SppCandidate): a black ring around
+    # each stable admissible SPP (gid "stable"); unstable ones keep their plain marker.
+    stable = [(s.energy, 2 * np.pi / s.period) for s in sols if getattr(s, "stable", False)]
+    if stable:
+        a, b = np.array(stable).T
+        ax.scatter(a, b, s=70, facecolors="none", edgecolors="k", lw=1.0, zorder=4, gid="stable",
+                   label="stable (Floquet, any e < 1)")
     ax.set_xscale("log")
     ax.set_xlabel("energy $E$ (-)")
     ax.set_ylabel(r"frequency $2\pi/T$ (-)")
     ax.legend(fontsize=7, frameon=False)
+    if own:
+        fig.tight_layout()
+    return _save(fig, path)
+
+
+def multipliers_figure(solutions, path=None, ax=None):
+    """Floquet multipliers (docs/stability.md) of the admissible SPPs in the complex plane, with the unit circle:
+    one colour per SPP, its index and spectral radius in the legend; filled markers for stable SPPs, open for
+    unstable ones. The two structural multipliers 1 and the two zeros are drawn too. solutions: Solution objects
+    (with floquet_multipliers); ax: axes to draw into (default a new figure)."""
+    sols = [(k, s) for k, s in enumerate(solutions) if s.admissible and len(s.floquet_multipliers)]
+    fig, ax, own = _axes(ax, (1.7 * COLUMN_WIDTH_IN, 1.1 * COLUMN_WIDTH_IN))
+    th = np.linspace(0.0, 2 * np.pi, 400)
+    ax.plot(np.cos(th), np.sin(th), color="0.5", lw=0.8, gid="unit_circle")
+    for i, (k, s) in enumerate(sols):
+        mu = np.asarray(s.floquet_multipliers)
+        style = (dict(color=f"C{i % 10}") if s.stable else dict(facecolors="none", edgecolors=f"C{i % 10}"))
+        ax.scatter(mu.real, mu.imag, s=18, lw=0.9, zorder=3, gid=f"spp_{k}",
+                   label=f"#{k}: $\\rho$ = {s.spectral_radius:.4f}" + ("" if s.stable else " (unstable)"), **style)
+    ax.set_aspect("equal")
+    ax.axhline(0, color="0.85", lw=0.5, zorder=0)
+    ax.axvline(0, color="0.85", lw=0.5, zorder=0)
+    ax.set_xlabel(r"Re $\mu$")
+    ax.set_ylabel(r"Im $\mu$")
+    if sols:
+        ax.legend(fontsize=6, frameon=False, loc="center left", bbox_to_anchor=(1.0, 0.5))
     if own:
         fig.tight_layout()
     return _save(fig, path)

@@ -105,7 +105,7 @@ def test_figures_draw_into_given_axes():
     s, r = result()
     fig, ax = plt.subplots()
     assert plot.frequency_energy_figure(r.solutions, ax=ax) is fig
-    assert {c.get_gid() for c in ax.collections} == {"admissible", "potential"}
+    assert {c.get_gid() for c in ax.collections} == {"admissible", "potential", "stable"}  # stable: ringed (docs/stability.md)
     fig2, (top, bottom) = plt.subplots(2, 1)
     sol = [x for x in r.solutions if x.admissible][0]
     assert plot.spp_figure(s, sol, axes=(top, bottom)) is fig2
