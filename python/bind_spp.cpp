@@ -756,6 +756,8 @@ PYBIND11_MODULE(_spp, m) {
       .def_readonly("period", &spp::BranchPoint::period)
       .def_readonly("admissible", &spp::BranchPoint::admissible)
       .def_readonly("margin", &spp::BranchPoint::margin, "admissibility margin (NaN where meaningless)")
+      .def_readonly("spectral_radius", &spp::BranchPoint::spectral_radius,
+                    "largest |Floquet multiplier| but the two structural 1s (NaN where not computed)")
       .def_readonly("closure", &spp::BranchPoint::closure)
       .def_readonly("energy", &spp::BranchPoint::energy)
       .def_readonly("x0", &spp::BranchPoint::x0)

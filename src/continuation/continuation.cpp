@@ -52,6 +52,8 @@ const char* to_string(BranchEventKind k) {
     case BranchEventKind::GapClosure: return "gap_closure";
     case BranchEventKind::ClosedLoop: return "closed_loop";
     case BranchEventKind::Stalled: return "stalled";
+    case BranchEventKind::StabilityLost: return "stability_lost";
+    case BranchEventKind::StabilityGained: return "stability_gained";
   }
   return "?";
 }
@@ -263,7 +265,10 @@ class Tracer {
       p.v0 = o.v0;
       // With g0 = 0 the orbit closes the gap only where closure = 0: the margin means nothing elsewhere; point
       // symmetric orbits are never admissible (no margin).
-      if (!free_scale && eq.can_be_admissible()) p.margin = admissibility_margin(md, o);
+      if (!free_scale && eq.can_be_admissible()) {
+        p.margin = admissibility_margin(md, o);
+        p.spectral_radius = floquet(md, o).spectral_radius;
+      }
     } catch (const std::invalid_argument&) {
     }
     p.admissible = p.margin >= 0.0;
@@ -481,6 +486,16 @@ class BranchWalker {
                        {lost ? BranchEventKind::AdmissibilityLost : BranchEventKind::AdmissibilityGained, x.p,
                         "admissibility_margin crosses zero"}});
     }
+    if (!closes && std::isfinite(s.point.spectral_radius) && std::isfinite(end.spectral_radius) &&
+        (s.point.spectral_radius < 1.0) != (end.spectral_radius < 1.0)) {
+      // the largest modulus is continuous along the branch (not smooth where two multipliers swap): bisection
+      Along x = locate(
+          s, end_h, [](const Along& q) { return q.p.spectral_radius - 1.0; }, s.point.spectral_radius - 1.0);
+      const bool lost = s.point.spectral_radius < 1.0;
+      found.push_back({(x.y - s.y).norm(),
+                       {lost ? BranchEventKind::StabilityLost : BranchEventKind::StabilityGained, x.p,
+                        "a Floquet multiplier crosses the unit circle"}});
+    }
     std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.hp < b.hp; });
     for (Found& f : found) events.push_back(std::move(f.e));
     if (stop_edge >= 0) {
@@ -504,6 +519,10 @@ BranchEvent reversed(BranchEvent e) {
     e.kind = BranchEventKind::AdmissibilityGained;
   else if (e.kind == BranchEventKind::AdmissibilityGained)
     e.kind = BranchEventKind::AdmissibilityLost;
+  else if (e.kind == BranchEventKind::StabilityLost)
+    e.kind = BranchEventKind::StabilityGained;
+  else if (e.kind == BranchEventKind::StabilityGained)
+    e.kind = BranchEventKind::StabilityLost;
   return e;
 }
 

@@ -19,6 +19,7 @@ json point_json(const BranchPoint& p, const std::string& parameter) {
   // NaN is not JSON: the margin is null where it means nothing (g0 = 0 away from a closure, diverging orbit).
   j["margin"] = std::isfinite(p.margin) ? json(p.margin) : json(nullptr);
   j["admissible"] = p.admissible;
+  j["spectral_radius"] = std::isfinite(p.spectral_radius) ? json(p.spectral_radius) : json(nullptr);
   return j;
 }
 }  // namespace

@@ -221,3 +221,36 @@ TEST(Corrector, NoCurveInReachIsNotConverged) {
                                                       Eigen::Vector3d(1.0, 0.0, 0.0), y)
                    .converged);
 }
+
+TEST(Continuation, StabilityChangesAreLocated) {
+  // The §5.2 chain with k5 as the parameter: between k5 = 0.9 and 1 the SPP near (t1, t2) = (5.7, 2.5) goes from
+  // spectral radius 1.0038 to 0.9858 (independent solves); the branch must carry the event, with the radius 1 there
+  // and on either side of 1 at k5 -+ 1e-6 (independent Newton and floquet()).
+  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
+  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
+  K1(3, 3) = K1(4, 4) = 1;
+  K1(3, 4) = K1(4, 3) = -1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  o.seeds = 3;
+  const ContinuationResult r = continue_branches(ps, o);
+  int located = 0;
+  for (const Branch& b : r.branches)
+    for (const BranchEvent& e : b.events) {
+      if (e.kind != BranchEventKind::StabilityLost && e.kind != BranchEventKind::StabilityGained) continue;
+      EXPECT_NEAR(e.at.spectral_radius, 1.0, 1e-7) << e.at.mu;
+      auto radius_at = [&](double mu) {
+        const System sys = ps.at(mu);
+        const Solution s = solution_at(sys, e.at.t1, e.at.t2);
+        return floquet(ModalForm(sys), s.orbit).spectral_radius;
+      };
+      const double below = radius_at(e.at.mu - 1e-6), above = radius_at(e.at.mu + 1e-6);
+      EXPECT_LT((below - 1.0) * (above - 1.0), 0.0) << "k5 = " << e.at.mu << ": " << below << " " << above;
+      ++located;
+    }
+  EXPECT_GE(located, 1) << r.brief_report();
+}

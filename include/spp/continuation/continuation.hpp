@@ -12,11 +12,13 @@
 //   - Events, located by bisection along the branch: the window's or the range's edge (the branch stops), a
 //     fold in mu, admissibility lost or gained (admissibility_margin changes sign), and the gap closing at
 //     rest, u^T W^-1 p0 = 0: for g0 = 0 these are the SPPs of paper §6.1 (their scale is free: unit energy),
-//     for g0 != 0 the orbit's amplitude diverges there.
+//     for g0 != 0 the orbit's amplitude diverges there; a Floquet multiplier crossing the unit circle
+//     (spectral_radius - 1 changes sign, docs/stability.md).
 // Branches that exist only between two seed values (born and dying at folds in between) are not seen: raise
 // `seeds` to narrow that gap.
 
 #include <Eigen/Dense>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,8 @@ enum class BranchEventKind {
                         ///< Symmetry::Point: u^T W^-1 p0' = 0, zero normal velocity at onset (§6.2, fixed obstacle)
   ClosedLoop,           ///< the branch came back to its first point: an isola, traced once
   Stalled,              ///< the step fell below min_step or max_points was reached
+  StabilityLost,        ///< a Floquet multiplier leaves the unit circle (spectral_radius goes above 1)
+  StabilityGained,      ///< and back (stability/floquet.hpp; axial branches with g0 != 0)
 };
 const char* to_string(BranchEventKind kind);
 
@@ -63,6 +67,9 @@ struct BranchPoint {
   double closure = 0.0;     ///< u^T W^-1 p0 / |W^-1 a|, continuous along the branch: zero where the gap closes at rest
   double energy = 0.0;
   Eigen::VectorXd x0, v0;  ///< state at contact onset (g0 = 0: scaled to unit energy)
+  /// Largest |Floquet multiplier| but the two structural 1s (stability/floquet.hpp, docs/stability.md), whether the
+  /// SPP is admissible or not; NaN where not computed (g0 = 0, point symmetry, undefined orbit).
+  double spectral_radius = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct BranchEvent {
