@@ -253,6 +253,50 @@ TEST(Floquet, UnstableSppLeavesAtTheMultipliersRate) {
   }
 }
 
+// 1000 periods, e = 0.5, from a random perturbation of 1e-10 (relative) of the mid-flight state: the distance to the
+// orbit on the release section (docs/stability.md §4) stays below 1e-8 on the stable SPPs (chain #2, #3; rod #0),
+// and grows past 1e-6 on chain #1, whose rho = 1.0137 predicts a factor 1.0137^1000 = 8e5.
+TEST(Floquet, ThousandPeriodsStayOnStableSppsAndLeaveAnUnstableOne) {
+  const System c = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0), r = rod_with_slip(-0.25, 0.25);
+  const std::vector<Solution> cs = admissible_spps(c), rs = admissible_spps(r);
+  ASSERT_EQ(cs.size(), 7u);
+  ASSERT_EQ(rs.size(), 2u);
+  auto largest_distance = [](const System& s, const Solution& sol, double* last, int* releases) {
+    const ModalForm md(s);
+    const Simulator sim(s);
+    const int n = s.n();
+    const OrbitState rel = orbit_state(md, sol.orbit, 2.0 * sol.t2);
+    const Eigen::VectorXd Xr = stack(rel.x, rel.v);
+    const OrbitState mid = orbit_state(md, sol.orbit, 2.0 * sol.t2 + sol.t1);
+    Eigen::VectorXd d = Eigen::VectorXd::Random(2 * n);  // Eigen's fixed sequence: reproducible
+    d *= 1e-10 * stack(mid.x, mid.v).norm() / d.norm();
+    SimulateOptions o;
+    o.duration = 1000 * sol.period;
+    o.restitution = 0.5;
+    o.sample_events = false;
+    const SimulationResult res = sim.run(mid.x + d.head(n), mid.v + d.tail(n), o);
+    EXPECT_EQ(res.status, SimulationStatus::Success);
+    double worst = 0.0;
+    *releases = 0;
+    for (const Event& e : res.events) {
+      if (e.kind != EventKind::Release) continue;
+      *last = (stack(e.x, e.v_after) - Xr).norm() / Xr.norm();
+      worst = std::max(worst, *last);
+      ++*releases;
+    }
+    return worst;
+  };
+  double last = 0.0;
+  int releases = 0;
+  for (const auto& [s, sol] : {std::pair{&c, &cs[2]}, std::pair{&c, &cs[3]}, std::pair{&r, &rs[0]}}) {
+    ASSERT_TRUE(sol->stable());
+    EXPECT_LT(largest_distance(*s, *sol, &last, &releases), 1e-8) << "t1 = " << sol->t1;
+    EXPECT_EQ(releases, 1000) << "t1 = " << sol->t1;
+  }
+  ASSERT_FALSE(cs[1].stable());
+  EXPECT_GT(largest_distance(c, cs[1], &last, &releases), 1e-6);
+}
+
 TEST(Floquet, RefusesAPointSymmetricOrbit) {
   const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
   const ModalForm md(s);
