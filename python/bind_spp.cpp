@@ -123,7 +123,8 @@ PYBIND11_MODULE(_spp, m) {
   bind_outcome(m, "BranchEventKind",
                {spp::BranchEventKind::LeavesWindow, spp::BranchEventKind::RangeEnd, spp::BranchEventKind::Fold,
                 spp::BranchEventKind::AdmissibilityLost, spp::BranchEventKind::AdmissibilityGained,
-                spp::BranchEventKind::GapClosure, spp::BranchEventKind::ClosedLoop, spp::BranchEventKind::Stalled},
+                spp::BranchEventKind::GapClosure, spp::BranchEventKind::ClosedLoop, spp::BranchEventKind::Stalled,
+                spp::BranchEventKind::StabilityLost, spp::BranchEventKind::StabilityGained},
                "BranchEvent.kind");
 
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
@@ -659,18 +660,14 @@ PYBIND11_MODULE(_spp, m) {
       "load_result",
       [](const std::string& path) {
         spp::System system = spp::load_result_system(path);
-        const spp::SolveResult r = spp::load_result(path);
-        std::vector<spp::SppCandidate> spps = spp::candidates(r);
-        py::dict window;
-        window["t1_min"] = r.t1_min;
-        window["t1_max"] = r.t1_max;
-        window["t2_min"] = r.t2_min;
-        window["t2_max"] = r.t2_max;
-        return py::make_tuple(std::move(system), std::move(spps), window);
+        py::object result = py::cast(spp::load_result(path));
+        result.attr("system") = std::move(system);
+        return result;
       },
       "path"_a,
-      "(System, [SppCandidate], window dict t1_min/t1_max/t2_min/t2_max) of a result JSON written by "
-      "spp solve --json or SolveResult.to_json. Raises ValueError naming the file and the field.");
+      "The SolveResult of a result file (spp solve --json, SolveResult.to_json), as C++'s spp::load_result, with its "
+      "system as attribute system (the same as SolveResult.from_json). Raises ValueError naming the file and the "
+      "field.");
 
   py::class_<spp::RootMapCell>(m, "RootMapCell", "One rectangle between pole lines, sampled on its own grid")
       .def_readonly("t1", &spp::RootMapCell::t1, "(n1,) ascending")

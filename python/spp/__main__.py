@@ -31,7 +31,9 @@ def _plot(a):
                          f"got {a.root_map_points}")
     if os.path.exists(a.out) and not os.path.isdir(a.out):
         raise ValueError(f"--out {a.out}: exists and is not a directory (plot writes its figures into a directory)")
-    system, spps, window = load_result(a.result)
+    r = load_result(a.result)
+    system, spps, window = r.system, list(r.solutions), dict(t1_min=r.t1_min, t1_max=r.t1_max, t2_min=r.t2_min,
+                                                                t2_max=r.t2_max)
     chosen = _chosen(a.solutions, spps, a.result)
     # created only now that every option and the result are read; removed again if this run made it and fails empty
     created = not os.path.exists(a.out)
@@ -83,7 +85,8 @@ def _animate(a):
     out_dir = os.path.dirname(os.path.abspath(a.out))
     if not os.path.isdir(out_dir):
         raise ValueError(f"--out {a.out}: the directory {out_dir} does not exist")
-    system, spps, _ = load_result(a.result)
+    r = load_result(a.result)
+    system, spps = r.system, list(r.solutions)
     if a.solution < 0:
         admissible = [k for k, s in enumerate(spps) if s.admissible]
         if not admissible:

@@ -80,10 +80,11 @@ def test_result_file_round_trip_through_the_cpp_reader(tmp_path):
     r = spp.solve(s, t1_max=8, t2_max=3)
     path = tmp_path / "r.json"
     path.write_text(r.to_json(s))
-    s2, spps, window = spp.load_result(str(path))
+    back = spp.load_result(str(path))  # the SolveResult that was written, as C++'s spp::load_result
+    s2, spps = back.system, back.solutions
     assert np.array_equal(s2.M, s.M) and np.array_equal(s2.K, s.K) and s2.g0 == s.g0
-    assert window == dict(t1_min=r.t1_min, t1_max=r.t1_max, t2_min=r.t2_min, t2_max=r.t2_max)
-    assert len(spps) == len(r.solutions) == 4
+    assert (back.t1_min, back.t1_max, back.t2_min, back.t2_max) == (r.t1_min, r.t1_max, r.t2_min, r.t2_max)
+    assert back.status is r.status and len(spps) == len(r.solutions) == 4
     for a, b in zip(spps, r.solutions):
         assert (a.t1, a.t2, a.admissible, a.energy, a.period) == (b.t1, b.t2, b.admissible, b.energy, b.period)
         assert np.array_equal(a.x0, b.x0) and np.array_equal(a.v0, b.v0)

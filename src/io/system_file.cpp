@@ -62,8 +62,9 @@ System system_from_json(const json& j, const std::string& where, const std::stri
   Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
   Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
   const double g0 = g0_field(j, where);
+  std::string name = name_field(j, where);  // (outside the try: its message already names the file)
   try {
-    return System(std::move(M), std::move(K), std::move(w), g0, name_field(j, where));
+    return System(std::move(M), std::move(K), std::move(w), g0, std::move(name));
   } catch (const std::invalid_argument& e) {
     invalid(where + ": " + e.what());
   }
@@ -107,9 +108,10 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   auto [K0, K1] = affine_field(j, "K", par.name, where, mat);
   auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
   const double g0 = g0_field(j, where);
+  std::string name = name_field(j, where);  // (outside the try: its message already names the file)
   try {
     return ParametricSystem(std::move(M0), std::move(M1), std::move(K0), std::move(K1), std::move(w0), std::move(w1),
-                            g0, par, name_field(j, where));
+                            g0, par, std::move(name));
   } catch (const std::invalid_argument& e) {
     invalid(where + ": " + e.what());
   }

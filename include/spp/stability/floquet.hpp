@@ -33,7 +33,10 @@ struct Floquet {
   double spectral_radius = std::numeric_limits<double>::quiet_NaN();
   /// 1 - spectral_radius: > 0 exactly when stable (linearly, orbitally, up to the energy direction).
   double margin = std::numeric_limits<double>::quiet_NaN();
-  bool stable = false;  ///< spectral_radius < 1
+  /// spectral_radius < 1: transversal linear stability, NOT Lyapunov stability. The energy direction is neutral to
+  /// first order and impacts only dissipate: perturbed orbits of such SPPs were measured to leave after
+  /// ~C eps^(-1/3) periods (docs/stability.md §4), slowly instead of at the rate rho^k of an unstable SPP.
+  bool stable = false;
   /// max(|Mono f - f| / |f|, |Mono^T y0 - y0| / |y0|) in energy-scaled modal coordinates: how well the two
   /// structural multipliers hold in the computed monodromy (rounding; a large value means a bad orbit).
   double structure_residual = std::numeric_limits<double>::quiet_NaN();
