@@ -236,7 +236,7 @@ def frequency_energy_figure(solutions, path=None, ax=None):
     if stable:
         a, b = np.array(stable).T
         ax.scatter(a, b, s=70, facecolors="none", edgecolors="k", lw=1.0, zorder=4, gid="stable",
-                   label="stable (Floquet, any e < 1)")
+                   label="transversally stable (Floquet)")
     ax.set_xscale("log")
     ax.set_xlabel("energy $E$ (-)")
     ax.set_ylabel(r"frequency $2\pi/T$ (-)")
