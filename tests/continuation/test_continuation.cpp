@@ -23,6 +23,17 @@ ParametricSystem paper_61(double g0, double lo, double hi) {
   return ParametricSystem(Eigen::MatrixXd::Identity(2, 2), {}, K0, K1, Eigen::Vector2d(0, -1), {}, g0, {"k2", lo, hi},
                           "paper 6.1");
 }
+// The §5.2 chain (M = I, unit springs, obstacle on the last mass, g0 = 1) with the last spring's stiffness k5 as the
+// parameter, k5 in [lo, hi].
+ParametricSystem paper_chain_k5(double lo, double hi) {
+  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
+  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
+  K1(3, 3) = K1(4, 4) = 1;
+  K1(3, 4) = K1(4, 3) = -1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  return ParametricSystem(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", lo, hi});
+}
 }  // namespace
 
 // The two roots of ω2/ω1 = r (r odd) for eq. (6.1): ω^2 = ((1 + 2k) ± sqrt(1 + 4k^2)) / 2, so with
@@ -107,13 +118,7 @@ TEST(Continuation, BranchesAgreeWithIndependentSolves) {
 
 TEST(Continuation, AdmissibilityBoundariesAreLocated) {
   // The §5.2 chain with the last spring's stiffness k5 as the parameter.
-  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
-  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
-  K1(3, 3) = K1(4, 4) = 1;
-  K1(3, 4) = K1(4, 3) = -1;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = -1;
-  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.6, 0.9});
+  const ParametricSystem ps = paper_chain_k5(0.6, 0.9);
   ContinueOptions o;
   o.t1_max = 8.0;
   o.t2_max = 3.0;
@@ -226,13 +231,7 @@ TEST(Continuation, StabilityChangesAreLocated) {
   // The §5.2 chain with k5 as the parameter: between k5 = 0.9 and 1 the SPP near (t1, t2) = (5.7, 2.5) goes from
   // spectral radius 1.0038 to 0.9858 (independent solves); the branch must carry the event, with the radius 1 there
   // and on either side of 1 at k5 -+ 1e-6 (independent Newton and floquet()).
-  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
-  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
-  K1(3, 3) = K1(4, 4) = 1;
-  K1(3, 4) = K1(4, 3) = -1;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = -1;
-  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  const ParametricSystem ps = paper_chain_k5(0.9, 1.0);
   ContinueOptions o;
   o.t1_max = 8.0;
   o.t2_max = 3.0;
