@@ -135,3 +135,21 @@ TEST(Verify, ACandidateTheSimulatorRefusesIsNamedByItsIndex) {
             std::string::npos)
       << message(long_period);
 }
+
+TEST(Verify, GrowthPerPeriodIsMeasuredWhileThePerturbationIsSmall) {
+  // Found by the stability work: the growth was averaged over every period, including after the orbit was lost and
+  // the distance stopped growing, and read 1.147 for the paper chain's SPP #0, whose spectral radius is 1.535. Over
+  // the periods with a distance below 1e-3 it reads 1.38 (a random perturbation starts partly on slower directions).
+  auto spps = spps_of(chain5(), 12.0, 12.0);
+  std::erase_if(spps, [](const SppCandidate& c) { return !c.admissible; });
+  ASSERT_EQ(spps.size(), 7u);
+  VerifyOptions o;
+  o.periods = 100;
+  o.perturbation = 1e-6;
+  o.restitution = 0.5;
+  const VerifyResult r = verify(chain5(), {spps[0]}, o);
+  const SppCheck& c = r.checks[0];
+  ASSERT_GT(c.perturbed_distances.back(), 1e-2);  // the orbit is lost within the 100 periods
+  EXPECT_GT(c.growth_per_period, 1.3);
+  EXPECT_LT(c.growth_per_period, 1.6);
+}

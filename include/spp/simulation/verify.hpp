@@ -54,7 +54,8 @@ struct SppCheck {
   std::string departure;        ///< what happened there
   long impacts = 0, contact_onsets = 0, releases = 0;
   /// With a perturbation: distance of the perturbed state to the orbit (energy norm, relative to the orbit's),
-  /// at k = 0..periods periods after the perturbation; and the mean growth factor per period.
+  /// at k = 0..periods periods after the perturbation; and the mean growth factor per period over the periods while
+  /// the distance stays below 1e-3 (the linear regime; at least the first period): compare with spectral_radius.
   std::vector<double> perturbed_distances;
   double growth_per_period = 0.0;
 };
