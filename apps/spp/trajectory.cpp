@@ -30,8 +30,9 @@ int run(TrajectoryArgs& a) {
   check_trajectory_csv_size(a.samples, sys.n(), "--samples");  // before the search and any sample is computed
   if (!a.system.empty() && !a.result.empty()) {
     const System solved = load_result_system(a.result);
-    if (solved.n() != sys.n() || !solved.M().isApprox(sys.M(), 1e-12) || !solved.K().isApprox(sys.K(), 1e-12) ||
-        !solved.w().isApprox(sys.w(), 1e-12) || std::abs(solved.g0() - sys.g0()) > 1e-12 * std::abs(sys.g0()))
+    if (solved.n() != sys.n() || !solved.M().isApprox(sys.M(), kSameToRounding) ||
+        !solved.K().isApprox(sys.K(), kSameToRounding) || !solved.w().isApprox(sys.w(), kSameToRounding) ||
+        std::abs(solved.g0() - sys.g0()) > kSameToRounding * std::abs(sys.g0()))
       throw std::invalid_argument(a.result + ": was solved for another system than " + a.system + " (omit " + a.system +
                                   ": the result file holds its system)");
   }

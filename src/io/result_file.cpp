@@ -125,7 +125,8 @@ void check_result(const json& r, const std::string& where) {
         const double t1 = so.number("t1"), t2 = so.number("t2"), period = so.number("period");
         const double expected = 2.0 * (t1 + t2);  // one flight and one contact phase, each 2 t_i (eq. 2.4)
         // (t1, t2 not positive and finite: refused by check_solution, naming them)
-        if (t1 > 0.0 && t2 > 0.0 && std::isfinite(expected) && !(std::abs(period - expected) <= 1e-12 * expected))
+        if (t1 > 0.0 && t2 > 0.0 && std::isfinite(expected) &&
+            !(std::abs(period - expected) <= kSameToRounding * expected))
           invalid(at + ": field \"period\" must be 2 (t1 + t2) = " + num(expected) + ", got " + num(period));
       }
     }
