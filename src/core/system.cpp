@@ -87,7 +87,8 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
   if (n > kMaxDenseDofs) {
     std::ostringstream os;
     os << "system: n = " << n << " dofs is beyond the dense solver (at most " << kMaxDenseDofs
-       << " dofs: its O(n^3) modal form would take hours); reduce the model first (spp reduce MODEL --modes m --out "
+       << " dofs: its O(n^3) modal form would take half an hour or more); reduce the model first (spp reduce MODEL "
+          "--modes m --out "
           "REDUCED.json, or spp::reduce)";
     detail::invalid(os.str());
   }

@@ -57,7 +57,8 @@ System system_from_json(const json& j, const std::string& where, const std::stri
   if (w.size() > kMaxDenseDofs)
     invalid(where + ": field \"w\" has " + std::to_string(w.size()) + " entries: a system of more than " +
             std::to_string(kMaxDenseDofs) +
-            " dofs is beyond the dense solver (its O(n^3) modal form would take hours); reduce it first: spp reduce " +
+            " dofs is beyond the dense solver (its O(n^3) modal form would take half an hour or more); reduce it "
+            "first: spp reduce " +
             where + " --modes m --out REDUCED.json");
   Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
   Eigen::MatrixXd K = matrix_field(j, "K", where, dir);

@@ -48,7 +48,8 @@ class System {
 };
 
 /// Largest n a (dense) System takes. Its O(n^3) steps (the definiteness test, the modal form's two eigenproblems) take
-/// ~15 min at this size on one core and each n x n matrix 0.8 GB; beyond, a model is reduced first (spp reduce,
+/// ~25 min at this size on one core (extrapolated as n^3 from the 1.5 s measured at n = 1000, not measured here) and
+/// each n x n matrix 0.8 GB; beyond, a model is reduced first (spp reduce,
 /// reduction/craig_bampton.hpp: sparse, to its contact coordinate plus m modes). The constructor refuses more.
 inline constexpr int kMaxDenseDofs = 10000;
 
