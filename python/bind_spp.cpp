@@ -195,13 +195,13 @@ PYBIND11_MODULE(_spp, m) {
         "2-dof system of paper §2.3.");
 
   py::class_<spp::Solution>(m, "Solution", "One potential SPP")
-      .def_readonly("t1", &spp::Solution::t1, "flight half-duration")
-      .def_readonly("t2", &spp::Solution::t2, "contact half-duration")
-      .def_readonly("period", &spp::Solution::period)
-      .def_readonly("admissible", &spp::Solution::admissible)
-      .def_readonly("min_gap", &spp::Solution::min_gap)
-      .def_readonly("min_force", &spp::Solution::min_force)
-      .def_readonly("energy", &spp::Solution::energy)
+      .def_property_readonly("t1", &spp::Solution::t1, "flight half-duration")
+      .def_property_readonly("t2", &spp::Solution::t2, "contact half-duration")
+      .def_property_readonly("period", &spp::Solution::period, "2 (t1 + t2)")
+      .def_property_readonly("admissible", &spp::Solution::admissible)
+      .def_property_readonly("min_gap", &spp::Solution::min_gap, "smallest gap over the flight")
+      .def_property_readonly("min_force", &spp::Solution::min_force, "smallest contact force over the contact phase")
+      .def_property_readonly("energy", &spp::Solution::energy)
       .def_readonly("residual", &spp::Solution::residual)
       .def_readonly("return_error", &spp::Solution::return_error)
       .def_readonly("flags", &spp::Solution::flags)
@@ -227,8 +227,8 @@ PYBIND11_MODULE(_spp, m) {
       .def_property_readonly(
           "v0", [](const spp::Solution& s) { return s.orbit.v0; }, "(n,)")
       .def("__repr__", [](const spp::Solution& s) {
-        return "<spp.Solution t1=" + std::to_string(s.t1) + " t2=" + std::to_string(s.t2) +
-               (s.admissible ? " admissible>" : " not admissible>");
+        return "<spp.Solution t1=" + std::to_string(s.t1()) + " t2=" + std::to_string(s.t2()) +
+               (s.admissible() ? " admissible>" : " not admissible>");
       });
 
   // Results of solve() carry their system (attribute `system`), so that they pickle (as their result file's text,
@@ -294,13 +294,13 @@ PYBIND11_MODULE(_spp, m) {
             }
             py::list t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags;
             for (const spp::Solution& x : r.solutions) {
-              t1.append(x.t1);
-              t2.append(x.t2);
-              period.append(x.period);
-              admissible.append(x.admissible);
-              min_gap.append(x.min_gap);
-              min_force.append(x.min_force);
-              energy.append(x.energy);
+              t1.append(x.t1());
+              t2.append(x.t2());
+              period.append(x.period());
+              admissible.append(x.admissible());
+              min_gap.append(x.min_gap());
+              min_force.append(x.min_force());
+              energy.append(x.energy());
               residual.append(x.residual);
               return_error.append(x.return_error);
               std::string f;
@@ -325,9 +325,9 @@ PYBIND11_MODULE(_spp, m) {
              h << std::setprecision(8);
              for (size_t i = 0; i < shown; ++i) {
                const spp::Solution& x = r.solutions[i];
-               h << "<tr><td>" << i << "</td><td>" << x.t1 << "</td><td>" << x.t2 << "</td><td>" << x.period
-                 << "</td><td>" << (x.admissible ? "yes" : "no") << "</td><td>" << x.min_gap << "</td><td>"
-                 << x.min_force << "</td><td>" << x.energy << "</td></tr>";
+               h << "<tr><td>" << i << "</td><td>" << x.t1() << "</td><td>" << x.t2() << "</td><td>" << x.period()
+                 << "</td><td>" << (x.admissible() ? "yes" : "no") << "</td><td>" << x.min_gap() << "</td><td>"
+                 << x.min_force() << "</td><td>" << x.energy() << "</td></tr>";
              }
              h << "</table>";
              if (shown < r.solutions.size()) h << "<p>(" << r.solutions.size() - shown << " more: to_dataframe())</p>";
@@ -513,8 +513,8 @@ PYBIND11_MODULE(_spp, m) {
         }
         spp::OrbitSamples os = spp::sample_orbit(md, sol.orbit, samples);
         return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
-                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1, "t2"_a = sol.t2,
-                        "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible);
+                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(), "t2"_a = sol.t2(),
+                        "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible());
       },
       "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
       "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
@@ -529,7 +529,7 @@ PYBIND11_MODULE(_spp, m) {
         o.compute_return_error = false;
         o.compute_stability = false;
         const spp::Solution sol = spp::solution_at(s, md, t1, t2, o);
-        return py::make_tuple(spp::monodromy(md, sol.orbit), sol.orbit.x0, sol.orbit.v0, sol.period);
+        return py::make_tuple(spp::monodromy(md, sol.orbit), sol.orbit.x0, sol.orbit.v0, sol.period());
       },
       "system"_a, "t1"_a, "t2"_a,
       "The linearised one-period map of the SPP at (t1, t2) (polished there first) under Newton's impact law, e < 1: "
@@ -644,18 +644,6 @@ PYBIND11_MODULE(_spp, m) {
       "samples_per_unit=100), or with a SimulateOptions and any field also as a keyword (sample_times=[...] replaces "
       "the uniform samples). Raises ValueError.");
 
-  py::class_<spp::SppCandidate>(m, "SppCandidate", "An SPP as stored in a result file (what verify and plots need)")
-      .def_readonly("t1", &spp::SppCandidate::t1)
-      .def_readonly("t2", &spp::SppCandidate::t2)
-      .def_property_readonly("period", &spp::SppCandidate::period)
-      .def_readonly("admissible", &spp::SppCandidate::admissible)
-      .def_readonly("energy", &spp::SppCandidate::energy)
-      .def_readonly("x0", &spp::SppCandidate::x0, "(n,) state at contact onset")
-      .def_readonly("v0", &spp::SppCandidate::v0, "(n,)")
-      .def("__repr__", [](const spp::SppCandidate& s) {
-        return "<spp.SppCandidate t1=" + std::to_string(s.t1) + " t2=" + std::to_string(s.t2) +
-               (s.admissible ? " admissible>" : " not admissible>");
-      });
   m.def(
       "load_result",
       [](const std::string& path) {
@@ -829,9 +817,9 @@ PYBIND11_MODULE(_spp, m) {
       "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Raises ValueError.");
 
   py::class_<spp::SppCheck>(m, "SppCheck")
-      .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.candidate.t1; })
-      .def_property_readonly("t2", [](const spp::SppCheck& c) { return c.candidate.t2; })
-      .def_property_readonly("admissible", [](const spp::SppCheck& c) { return c.candidate.admissible; })
+      .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.spp.t1(); })
+      .def_property_readonly("t2", [](const spp::SppCheck& c) { return c.spp.t2(); })
+      .def_property_readonly("admissible", [](const spp::SppCheck& c) { return c.spp.admissible(); })
       .def_property_readonly("verdict", [](const spp::SppCheck& c) { return outcome(c.verdict); })
       .def_readonly("consistent", &spp::SppCheck::consistent)
       .def_readonly("return_errors", &spp::SppCheck::return_errors)
@@ -873,7 +861,7 @@ PYBIND11_MODULE(_spp, m) {
         const spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
         o.validate();
         py::gil_scoped_release release;
-        return spp::verify(s, spp::candidates(r), o);
+        return spp::verify(s, r.solutions, o);
       },
       "system"_a, "result"_a, "options"_a = py::none(),
       "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "

@@ -142,10 +142,10 @@ int run(const ReduceArgs& a) {
       const SolveResult sr = solve(sys, ModalForm(sys), so);
       std::cout << "m = " << r.modes << ": " << sr.brief_report() << "\n";
       for (const Solution& s : sr.solutions) {
-        std::cout << std::setprecision(10) << "    t1 = " << std::setw(14) << s.t1 << "  t2 = " << std::setw(14) << s.t2
+        std::cout << std::setprecision(10) << "    t1 = " << std::setw(14) << s.t1() << "  t2 = " << std::setw(14) << s.t2()
                   << "  mid-flight gap = " << std::setw(14) << s.admissibility.mid_flight_gap << "\n";
-        spp_csv << r.modes << std::setprecision(17) << "," << s.t1 << "," << s.t2 << "," << s.period << ","
-                << s.admissibility.mid_flight_gap << "," << s.energy << "\n";
+        spp_csv << r.modes << std::setprecision(17) << "," << s.t1() << "," << s.t2() << "," << s.period() << ","
+                << s.admissibility.mid_flight_gap << "," << s.energy() << "\n";
       }
     }
   }

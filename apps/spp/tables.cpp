@@ -15,11 +15,11 @@ std::string result_table(const SolveResult& r) {
      << "\n";
   int i = 0;
   for (const Solution& x : r.solutions) {
-    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1 << std::setw(14) << x.t2 << std::setw(14)
-       << x.period << std::setw(12) << (x.admissible ? "yes" : "no") << std::setprecision(3) << std::setw(14)
-       << x.min_gap << std::setw(14) << x.min_force << std::setprecision(6) << std::setw(12)
+    os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1() << std::setw(14) << x.t2() << std::setw(14)
+       << x.period() << std::setw(12) << (x.admissible() ? "yes" : "no") << std::setprecision(3) << std::setw(14)
+       << x.min_gap() << std::setw(14) << x.min_force() << std::setprecision(6) << std::setw(12)
        << x.floquet.spectral_radius << std::setw(8)
-       << (std::isnan(x.floquet.spectral_radius) || !x.admissible ? "-"
+       << (std::isnan(x.floquet.spectral_radius) || !x.admissible() ? "-"
            : x.stable()                                           ? "yes"
                                                                   : "no");
     for (const auto& f : x.flags) os << "  [" << f << "]";
@@ -40,8 +40,8 @@ std::string verify_table(const VerifyResult& r) {
   os << "  note\n";
   int i = 0;
   for (const SppCheck& c : r.checks) {
-    os << std::setw(4) << i++ << " " << std::setprecision(8) << std::setw(13) << c.candidate.t1 << " " << std::setw(13)
-       << c.candidate.t2 << std::setw(12) << (c.candidate.admissible ? "yes" : "no") << std::setprecision(3)
+    os << std::setw(4) << i++ << " " << std::setprecision(8) << std::setw(13) << c.spp.t1() << " " << std::setw(13)
+       << c.spp.t2() << std::setw(12) << (c.spp.admissible() ? "yes" : "no") << std::setprecision(3)
        << std::setw(14) << (c.return_errors.empty() ? 0.0 : c.return_errors[0]) << std::setw(9) << to_string(c.verdict);
     if (periods > 1)
       os << std::setw(10) << (std::to_string(c.periods_followed) + "/" + std::to_string(periods)) << std::setw(14)

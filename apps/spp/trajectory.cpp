@@ -39,12 +39,12 @@ int run(TrajectoryArgs& a) {
   const ModalForm md(sys);  // once, for the search and the samples
   if (!a.result.empty()) {
     if (a.solution < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
-    const std::vector<SppCandidate> sols = load_result_candidates(a.result);
+    const std::vector<Solution> sols = load_result(a.result).solutions;
     if (static_cast<size_t>(a.solution) >= sols.size())
       throw std::invalid_argument(a.result + ": --solution " + std::to_string(a.solution) +
                                   " out of range, the file has " + std::to_string(sols.size()) + " solutions");
-    a.t1 = sols[static_cast<size_t>(a.solution)].t1;
-    a.t2 = sols[static_cast<size_t>(a.solution)].t2;
+    a.t1 = sols[static_cast<size_t>(a.solution)].t1();
+    a.t2 = sols[static_cast<size_t>(a.solution)].t2();
   } else if (a.t1_given->count() == 0) {
     throw std::invalid_argument("trajectory: give --t1 and --t2, or --result and --solution");
   }
@@ -67,8 +67,8 @@ int run(TrajectoryArgs& a) {
       std::cerr << "warning: the search around the guess ended " << to_string(near.search_status) << "\n";
   }
   write_file_atomic(a.csv, trajectory_csv(md, s.orbit, a.samples));
-  std::cout << "trajectory of the SPP at t1 = " << s.t1 << ", t2 = " << s.t2 << " (period " << s.period << ", "
-            << (s.admissible ? "admissible" : "not admissible") << ") written to " << a.csv << "\n";
+  std::cout << "trajectory of the SPP at t1 = " << s.t1() << ", t2 = " << s.t2() << " (period " << s.period() << ", "
+            << (s.admissible() ? "admissible" : "not admissible") << ") written to " << a.csv << "\n";
   return 0;
 }
 

@@ -19,8 +19,7 @@ struct VerifyArgs {
 int run(const VerifyArgs& a) {
   check_output(a.json, "--json", {a.result});
   const System sys = load_result_system(a.result);
-  const std::vector<SppCandidate> spps = load_result_candidates(a.result);
-  const VerifyResult r = verify(sys, spps, a.options);
+  const VerifyResult r = verify(sys, load_result(a.result).solutions, a.options);
   const std::string json_text = a.json.empty() ? "" : verify_json(r);
   std::cout << verify_table(r) << r.brief_report() << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);

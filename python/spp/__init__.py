@@ -9,7 +9,7 @@ from ._spp import __version__
 from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, ContinuationResult, ContinuationStatus,
                    ContinueOptions, Event, EventKind, NearestSpp, ParametricSystem, RootMap, RootMapCell,
                    RootMapOptions, SimulateOptions, SimulationResult, SimulationStatus, Solution, SolveOptions,
-                   SolveProgress, SolveResult, SolveStatus, SppCandidate, SppCheck, Symmetry, System, Verdict,
+                   SolveProgress, SolveResult, SolveStatus, SppCheck, Symmetry, System, Verdict,
                    VerifyOptions, VerifyResult, VerifyStatus, chain, continue_branches, fundamental_box, load_result,
                    modal_frequencies, nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
 from ._spp import monodromy  # linearised one-period map under an impact law (docs/stability.md)
@@ -33,7 +33,7 @@ solve.__doc__ = _spp.solve.__doc__ + (
     "text bar on stderr): cells traced / cells of the window, SPP candidates so far, ETA.")
 
 __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Event", "SimulateOptions",
-           "SimulationResult", "SppCheck", "VerifyOptions", "VerifyResult", "SppCandidate", "RootMap", "RootMapCell",
+           "SimulationResult", "SppCheck", "VerifyOptions", "VerifyResult", "RootMap", "RootMapCell",
            "RootMapOptions", "chain", "rod_with_slip", "two_dof", "solve", "simulate", "verify", "load_result",
            "root_map", "ParametricSystem", "continue_branches", "ContinueOptions", "Branch", "BranchEvent",
            "BranchPoint", "ContinuationResult", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",

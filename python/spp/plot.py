@@ -230,7 +230,7 @@ def frequency_energy_figure(solutions, path=None, ax=None):
     sols = list(solutions)
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN, 2.8))
     _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
-    # Stability (docs/stability.md), when the solutions carry it (Solution; not SppCandidate): a black ring around
+    # Stability (docs/stability.md), when the solutions carry it (Solution): a black ring around
     # each stable admissible SPP (gid "stable"); unstable ones keep their plain marker.
     stable = [(s.energy, 2 * np.pi / s.period) for s in sols if getattr(s, "stable", False)]
     if stable:

@@ -591,15 +591,15 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
 
   for (int k = 0; k < options.seeds; ++k) {
     for (const Solution& sol : seed_sols[k]) {
-      if (matched(k, sol.t1, sol.t2)) continue;
-      const V3 y0 = tr.scaled(sol.t1, sol.t2, seed_mu[k]);
+      if (matched(k, sol.t1(), sol.t2())) continue;
+      const V3 y0 = tr.scaled(sol.t1(), sol.t2(), seed_mu[k]);
       const ModalForm& md = tr.at(seed_mu[k]).modal;
       Vec xref = md.Phi() * (sol.orbit.a.array() / md.omega().array()).matrix();
       xref /= xref.norm();
       const Eval e0 = tr.eval(y0, xref);
       const V3 tau0 = tr.tangent(y0, xref, V3(0.0, 0.0, 1.0));
       State start{y0, tau0, xref, tr.point(y0, e0)};
-      walker.crossings.push_back({k, sol.t1, sol.t2});
+      walker.crossings.push_back({k, sol.t1(), sol.t2()});
 
       Branch br;
       br.points.push_back(start.point);
@@ -627,8 +627,8 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   for (const SeedCrossing& c : walker.crossings) {
     const auto& sols = seed_sols[c.seed];
     const bool found = std::any_of(sols.begin(), sols.end(), [&](const Solution& s) {
-      return std::abs(s.t1 - c.t1) <= kSeedMatch * options.t1_max &&
-             std::abs(s.t2 - c.t2) <= kSeedMatch * options.t2_max;
+      return std::abs(s.t1() - c.t1) <= kSeedMatch * options.t1_max &&
+             std::abs(s.t2() - c.t2) <= kSeedMatch * options.t2_max;
     });
     if (found) {
       ++res.seed_crossings;

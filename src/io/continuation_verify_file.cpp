@@ -79,10 +79,10 @@ json zero_gap_to_json(const ParametricSystem& s, const ContinuationResult& r) {
 json verify_to_json(const VerifyResult& r) {
   json checks = json::array();
   for (const SppCheck& c : r.checks) {
-    json o = {{"t1", c.candidate.t1},
-              {"t2", c.candidate.t2},
-              {"period", c.candidate.period()},
-              {"admissible", c.candidate.admissible},
+    json o = {{"t1", c.spp.t1()},
+              {"t2", c.spp.t2()},
+              {"period", c.spp.period()},
+              {"admissible", c.spp.admissible()},
               {"verdict", to_string(c.verdict)},
               {"consistent", c.consistent},
               {"return_errors", c.return_errors},

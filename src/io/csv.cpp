@@ -17,8 +17,8 @@ std::string result_to_csv(const SolveResult& r) {
   for (int i = 1; i <= n; ++i) os << ",v0_" << i;
   os << "\n";
   for (const Solution& x : r.solutions) {
-    os << num(x.t1) << "," << num(x.t2) << "," << num(x.period) << "," << (x.admissible ? 1 : 0) << ","
-       << num(x.min_gap) << "," << num(x.min_force) << "," << num(x.energy) << "," << num(x.residual) << ","
+    os << num(x.t1()) << "," << num(x.t2()) << "," << num(x.period()) << "," << (x.admissible() ? 1 : 0) << ","
+       << num(x.min_gap()) << "," << num(x.min_force()) << "," << num(x.energy()) << "," << num(x.residual) << ","
        << num(x.return_error) << "," << num(x.floquet.spectral_radius) << "," << (x.stable() ? 1 : 0);
     for (int i = 0; i < n; ++i) os << "," << num(x.orbit.x0(i));
     for (int i = 0; i < n; ++i) os << "," << num(x.orbit.v0(i));

@@ -58,7 +58,6 @@ json parametric_system_to_json(const ParametricSystem& system);
 json result_to_json(const System& system, const SolveResult& result);
 SolveResult result_from_json(const json& result, const std::string& where);
 System result_system(const json& result, const std::string& where);
-std::vector<SppCandidate> result_candidates(const json& result, const std::string& where);
 
 json continuation_to_json(const ParametricSystem& system, const ContinuationResult& result);
 json zero_gap_to_json(const ParametricSystem& system, const ContinuationResult& result);

@@ -171,15 +171,15 @@ json result_to_json(const System& s, const SolveResult& r) {
   j["uncertified"] = unc;
   json sols = json::array();
   for (const Solution& x : r.solutions) {
-    json o = {{"t1", x.t1},
-              {"t2", x.t2},
-              {"period", x.period},
-              {"admissible", x.admissible},
-              {"min_gap", x.min_gap},
-              {"min_force", x.min_force},
+    json o = {{"t1", x.t1()},
+              {"t2", x.t2()},
+              {"period", x.period()},
+              {"admissible", x.admissible()},
+              {"min_gap", x.min_gap()},
+              {"min_force", x.min_force()},
               {"x0", vec(x.orbit.x0)},
               {"v0", vec(x.orbit.v0)},
-              {"energy", x.energy},
+              {"energy", x.energy()},
               {"residual", x.residual},
               {"return_error", x.return_error},
               {"mid_flight_gap", x.admissibility.mid_flight_gap},
@@ -270,32 +270,25 @@ SolveResult result_from_json(const json& r, const std::string& where) {
   for (size_t i = 0; i < sols.size(); ++i) {
     const Reader o{sols[i], where + ": field \"solutions\"[" + std::to_string(i) + "]"};
     Solution x;
-    x.t1 = o.number("t1");
-    x.t2 = o.number("t2");
-    x.period = o.number("period");
-    x.admissible = o.boolean("admissible");
-    x.min_gap = o.number("min_gap");
-    x.min_force = o.number("min_force");
-    x.energy = o.number("energy");
     x.residual = o.number("residual");
     x.return_error = o.number("return_error");
     x.flags = o.texts("flags");
     Admissibility& a = x.admissibility;
-    a.admissible = x.admissible;
-    a.min_gap = x.min_gap;
-    a.min_force = x.min_force;
+    a.admissible = o.boolean("admissible");
+    a.min_gap = o.number("min_gap");
+    a.min_force = o.number("min_force");
     a.mid_flight_gap = o.number("mid_flight_gap");
     a.mid_contact_force = o.number("mid_contact_force");
     a.onset_force_rate = o.number("onset_force_rate");
     a.certified = o.boolean("admissibility_certified");
     a.ends_ok = o.boolean("admissibility_ends_ok");
     Orbit& b = x.orbit;
-    b.t1 = x.t1;
-    b.t2 = x.t2;
+    b.t1 = o.number("t1");
+    b.t2 = o.number("t2");
     b.symmetry = res.symmetry;
     b.x0 = o.vector("x0");
     b.v0 = o.vector("v0");
-    check_solution(o, x.t1, x.t2, b.x0, b.v0, n);
+    check_solution(o, b.t1, b.t2, b.x0, b.v0, n);
     const Reader ob{o.at("orbit"), o.where + ": field \"orbit\""};
     b.a = ob.vector("a");
     b.c = ob.vector("c");
@@ -344,28 +337,6 @@ System result_system(const json& r, const std::string& where) {
   }
 }
 
-std::vector<SppCandidate> result_candidates(const json& r, const std::string& where) {
-  if (!r.is_object() || !r.contains("solutions") || !r.at("solutions").is_array())
-    invalid(where + ": missing field \"solutions\" (expected a result of spp solve)");
-  check_result(r, where);
-  std::vector<SppCandidate> out;
-  const json& sols = r.at("solutions");
-  const long n = embedded_dofs(r);
-  for (size_t i = 0; i < sols.size(); ++i) {
-    const Reader o{sols[i], where + ": field \"solutions\"[" + std::to_string(i) + "]"};
-    SppCandidate c;
-    c.t1 = o.number("t1");
-    c.t2 = o.number("t2");
-    c.x0 = o.vector("x0");
-    c.v0 = o.vector("v0");
-    c.admissible = o.boolean("admissible");
-    c.energy = sols[i].contains("energy") ? o.number("energy") : std::numeric_limits<double>::quiet_NaN();
-    check_solution(o, c.t1, c.t2, c.x0, c.v0, n);
-    out.push_back(std::move(c));
-  }
-  return out;
-}
-
 }  // namespace spp::io
 
 namespace spp {
@@ -390,8 +361,5 @@ System load_result_system(const std::string& path) {
   return io::result_system(io::read_json_file(path), path);
 }
 
-std::vector<SppCandidate> load_result_candidates(const std::string& path) {
-  return io::result_candidates(io::read_json_file(path), path);
-}
 
 }  // namespace spp

@@ -72,7 +72,7 @@ void SolveOptions::validate() const {
 
 std::string SolveResult::brief_report() const {
   std::ostringstream os;
-  long adm = std::count_if(solutions.begin(), solutions.end(), [](const Solution& s) { return s.admissible; });
+  long adm = std::count_if(solutions.begin(), solutions.end(), [](const Solution& s) { return s.admissible(); });
   os << "spp: " << to_string(status) << ", " << solutions.size() << " SPPs (" << adm << " admissible) in (" << t1_min
      << ", " << t1_max << "] x (" << t2_min << ", " << t2_max << "]; " << stats.rectangles << " rectangles, "
      << stats.curve_pieces << " curve pieces, " << stats.evaluations << " evaluations, " << stats.seconds << " s";
@@ -125,9 +125,6 @@ Solution build_solution(const System& system, const EquationSet& eq, const Polis
                         bool with_return_error) {
   const ModalForm& md = eq.modal();
   Solution s;
-  s.t1 = p.t1;
-  s.t2 = p.t2;
-  s.period = 2.0 * (p.t1 + p.t2);
   s.residual = p.residual;
   s.orbit = make_orbit(eq, p.t1, p.t2, p.a);
   if (eq.can_be_admissible())
@@ -136,10 +133,6 @@ Solution build_solution(const System& system, const EquationSet& eq, const Polis
     s.admissibility = sample_point_admissibility(md, s.orbit);
   if (const char* flag = eq.solution_flag()) s.flags.push_back(flag);
   if (s.orbit.closure_ratio < search::kClosureDegenerate) s.flags.push_back("gap_closure_degenerate");
-  s.admissible = s.admissibility.admissible;
-  s.min_gap = s.admissibility.min_gap;
-  s.min_force = s.admissibility.min_force;
-  s.energy = s.orbit.energy;
   for (Eigen::Index k = 0; k < md.omega_decoupled().size(); ++k) {
     const double r = md.omega_decoupled()(k) * (p.t1 + p.t2) / std::numbers::pi;
     if (std::abs(r - std::round(r)) < search::kResonance * std::max(1.0, r))
@@ -421,7 +414,7 @@ void polish_candidates(const System& system, const EquationSet& eq, const search
     }
     if (!inside(p.t1, p.t2)) continue;
     if (std::any_of(res.solutions.begin(), res.solutions.end(),
-                    [&](const Solution& s) { return same_place(s.t1, s.t2, p.t1, p.t2); }))
+                    [&](const Solution& s) { return same_place(s.t1(), s.t2(), p.t1, p.t2); }))
       continue;
     Solution s;
     try {
@@ -440,10 +433,10 @@ void polish_candidates(const System& system, const EquationSet& eq, const search
 void finalize(const SolveOptions& options, SolveResult& res) {
   res.stats.roots = static_cast<long>(res.solutions.size());
   std::sort(res.solutions.begin(), res.solutions.end(),
-            [](const Solution& a, const Solution& b) { return a.period < b.period; });
+            [](const Solution& a, const Solution& b) { return a.period() < b.period(); });
   if (options.admissible_only)
     res.solutions.erase(
-        std::remove_if(res.solutions.begin(), res.solutions.end(), [](const Solution& s) { return !s.admissible; }),
+        std::remove_if(res.solutions.begin(), res.solutions.end(), [](const Solution& s) { return !s.admissible(); }),
         res.solutions.end());
   const SolveStats& st = res.stats;
   auto cause = [&](long count, const char* what) {
@@ -590,7 +583,7 @@ NearestSpp nearest_spp(const System& system, const ModalForm& modal, double t1, 
   out.candidates = static_cast<long>(r.solutions.size());
   double best = std::numeric_limits<double>::infinity();
   for (const Solution& s : r.solutions) {
-    const double d = std::hypot((s.t1 - t1) / t1, (s.t2 - t2) / t2);
+    const double d = std::hypot((s.t1() - t1) / t1, (s.t2() - t2) / t2);
     if (d < best) {
       best = d;
       out.solution = s;

@@ -41,12 +41,12 @@ std::string missing(const ExpectedEvent& e) {
 
 // Sets departure_time and departure at the first simulated event that differs from the orbit's sequence
 // (onset at k T, release at k T + 2 t2); leaves them empty if every event matches.
-void compare_events(const SimulationResult& sim, const SppCandidate& c, int periods, double tol, SppCheck& out) {
+void compare_events(const SimulationResult& sim, const Solution& c, int periods, double tol, SppCheck& out) {
   const double T = c.period();
   std::vector<ExpectedEvent> expected;
   for (int k = 0; k < periods; ++k) {
     expected.push_back({EventKind::ContactOnset, k * T});
-    expected.push_back({EventKind::Release, k * T + 2.0 * c.t2});
+    expected.push_back({EventKind::Release, k * T + 2.0 * c.t2()});
   }
   for (size_t i = 0; i < sim.events.size(); ++i) {
     const Event& ev = sim.events[i];
@@ -158,13 +158,6 @@ void VerifyOptions::validate() const {
   if (!(event_time_tol > 0.0 && event_time_tol < 0.1)) bad("event_time_tol", event_time_tol, "in (0, 0.1)");
 }
 
-std::vector<SppCandidate> candidates(const SolveResult& result) {
-  std::vector<SppCandidate> out;
-  for (const Solution& s : result.solutions)
-    out.push_back({s.t1, s.t2, s.orbit.x0, s.orbit.v0, s.admissible, s.energy});
-  return out;
-}
-
 const char* to_string(Verdict v) {
   return v == Verdict::Returns ? "returns" : "leaves";
 }
@@ -181,22 +174,22 @@ std::string VerifyResult::brief_report() const {
   return os.str();
 }
 
-VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps, const VerifyOptions& opt) {
+VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& opt) {
   opt.validate();
   const Simulator sim(system);
   VerifyResult res;
   for (size_t i = 0; i < spps.size(); ++i) {
-    const SppCandidate& c = spps[i];
-    if (c.x0.size() != system.n() || c.v0.size() != system.n())
+    const Solution& c = spps[i];
+    if (c.x0().size() != system.n() || c.v0().size() != system.n())
       detail::invalid("verify: solution " + std::to_string(i) + ": x0 and v0 must have " + std::to_string(system.n()) +
-                      " entries (the system's dofs), got " + std::to_string(c.x0.size()) + " and " +
-                      std::to_string(c.v0.size()));
-    if (!(c.t1 > 0.0 && c.t2 > 0.0 && std::isfinite(opt.periods * c.period())))
+                      " entries (the system's dofs), got " + std::to_string(c.x0().size()) + " and " +
+                      std::to_string(c.v0().size()));
+    if (!(c.t1() > 0.0 && c.t2() > 0.0 && std::isfinite(opt.periods * c.period())))
       detail::invalid("verify: solution " + std::to_string(i) + ": t1 and t2 must be > 0 with a finite period, got " +
-                      fmt(c.t1) + " and " + fmt(c.t2));
+                      fmt(c.t1()) + " and " + fmt(c.t2()));
     const double T = c.period();
     SppCheck chk;
-    chk.candidate = c;
+    chk.spp = c;
     SimulateOptions o;
     o.duration = opt.periods * T;
     o.restitution = opt.restitution;
@@ -204,7 +197,7 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
     for (int k = 1; k <= opt.periods; ++k) o.sample_times.push_back(std::min(k * T, o.duration));
     const SimulationResult r = [&] {  // a state the simulator refuses (e.g. its energy overflows): name the solution
       try {
-        return sim.run(c.x0, c.v0, o);
+        return sim.run(c.x0(), c.v0(), o);
       } catch (const std::invalid_argument& e) {
         detail::invalid("verify: solution " + std::to_string(i) + ": " + e.what());
       }
@@ -212,7 +205,7 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
     chk.impacts = r.impacts;
     chk.contact_onsets = r.contact_onsets;
     chk.releases = r.releases;
-    const Eigen::VectorXd X0 = stack(c.x0, c.v0);
+    const Eigen::VectorXd X0 = stack(c.x0(), c.v0());
     for (const Sample& s : r.samples)
       if (s.t > 0.0) chk.return_errors.push_back((stack(s.x, s.v) - X0).norm() / X0.norm());
     compare_events(r, c, opt.periods, opt.event_time_tol * T, chk);
@@ -231,13 +224,13 @@ VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps,
           "the expected events happen but the state after one period differs by " + fmt(chk.return_errors[0]);
     }
     chk.verdict = returns ? Verdict::Returns : Verdict::Leaves;
-    chk.consistent = returns == c.admissible;
+    chk.consistent = returns == c.admissible();
     if (returns && opt.perturbation > 0.0) {
       // perturb the mid-flight state (the gap is largest there), follow the distance to the orbit
       SimulateOptions om;
-      om.duration = 2.0 * c.t2 + c.t1;
+      om.duration = 2.0 * c.t2() + c.t1();
       om.sample_events = false;
-      const SimulationResult mid = sim.run(c.x0, c.v0, om);
+      const SimulationResult mid = sim.run(c.x0(), c.v0(), om);
       const Eigen::VectorXd xm = mid.samples.back().x, vm = mid.samples.back().v;
       const OrbitDistance distance(sim, xm, vm, T, 512);
       std::mt19937_64 rng(12345 + i);

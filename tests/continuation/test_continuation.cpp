@@ -103,13 +103,13 @@ TEST(Continuation, BranchesAgreeWithIndependentSolves) {
           if ((p.mu - mu) * (q.mu - mu) > 0 || p.mu == q.mu) continue;
           const double s = (mu - p.mu) / (q.mu - p.mu);
           const Eigen::Vector2d x(p.t1 + s * (q.t1 - p.t1), p.t2 + s * (q.t2 - p.t2));
-          const double d = std::hypot(x(0) - sol.t1, x(1) - sol.t2);
+          const double d = std::hypot(x(0) - sol.t1(), x(1) - sol.t2());
           if (d < best) best = d, guess = x;
         }
-      ASSERT_LT(best, 1e-2) << "mu " << mu << ": SPP (" << sol.t1 << ", " << sol.t2 << ") on no branch";
+      ASSERT_LT(best, 1e-2) << "mu " << mu << ": SPP (" << sol.t1() << ", " << sol.t2() << ") on no branch";
       const Solution again = solution_at(sys, guess(0), guess(1));
-      EXPECT_NEAR(again.t1, sol.t1, 1e-9);
-      EXPECT_NEAR(again.t2, sol.t2, 1e-9);
+      EXPECT_NEAR(again.t1(), sol.t1(), 1e-9);
+      EXPECT_NEAR(again.t2(), sol.t2(), 1e-9);
       ++checked;
     }
   }

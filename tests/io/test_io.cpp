@@ -154,13 +154,13 @@ void expect_same_result(const SolveResult& a, const SolveResult& b) {
   for (size_t i = 0; i < a.solutions.size(); ++i) {
     const Solution &x = a.solutions[i], &y = b.solutions[i];
     const std::string at = "solution " + std::to_string(i);
-    EXPECT_EQ(x.t1, y.t1) << at;
-    EXPECT_EQ(x.t2, y.t2) << at;
-    EXPECT_EQ(x.period, y.period) << at;
-    EXPECT_EQ(x.admissible, y.admissible) << at;
-    EXPECT_EQ(x.min_gap, y.min_gap) << at;
-    EXPECT_EQ(x.min_force, y.min_force) << at;
-    EXPECT_EQ(x.energy, y.energy) << at;
+    EXPECT_EQ(x.t1(), y.t1()) << at;
+    EXPECT_EQ(x.t2(), y.t2()) << at;
+    EXPECT_EQ(x.period(), y.period()) << at;
+    EXPECT_EQ(x.admissible(), y.admissible()) << at;
+    EXPECT_EQ(x.min_gap(), y.min_gap()) << at;
+    EXPECT_EQ(x.min_force(), y.min_force()) << at;
+    EXPECT_EQ(x.energy(), y.energy()) << at;
     EXPECT_EQ(x.residual, y.residual) << at;
     EXPECT_EQ(x.return_error, y.return_error) << at;
     EXPECT_EQ(x.flags, y.flags) << at;
@@ -291,16 +291,11 @@ TEST(Io, ResultSolutionsOfTheWrongSizeOrSignAreRefused) {
   const fs::path p = tmpdir() / "wrong_size.json";
   auto expect_refused = [&](io::json j, const std::string& what) {
     write_file_atomic(p.string(), j.dump());
-    for (int reader = 0; reader < 2; ++reader) {
-      try {
-        if (reader == 0)
-          load_result(p.string());
-        else
-          load_result_candidates(p.string());
-        ADD_FAILURE() << "expected a refusal: " << what;
-      } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-      }
+    try {
+      load_result(p.string());
+      ADD_FAILURE() << "expected a refusal: " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
     }
   };
   io::json short_x0 = good;
@@ -314,7 +309,7 @@ TEST(Io, ResultSolutionsOfTheWrongSizeOrSignAreRefused) {
 
 // D8 of an independent review: a result file with an unknown field, an empty window, a period other than
 // 2 (t1 + t2), "success" beside uncertified regions, an unknown cause or a negative count was read silently by
-// load_result (spp plot, SolveResult.from_json) and load_result_candidates (spp verify, trajectory). Each is refused,
+// load_result (spp plot, verify, trajectory, SolveResult.from_json) and load_result_system. Each is refused,
 // naming the file, the solution (or list entry) and the field.
 TEST(Io, ResultWithUnknownFieldsOrContradictionsIsRefused) {
   const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
@@ -325,15 +320,13 @@ TEST(Io, ResultWithUnknownFieldsOrContradictionsIsRefused) {
   const fs::path p = tmpdir() / "contradictions.json";
   write_file_atomic(p.string(), good.dump());
   EXPECT_NO_THROW(load_result(p.string()));
-  EXPECT_NO_THROW(load_result_candidates(p.string()));
   EXPECT_NO_THROW(load_result_system(p.string()));
   auto expect_refused = [&](const io::json& j, const std::string& what) {
     write_file_atomic(p.string(), j.dump());
-    for (int reader = 0; reader < 3; ++reader) {
+    for (int reader = 0; reader < 2; ++reader) {
       try {
         if (reader == 0) load_result(p.string());
-        if (reader == 1) load_result_candidates(p.string());
-        if (reader == 2) load_result_system(p.string());
+        if (reader == 1) load_result_system(p.string());
         ADD_FAILURE() << "expected a refusal: " << what << " (reader " << reader << ")";
       } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find(p.string() + ": " + what), std::string::npos) << e.what();

@@ -56,8 +56,8 @@ SolveResult expect_certified_with_default_roots(const System& s, SolveOptions o)
   EXPECT_EQ(r.stats.uncertified_steps, 0);
   EXPECT_EQ(r.solutions.size(), ref.solutions.size());
   for (size_t i = 0; i < std::min(r.solutions.size(), ref.solutions.size()); ++i) {
-    EXPECT_NEAR(r.solutions[i].t1, ref.solutions[i].t1, 1e-9);
-    EXPECT_NEAR(r.solutions[i].t2, ref.solutions[i].t2, 1e-9);
+    EXPECT_NEAR(r.solutions[i].t1(), ref.solutions[i].t1(), 1e-9);
+    EXPECT_NEAR(r.solutions[i].t2(), ref.solutions[i].t2(), 1e-9);
   }
   return r;
 }
@@ -111,14 +111,14 @@ TEST(OnsetInertia, BoxesProvedFreeHoldNoSpp) {
     if (lo < 0 || lo != ev.onset_inertia(hi1, hi2)) continue;
     ++free_boxes;
     for (const Solution& r : ref.solutions)
-      EXPECT_FALSE(r.t1 >= lo1 && r.t1 <= hi1 && r.t2 >= lo2 && r.t2 <= hi2)
-          << "box [" << lo1 << ", " << hi1 << "] x [" << lo2 << ", " << hi2 << "] proved free holds SPP " << r.t1
-          << ", " << r.t2;
+      EXPECT_FALSE(r.t1() >= lo1 && r.t1() <= hi1 && r.t2() >= lo2 && r.t2() <= hi2)
+          << "box [" << lo1 << ", " << hi1 << "] x [" << lo2 << ", " << hi2 << "] proved free holds SPP " << r.t1()
+          << ", " << r.t2();
   }
   EXPECT_GT(free_boxes, 1000);  // the check is not vacuous
   for (const Solution& r : ref.solutions) {
-    const int lo = ev.onset_inertia(r.t1 - 1e-6, r.t2 - 1e-6);
-    EXPECT_TRUE(lo < 0 || lo != ev.onset_inertia(r.t1 + 1e-6, r.t2 + 1e-6)) << r.t1 << ", " << r.t2;
+    const int lo = ev.onset_inertia(r.t1() - 1e-6, r.t2() - 1e-6);
+    EXPECT_TRUE(lo < 0 || lo != ev.onset_inertia(r.t1() + 1e-6, r.t2() + 1e-6)) << r.t1() << ", " << r.t2();
   }
 }
 
@@ -443,8 +443,8 @@ TEST(CertifiedSearch, MonotoneRunsProveARootWhereTwoCurvesRunSideBySide) {
   // the next proves the one root.
   const SolveResult r = certified_data_window("rchain10_seed2.json", 20.80, 20.83, 1.52, 1.55);
   ASSERT_EQ(r.solutions.size(), 1u);
-  EXPECT_NEAR(r.solutions[0].t1, 20.81549, 1e-5);
-  EXPECT_NEAR(r.solutions[0].t2, 1.53669, 1e-5);
+  EXPECT_NEAR(r.solutions[0].t1(), 20.81549, 1e-5);
+  EXPECT_NEAR(r.solutions[0].t2(), 1.53669, 1e-5);
 }
 
 TEST(CertifiedSearch, FindsBothRootsOnTwoNearlyCoincidentCurvesOfAStiff7DofSystem) {
@@ -459,10 +459,10 @@ TEST(CertifiedSearch, FindsBothRootsOnTwoNearlyCoincidentCurvesOfAStiff7DofSyste
   const ref::PaperForm pf(load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json"));
   for (const auto& e : expected) {
     const auto it = std::find_if(r.solutions.begin(), r.solutions.end(), [&](const Solution& x) {
-      return std::abs(x.t1 - e[0]) < 1e-10 && std::abs(x.t2 - e[1]) < 1e-10;
+      return std::abs(x.t1() - e[0]) < 1e-10 && std::abs(x.t2() - e[1]) < 1e-10;
     });
     ASSERT_NE(it, r.solutions.end()) << "missing (" << e[0] << ", " << e[1] << ")";
-    const auto [sv_rel, onset] = pf.residuals(it->t1, it->t2);
+    const auto [sv_rel, onset] = pf.residuals(it->t1(), it->t2());
     EXPECT_LT(sv_rel, 1e-12);
     EXPECT_LT(onset, 1e-10);
   }

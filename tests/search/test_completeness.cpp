@@ -80,7 +80,7 @@ void compare(const System& s, double T1, double T2, int N) {
   const std::vector<Pt> bf = brute_force(ref::PaperForm(s), lo1, hi1, lo2, hi2, N);
   std::vector<Pt> sv;
   for (const Solution& x : r.solutions)
-    if (x.t1 > lo1 && x.t1 < hi1 && x.t2 > lo2 && x.t2 < hi2) sv.push_back({x.t1, x.t2});
+    if (x.t1() > lo1 && x.t1() < hi1 && x.t2() > lo2 && x.t2() < hi2) sv.push_back({x.t1(), x.t2()});
   const double tol = 1e-6 * (T1 + T2);
   for (const Pt& p : bf) {
     const bool found =

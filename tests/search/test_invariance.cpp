@@ -23,9 +23,9 @@ void expect_same(const SolveResult& a, const SolveResult& b, const Eigen::Matrix
   ASSERT_EQ(a.solutions.size(), b.solutions.size());
   for (size_t i = 0; i < a.solutions.size(); ++i) {
     const Solution &x = a.solutions[i], &y = b.solutions[i];
-    EXPECT_NEAR(x.t1, y.t1, 1e-10 * x.t1);
-    EXPECT_NEAR(x.t2, y.t2, 1e-10 * x.t2);
-    EXPECT_EQ(x.admissible, y.admissible);
+    EXPECT_NEAR(x.t1(), y.t1(), 1e-10 * x.t1());
+    EXPECT_NEAR(x.t2(), y.t2(), 1e-10 * x.t2());
+    EXPECT_EQ(x.admissible(), y.admissible());
     // x0' = T x0 * xscale
     EXPECT_LT((T * x.orbit.x0 * xscale - y.orbit.x0).norm(), 1e-8 * y.orbit.x0.norm());
   }
@@ -82,6 +82,6 @@ TEST(Invariance, ScalingTimeKeepsTheReturnErrorAtRoundingLevel) {
     o.t1_max = o.t2_max = 12.0 / std::sqrt(f);
     const SolveResult r = solve(t, o);
     ASSERT_EQ(r.solutions.size(), 64u) << f;
-    for (const Solution& x : r.solutions) EXPECT_LT(x.return_error, 1e-8) << f << " at " << x.t1 << ", " << x.t2;
+    for (const Solution& x : r.solutions) EXPECT_LT(x.return_error, 1e-8) << f << " at " << x.t1() << ", " << x.t2();
   }
 }

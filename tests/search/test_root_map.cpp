@@ -29,10 +29,10 @@ TEST(RootMap, BothConditionsVanishAtEverySpp) {
   for (const Solution& sol : r.solutions) {
     RootMapOptions o;
     const double h = 1e-4;
-    o.t1_min = sol.t1 - h;
-    o.t1_max = sol.t1 + h;
-    o.t2_min = sol.t2 - h;
-    o.t2_max = sol.t2 + h;
+    o.t1_min = sol.t1() - h;
+    o.t1_max = sol.t1() + h;
+    o.t2_min = sol.t2() - h;
+    o.t2_max = sol.t2() + h;
     o.t1_points = o.t2_points = 17;
     o.min_cell_points = 2;
     const RootMap map = root_map(modal, o);
@@ -40,11 +40,11 @@ TEST(RootMap, BothConditionsVanishAtEverySpp) {
     ASSERT_EQ(map.cells.size(), 1u);
     const RootMapCell& c = map.cells[0];
     ASSERT_EQ(c.t1.size(), 17);
-    EXPECT_NEAR(c.t1(8), sol.t1, 1e-12);
-    EXPECT_NEAR(c.t2(8), sol.t2, 1e-12);
+    EXPECT_NEAR(c.t1(8), sol.t1(), 1e-12);
+    EXPECT_NEAR(c.t2(8), sol.t2(), 1e-12);
     const double scale = c.symmetric.cwiseAbs().maxCoeff();
-    EXPECT_LT(std::abs(c.symmetric(8, 8)), 1e-6 * scale) << sol.t1 << " " << sol.t2;
-    EXPECT_LT(std::abs(c.onset(8, 8)), 1e-6 * c.onset.cwiseAbs().maxCoeff()) << sol.t1 << " " << sol.t2;
+    EXPECT_LT(std::abs(c.symmetric(8, 8)), 1e-6 * scale) << sol.t1() << " " << sol.t2();
+    EXPECT_LT(std::abs(c.onset(8, 8)), 1e-6 * c.onset.cwiseAbs().maxCoeff()) << sol.t1() << " " << sol.t2();
     // (5.1a) is a curve through the SPP: its sign changes across the grid.
     EXPECT_LT(c.symmetric.minCoeff() * c.symmetric.maxCoeff(), 0.0);
   }

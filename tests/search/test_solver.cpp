@@ -41,7 +41,7 @@ void check_admissible_orbit(const System& s, const Solution& sol) {
   X0 << sol.orbit.x0, sol.orbit.v0;
   const double xs = X0.norm();
   // returns to its initial state after one period (contact 2 t2, then flight 2 t1)
-  const Eigen::VectorXd XT = flow.flight(flow.contact(X0, 2 * sol.t2), 2 * sol.t1);
+  const Eigen::VectorXd XT = flow.flight(flow.contact(X0, 2 * sol.t2()), 2 * sol.t1());
   EXPECT_LT((XT - X0).norm() / xs, 1e-10);
   EXPECT_LT(sol.return_error, 1e-10);
   // (1.3c): zero normal velocity and acceleration at contact onset; (1.3d) gap closed
@@ -50,28 +50,28 @@ void check_admissible_orbit(const System& s, const Solution& sol) {
   EXPECT_LT(std::abs(flow.gap(X0)), 1e-12 * (xs + std::abs(s.g0())));
   // Theorem 3.1: axes of symmetry at t = -t1 (flight) and t = t2 (contact)
   for (double f : {0.13, 0.5, 0.91}) {
-    const double tau = f * sol.t1;
-    const Eigen::VectorXd a = flow.flight(X0, -sol.t1 + tau), b = flow.flight(X0, -sol.t1 - tau);
+    const double tau = f * sol.t1();
+    const Eigen::VectorXd a = flow.flight(X0, -sol.t1() + tau), b = flow.flight(X0, -sol.t1() - tau);
     EXPECT_LT((a.head(n) - b.head(n)).norm(), 1e-10 * xs);
     EXPECT_LT((a.tail(n) + b.tail(n)).norm(), 1e-10 * xs);
-    const double sig = f * sol.t2;
-    const Eigen::VectorXd c = flow.contact(X0, sol.t2 + sig), d = flow.contact(X0, sol.t2 - sig);
+    const double sig = f * sol.t2();
+    const Eigen::VectorXd c = flow.contact(X0, sol.t2() + sig), d = flow.contact(X0, sol.t2() - sig);
     EXPECT_LT((c.head(n) - d.head(n)).norm(), 1e-10 * xs);
     EXPECT_LT((c.tail(n) + d.tail(n)).norm(), 1e-10 * xs);
   }
   // non-negative gap in flight and force in contact, sampled densely (tolerance at rounding level)
   for (int i = 0; i <= 400; ++i) {
-    EXPECT_GE(flow.gap(flow.flight(X0, -2 * sol.t1 * i / 400.0)), -1e-10 * (xs + std::abs(s.g0())));
-    EXPECT_GE(flow.force(flow.contact(X0, 2 * sol.t2 * i / 400.0)), -1e-10 * xs);
+    EXPECT_GE(flow.gap(flow.flight(X0, -2 * sol.t1() * i / 400.0)), -1e-10 * (xs + std::abs(s.g0())));
+    EXPECT_GE(flow.force(flow.contact(X0, 2 * sol.t2() * i / 400.0)), -1e-10 * xs);
   }
 }
 
 void check_paper_equations(const System& s, const SolveResult& r) {
   const ref::PaperForm pf(s);
   for (const Solution& sol : r.solutions) {
-    const auto [sv, cond] = pf.residuals(sol.t1, sol.t2);
-    EXPECT_LT(sv, 1e-10) << "det R2 (eq. 5.1a) at t1 = " << sol.t1 << ", t2 = " << sol.t2;
-    EXPECT_LT(cond, 1e-9) << "eq. (5.1b) at t1 = " << sol.t1 << ", t2 = " << sol.t2;
+    const auto [sv, cond] = pf.residuals(sol.t1(), sol.t2());
+    EXPECT_LT(sv, 1e-10) << "det R2 (eq. 5.1a) at t1 = " << sol.t1() << ", t2 = " << sol.t2();
+    EXPECT_LT(cond, 1e-9) << "eq. (5.1b) at t1 = " << sol.t1() << ", t2 = " << sol.t2();
     EXPECT_LT(sol.residual, 1e-12);
   }
 }
@@ -81,9 +81,9 @@ int check_every_admissible(const System& s, const SolveResult& r) {
   EXPECT_EQ(r.status, SolveStatus::Success) << r.brief_report();
   int admissible = 0;
   for (const Solution& sol : r.solutions)
-    if (sol.admissible) {
+    if (sol.admissible()) {
       ++admissible;
-      SCOPED_TRACE("t1 = " + std::to_string(sol.t1) + ", t2 = " + std::to_string(sol.t2));
+      SCOPED_TRACE("t1 = " + std::to_string(sol.t1()) + ", t2 = " + std::to_string(sol.t2()));
       check_admissible_orbit(s, sol);
     }
   return admissible;
@@ -116,17 +116,17 @@ TEST(PaperChain5, InadmissibleRootsViolateAnInequality) {
   const SolveResult r = solve_window(s, 12.0, 12.0);
   const ref::PhysicalFlow flow(s);
   for (const Solution& sol : r.solutions) {
-    if (sol.admissible) continue;
+    if (sol.admissible()) continue;
     Eigen::VectorXd X0(2 * s.n());
     X0 << sol.orbit.x0, sol.orbit.v0;
     double gmin = 1e300, fmin = 1e300;
     for (int i = 1; i < 2000; ++i) {
-      gmin = std::min(gmin, flow.gap(flow.flight(X0, -2 * sol.t1 * i / 2000.0)));
-      fmin = std::min(fmin, flow.force(flow.contact(X0, 2 * sol.t2 * i / 2000.0)));
+      gmin = std::min(gmin, flow.gap(flow.flight(X0, -2 * sol.t1() * i / 2000.0)));
+      fmin = std::min(fmin, flow.force(flow.contact(X0, 2 * sol.t2() * i / 2000.0)));
     }
     // either a clear violation in the samples, or the violation sits at the phase ends (end-order check)
     const bool clear = gmin < -1e-9 * X0.norm() || fmin < -1e-9 * X0.norm();
-    EXPECT_TRUE(clear || !sol.admissibility.ends_ok) << "t1 = " << sol.t1 << ", t2 = " << sol.t2;
+    EXPECT_TRUE(clear || !sol.admissibility.ends_ok) << "t1 = " << sol.t1() << ", t2 = " << sol.t2();
   }
 }
 
@@ -136,9 +136,9 @@ TEST(Remark41, NoRootIsAdmissibleForBothSignsOfG0) {
     const SolveResult a = solve_window(s, 12.0, 12.0), b = solve_window(flipped, 12.0, 12.0);
     ASSERT_EQ(a.solutions.size(), b.solutions.size());  // the roots do not depend on g0
     for (size_t i = 0; i < a.solutions.size(); ++i) {
-      EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-12);
-      EXPECT_NEAR(a.solutions[i].t2, b.solutions[i].t2, 1e-12);
-      EXPECT_FALSE(a.solutions[i].admissible && b.solutions[i].admissible);
+      EXPECT_NEAR(a.solutions[i].t1(), b.solutions[i].t1(), 1e-12);
+      EXPECT_NEAR(a.solutions[i].t2(), b.solutions[i].t2(), 1e-12);
+      EXPECT_FALSE(a.solutions[i].admissible() && b.solutions[i].admissible());
     }
   }
 }
@@ -188,8 +188,8 @@ TEST(Solver, DecoupledModeDoesNotCreateSpuriousSolutions) {
   EXPECT_EQ(b.decoupled_modes, 3);
   ASSERT_EQ(a.solutions.size(), b.solutions.size());
   for (size_t i = 0; i < a.solutions.size(); ++i) {
-    EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-10);
-    EXPECT_NEAR(a.solutions[i].t2, b.solutions[i].t2, 1e-10);
+    EXPECT_NEAR(a.solutions[i].t1(), b.solutions[i].t1(), 1e-10);
+    EXPECT_NEAR(a.solutions[i].t2(), b.solutions[i].t2(), 1e-10);
     EXPECT_LT(b.solutions[i].orbit.x0.tail(3).norm(), 1e-12);
   }
 }
@@ -199,9 +199,9 @@ TEST(Solver, SolutionAtRefinesToTheNearestRoot) {
   const SolveResult r = solve_window(s, 12.0, 12.0);
   ASSERT_FALSE(r.solutions.empty());
   const Solution& ref = r.solutions.front();
-  const Solution near = solution_at(s, ref.t1 * (1 + 1e-5), ref.t2 * (1 - 1e-5));
-  EXPECT_NEAR(near.t1, ref.t1, 1e-12);
-  EXPECT_NEAR(near.t2, ref.t2, 1e-12);
+  const Solution near = solution_at(s, ref.t1() * (1 + 1e-5), ref.t2() * (1 - 1e-5));
+  EXPECT_NEAR(near.t1(), ref.t1(), 1e-12);
+  EXPECT_NEAR(near.t2(), ref.t2(), 1e-12);
   EXPECT_THROW(solution_at(s, -1.0, 1.0), std::invalid_argument);
 }
 
@@ -216,8 +216,8 @@ TEST(Solver, ResultDoesNotDependOnTheNumberOfThreads) {
   const SolveResult b = solve(s, o);
   ASSERT_EQ(a.solutions.size(), b.solutions.size());
   for (size_t i = 0; i < a.solutions.size(); ++i) {
-    EXPECT_EQ(a.solutions[i].t1, b.solutions[i].t1);
-    EXPECT_EQ(a.solutions[i].t2, b.solutions[i].t2);
+    EXPECT_EQ(a.solutions[i].t1(), b.solutions[i].t1());
+    EXPECT_EQ(a.solutions[i].t2(), b.solutions[i].t2());
   }
   EXPECT_EQ(a.stats.evaluations, b.stats.evaluations);
   EXPECT_EQ(a.stats.strip_pairs, b.stats.strip_pairs);
@@ -262,7 +262,7 @@ TEST(Solver, WindowEdgeJustPastAPoleLineLeavesNoSliver) {
   const SolveResult b = solve(s, o);
   EXPECT_EQ(a.status, SolveStatus::Success) << a.brief_report();
   ASSERT_EQ(a.solutions.size(), b.solutions.size());
-  for (size_t i = 0; i < a.solutions.size(); ++i) EXPECT_NEAR(a.solutions[i].t1, b.solutions[i].t1, 1e-12);
+  for (size_t i = 0; i < a.solutions.size(); ++i) EXPECT_NEAR(a.solutions[i].t1(), b.solutions[i].t1(), 1e-12);
 }
 
 TEST(Solver, NullVectorThatSwingsAwayAndBackWithinAStepKeepsItsRoots) {
@@ -278,7 +278,7 @@ TEST(Solver, NullVectorThatSwingsAwayAndBackWithinAStepKeepsItsRoots) {
   EXPECT_EQ(r.solutions.size(), 13u) << r.brief_report();
   int found = 0;
   for (const Solution& x : r.solutions)
-    found += std::abs(x.t1 - 4.8788176) < 1e-6 && std::abs(x.t2 - 0.95352151) < 1e-6;
+    found += std::abs(x.t1() - 4.8788176) < 1e-6 && std::abs(x.t2() - 0.95352151) < 1e-6;
   EXPECT_EQ(found, 1);
 }
 
@@ -311,19 +311,19 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
   EXPECT_EQ(r.stats.uncertified_steps, 0);
   ASSERT_GT(r.solutions.size(), 10u);
   for (const Solution& x : r.solutions) {
-    EXPECT_FALSE(x.admissible);
-    EXPECT_LT(x.return_error, 1e-9) << x.t1 << " " << x.t2;
+    EXPECT_FALSE(x.admissible());
+    EXPECT_LT(x.return_error, 1e-9) << x.t1() << " " << x.t2();
     EXPECT_LT(x.orbit.c.norm(), 1e-9 * x.orbit.p0dot.norm());  // p(t2) = 0
-    const OrbitState mid_flight = orbit_state(md, x.orbit, 2 * x.t2 + x.t1);
-    EXPECT_LT(mid_flight.x.norm(), 1e-8 * x.orbit.v0.norm() * x.period);  // x(-t1) = 0
-    const OrbitState mid_contact = orbit_state(md, x.orbit, x.t2);
-    EXPECT_LT(mid_contact.x.norm(), 1e-8 * x.orbit.v0.norm() * x.period);  // x(t2) = 0
+    const OrbitState mid_flight = orbit_state(md, x.orbit, 2 * x.t2() + x.t1());
+    EXPECT_LT(mid_flight.x.norm(), 1e-8 * x.orbit.v0.norm() * x.period());  // x(-t1) = 0
+    const OrbitState mid_contact = orbit_state(md, x.orbit, x.t2());
+    EXPECT_LT(mid_contact.x.norm(), 1e-8 * x.orbit.v0.norm() * x.period());  // x(t2) = 0
     // odd force about t2: lambda(t2 + s) = -lambda(t2 - s)
-    const double f1 = orbit_state(md, x.orbit, 0.3 * x.t2).force, f2 = orbit_state(md, x.orbit, 1.7 * x.t2).force;
+    const double f1 = orbit_state(md, x.orbit, 0.3 * x.t2()).force, f2 = orbit_state(md, x.orbit, 1.7 * x.t2()).force;
     EXPECT_NEAR(f1, -f2, 1e-8 * (std::abs(f1) + 1e-3));
-    EXPECT_LT(x.min_force, 0.0);
+    EXPECT_LT(x.min_force(), 0.0);
     EXPECT_TRUE(x.admissibility.certified);  // "not admissible" is structural, not read off the samples
-    EXPECT_NEAR(x.orbit.obstacle_velocity, s.g0() / x.t2, 1e-9 * s.g0() / x.t2);
+    EXPECT_NEAR(x.orbit.obstacle_velocity, s.g0() / x.t2(), 1e-9 * s.g0() / x.t2());
   }
   // Brute force in the paper's style (its fig. 4 trick), independent of the search: on a 240 x 240 grid, cells
   // where det N_T and two adjugate conditions z^T W^-1 sin(W t1) adj(N_T) e_i all change sign, refined by Newton
@@ -389,7 +389,7 @@ TEST(Solver, PointSymmetricPotentialSppsOfSection62) {
         continue;
       brute.emplace_back(x, y);
       bool listed = false;
-      for (const Solution& q : r.solutions) listed |= std::hypot(q.t1 - x, q.t2 - y) < 1e-7;
+      for (const Solution& q : r.solutions) listed |= std::hypot(q.t1() - x, q.t2() - y) < 1e-7;
       EXPECT_TRUE(listed) << "(" << x << ", " << y << ") found by brute force, not listed";
     }
   // The grid sees every root of this window: the same count both ways.
@@ -416,8 +416,8 @@ TEST(Progress, ReportsEveryCellAndStopsWithWhatWasFound) {
   EXPECT_GE(last.candidates, static_cast<long>(plain.solutions.size()));  // sign changes, before polish
   ASSERT_EQ(reported.solutions.size(), plain.solutions.size());
   for (size_t i = 0; i < plain.solutions.size(); ++i) {
-    EXPECT_EQ(reported.solutions[i].t1, plain.solutions[i].t1);
-    EXPECT_EQ(reported.solutions[i].t2, plain.solutions[i].t2);
+    EXPECT_EQ(reported.solutions[i].t1(), plain.solutions[i].t1());
+    EXPECT_EQ(reported.solutions[i].t2(), plain.solutions[i].t2());
   }
   EXPECT_EQ(reported.stats.evaluations, plain.stats.evaluations);
   EXPECT_EQ(reported.status, SolveStatus::Success);
@@ -437,14 +437,14 @@ TEST(Progress, ReportsEveryCellAndStopsWithWhatWasFound) {
   EXPECT_TRUE(listed);
   for (const Solution& x : part.solutions) {
     SolveOptions around;
-    around.t1_min = x.t1 * (1 - 1e-6);
-    around.t1_max = x.t1 * (1 + 1e-6);
-    around.t2_min = x.t2 * (1 - 1e-6);
-    around.t2_max = x.t2 * (1 + 1e-6);
+    around.t1_min = x.t1() * (1 - 1e-6);
+    around.t1_max = x.t1() * (1 + 1e-6);
+    around.t2_min = x.t2() * (1 - 1e-6);
+    around.t2_max = x.t2() * (1 + 1e-6);
     const SolveResult r = solve(s20, around);
-    ASSERT_EQ(r.solutions.size(), 1u) << x.t1 << " " << x.t2;
-    EXPECT_NEAR(r.solutions[0].t1, x.t1, 1e-9 * x.t1);
-    EXPECT_NEAR(r.solutions[0].t2, x.t2, 1e-9 * x.t2);
+    ASSERT_EQ(r.solutions.size(), 1u) << x.t1() << " " << x.t2();
+    EXPECT_NEAR(r.solutions[0].t1(), x.t1(), 1e-9 * x.t1());
+    EXPECT_NEAR(r.solutions[0].t2(), x.t2(), 1e-9 * x.t2());
   }
 }
 

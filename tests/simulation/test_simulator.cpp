@@ -148,18 +148,18 @@ TEST(Simulator, EveryAdmissibleSppOfThePaperComesBackAfterOnePeriod) {
     const Simulator sim(s);
     for (const Solution& sol : res.solutions) {
       SimulateOptions o;
-      o.duration = sol.period;
+      o.duration = sol.period();
       const auto r = sim.run(sol.orbit.x0, sol.orbit.v0, o);
       Eigen::VectorXd X0(2 * s.n()), XT(2 * s.n());
       X0 << sol.orbit.x0, sol.orbit.v0;
       XT << r.samples.back().x, r.samples.back().v;
-      EXPECT_LT((XT - X0).norm() / X0.norm(), 1e-9) << s.name() << " t1 = " << sol.t1 << ", t2 = " << sol.t2;
+      EXPECT_LT((XT - X0).norm() / X0.norm(), 1e-9) << s.name() << " t1 = " << sol.t1() << ", t2 = " << sol.t2();
       EXPECT_EQ(r.impacts, 0);
       ASSERT_GE(r.releases, 1);
       // contact from 0 to 2 t2, then flight
       EXPECT_EQ(r.events.front().kind, EventKind::ContactOnset);
       EXPECT_NEAR(r.events.front().t, 0.0, 1e-12);
-      EXPECT_NEAR(r.events[1].t, 2.0 * sol.t2, 1e-6);
+      EXPECT_NEAR(r.events[1].t, 2.0 * sol.t2(), 1e-6);
       EXPECT_EQ(r.events[1].kind, EventKind::Release);
     }
   }
@@ -173,14 +173,14 @@ TEST(Simulator, AnInadmissibleSppLeavesTheOrbit) {
   const Simulator sim(chain5());
   int checked = 0;
   for (const Solution& sol : res.solutions) {
-    if (sol.admissible) continue;
+    if (sol.admissible()) continue;
     SimulateOptions o;
-    o.duration = sol.period;
+    o.duration = sol.period();
     const auto r = sim.run(sol.orbit.x0, sol.orbit.v0, o);
     Eigen::VectorXd X0(10), XT(10);
     X0 << sol.orbit.x0, sol.orbit.v0;
     XT << r.samples.back().x, r.samples.back().v;
-    EXPECT_GT((XT - X0).norm() / X0.norm(), 1e-6) << "t1 = " << sol.t1 << ", t2 = " << sol.t2;
+    EXPECT_GT((XT - X0).norm() / X0.norm(), 1e-6) << "t1 = " << sol.t1() << ", t2 = " << sol.t2();
     ++checked;
   }
   EXPECT_GT(checked, 10);

@@ -19,11 +19,11 @@ System chain5() {
   return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
 }
 
-std::vector<SppCandidate> spps_of(const System& s, double t1max, double t2max) {
+std::vector<Solution> spps_of(const System& s, double t1max, double t2max) {
   SolveOptions o;
   o.t1_max = t1max;
   o.t2_max = t2max;
-  return candidates(solve(s, o));
+  return solve(s, o).solutions;
 }
 }  // namespace
 
@@ -45,7 +45,7 @@ TEST(Verify, RodSppsAgreeWithTheSolver) {
     } else {
       EXPECT_FALSE(c.departure.empty());
       EXPECT_GE(c.departure_time, 0.0);
-      EXPECT_LE(c.departure_time, c.candidate.period());
+      EXPECT_LE(c.departure_time, c.spp.period());
       EXPECT_EQ(c.periods_followed, 0);
     }
   }
@@ -70,7 +70,7 @@ TEST(Verify, DepartureReasonsNameWhatBreaks) {
 
 TEST(Verify, PerturbationStartsAtTheRequestedDistance) {
   auto spps = spps_of(rod4(), 8.0, 3.0);
-  std::erase_if(spps, [](const SppCandidate& c) { return !c.admissible; });
+  std::erase_if(spps, [](const Solution& c) { return !c.admissible(); });
   VerifyOptions o;
   o.periods = 5;
   o.perturbation = 1e-6;
@@ -87,12 +87,12 @@ TEST(Verify, PerturbationStartsAtTheRequestedDistance) {
   }
 }
 
-TEST(Verify, RejectsCandidatesOfTheWrongSize) {
-  SppCandidate c;
-  c.t1 = 1.0;
-  c.t2 = 1.0;
-  c.x0 = Eigen::VectorXd::Zero(3);
-  c.v0 = Eigen::VectorXd::Zero(5);
+TEST(Verify, RejectsSolutionsOfTheWrongSize) {
+  Solution c;
+  c.orbit.t1 = 1.0;
+  c.orbit.t2 = 1.0;
+  c.orbit.x0 = Eigen::VectorXd::Zero(3);
+  c.orbit.v0 = Eigen::VectorXd::Zero(5);
   EXPECT_THROW(verify(chain5(), {c}, VerifyOptions{}), std::invalid_argument);
   VerifyOptions o;
   o.periods = 0;
@@ -101,9 +101,9 @@ TEST(Verify, RejectsCandidatesOfTheWrongSize) {
 
 TEST(Verify, AnSppMislabelledAdmissibleMakesTheResultInconsistent) {
   auto spps = spps_of(rod4(), 8.0, 3.0);
-  const auto leaving = std::find_if(spps.begin(), spps.end(), [](const SppCandidate& c) { return !c.admissible; });
+  const auto leaving = std::find_if(spps.begin(), spps.end(), [](const Solution& c) { return !c.admissible(); });
   ASSERT_NE(leaving, spps.end());
-  leaving->admissible = true;  // the simulation will leave it: it disagrees with this label
+  leaving->admissibility.admissible = true;  // the simulation will leave it: it disagrees with this label
   const VerifyResult r = verify(rod4(), spps, VerifyOptions{});
   EXPECT_EQ(r.status, VerifyStatus::Inconsistent) << r.brief_report();
   EXPECT_EQ(r.inconsistent, 1);
@@ -114,10 +114,10 @@ TEST(Verify, ACandidateTheSimulatorRefusesIsNamedByItsIndex) {
   // Found by an independent review: a result whose solution 0 had x0[0] = 1e308 hung spp verify; with t1 = 1e308,
   // the message said "simulate: duration must be finite" without naming the solution.
   const System s = rod4();
-  std::vector<SppCandidate> spps = spps_of(s, 8.0, 3.0);
+  std::vector<Solution> spps = spps_of(s, 8.0, 3.0);
   ASSERT_GE(spps.size(), 2u);
   VerifyOptions o;
-  auto message = [&](const std::vector<SppCandidate>& c) {
+  auto message = [&](const std::vector<Solution>& c) {
     try {
       verify(s, c, o);
     } catch (const std::invalid_argument& e) {
@@ -125,12 +125,12 @@ TEST(Verify, ACandidateTheSimulatorRefusesIsNamedByItsIndex) {
     }
     return std::string("no refusal");
   };
-  std::vector<SppCandidate> huge = spps;
-  huge[1].x0(0) = 1e308;
+  std::vector<Solution> huge = spps;
+  huge[1].orbit.x0(0) = 1e308;
   EXPECT_NE(message(huge).find("verify: solution 1: simulate: the initial state's energy"), std::string::npos)
       << message(huge);
-  std::vector<SppCandidate> long_period = spps;
-  long_period[1].t1 = 1e308;
+  std::vector<Solution> long_period = spps;
+  long_period[1].orbit.t1 = 1e308;
   EXPECT_NE(message(long_period).find("verify: solution 1: t1 and t2 must be > 0 with a finite period"),
             std::string::npos)
       << message(long_period);
@@ -141,7 +141,7 @@ TEST(Verify, GrowthPerPeriodIsMeasuredWhileThePerturbationIsSmall) {
   // the distance stopped growing, and read 1.147 for the paper chain's SPP #0, whose spectral radius is 1.535. Over
   // the periods with a distance below 1e-3 it reads 1.38 (a random perturbation starts partly on slower directions).
   auto spps = spps_of(chain5(), 12.0, 12.0);
-  std::erase_if(spps, [](const SppCandidate& c) { return !c.admissible; });
+  std::erase_if(spps, [](const Solution& c) { return !c.admissible(); });
   ASSERT_EQ(spps.size(), 7u);
   VerifyOptions o;
   o.periods = 100;

@@ -111,9 +111,9 @@ TEST(Floquet, EveryTwoDofSppHasMultipliersZeroZeroOneOne) {
       EXPECT_NEAR((mono * mono).trace(), 2.0, 1e-9);
       for (double e : {0.0, 0.5}) {
         const double coarse = fd_error(s, md, sol.orbit, e, 1e-5), fine = fd_error(s, md, sol.orbit, e, 1e-8);
-        EXPECT_LT(fine, 0.15) << "e = " << e << " t1 = " << sol.t1;
-        EXPECT_GT(coarse / fine, 10.0 / 2.0) << "e = " << e << " t1 = " << sol.t1;
-        EXPECT_LT(coarse / fine, 10.0 * 2.0) << "e = " << e << " t1 = " << sol.t1;
+        EXPECT_LT(fine, 0.15) << "e = " << e << " t1 = " << sol.t1();
+        EXPECT_GT(coarse / fine, 10.0 / 2.0) << "e = " << e << " t1 = " << sol.t1();
+        EXPECT_LT(coarse / fine, 10.0 * 2.0) << "e = " << e << " t1 = " << sol.t1();
       }
     }
   }
@@ -147,7 +147,7 @@ TEST(Floquet, RandomSystemsAgreeWithTheSimulator) {
     const ModalForm md(s);
     for (const Solution& sol : admissible_spps(s)) {
       const double err = fd_error(s, md, sol.orbit, 0.5, 1e-8);
-      EXPECT_LT(err, 0.2) << "seed " << seed << " t1 = " << sol.t1 << " t2 = " << sol.t2;
+      EXPECT_LT(err, 0.2) << "seed " << seed << " t1 = " << sol.t1() << " t2 = " << sol.t2();
       const Floquet f = floquet(md, sol.orbit);
       EXPECT_LT(f.structure_residual, 1e-9);
       ++checked;
@@ -197,7 +197,7 @@ TEST(Floquet, InvariantUnderUnitsAndCoordinates) {
   ASSERT_EQ(a.size(), b.size());
   const ModalForm ma(s), mb(t);
   for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_NEAR(b[i].t1, time * a[i].t1, 1e-9 * b[i].t1);
+    EXPECT_NEAR(b[i].t1(), time * a[i].t1(), 1e-9 * b[i].t1());
     const Floquet fa = floquet(ma, a[i].orbit), fb = floquet(mb, b[i].orbit);
     ASSERT_EQ(fa.multipliers.size(), fb.multipliers.size());
     for (size_t k = 0; k < fa.multipliers.size(); ++k)
@@ -228,7 +228,7 @@ TEST(Floquet, UnstableSppLeavesAtTheMultipliersRate) {
   const Eigen::VectorXd Xm = stack(mid.x, mid.v);
   const Eigen::VectorXd dX = 1e-12 * Xm.norm() * ker.col(0).normalized();
   const int n = s.n(), periods = 16;
-  const double T = sol.period;
+  const double T = sol.period();
   for (double e : {0.0, 0.5}) {
     SimulateOptions o;
     o.duration = periods * T;
@@ -265,13 +265,13 @@ TEST(Floquet, ThousandPeriodsStayOnStableSppsAndLeaveAnUnstableOne) {
     const ModalForm md(s);
     const Simulator sim(s);
     const int n = s.n();
-    const OrbitState rel = orbit_state(md, sol.orbit, 2.0 * sol.t2);
+    const OrbitState rel = orbit_state(md, sol.orbit, 2.0 * sol.t2());
     const Eigen::VectorXd Xr = stack(rel.x, rel.v);
-    const OrbitState mid = orbit_state(md, sol.orbit, 2.0 * sol.t2 + sol.t1);
+    const OrbitState mid = orbit_state(md, sol.orbit, 2.0 * sol.t2() + sol.t1());
     Eigen::VectorXd d = Eigen::VectorXd::Random(2 * n);  // Eigen's fixed sequence: reproducible
     d *= 1e-10 * stack(mid.x, mid.v).norm() / d.norm();
     SimulateOptions o;
-    o.duration = 1000 * sol.period;
+    o.duration = 1000 * sol.period();
     o.restitution = 0.5;
     o.sample_events = false;
     const SimulationResult res = sim.run(mid.x + d.head(n), mid.v + d.tail(n), o);
@@ -290,8 +290,8 @@ TEST(Floquet, ThousandPeriodsStayOnStableSppsAndLeaveAnUnstableOne) {
   int releases = 0;
   for (const auto& [s, sol] : {std::pair{&c, &cs[2]}, std::pair{&c, &cs[3]}, std::pair{&r, &rs[0]}}) {
     ASSERT_TRUE(sol->stable());
-    EXPECT_LT(largest_distance(*s, *sol, &last, &releases), 1e-8) << "t1 = " << sol->t1;
-    EXPECT_EQ(releases, 1000) << "t1 = " << sol->t1;
+    EXPECT_LT(largest_distance(*s, *sol, &last, &releases), 1e-8) << "t1 = " << sol->t1();
+    EXPECT_EQ(releases, 1000) << "t1 = " << sol->t1();
   }
   ASSERT_FALSE(cs[1].stable());
   EXPECT_GT(largest_distance(c, cs[1], &last, &releases), 1e-6);

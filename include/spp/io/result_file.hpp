@@ -9,7 +9,6 @@
 
 #include "spp/core/system.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/simulation/verify.hpp"
 
 namespace spp {
 
@@ -23,7 +22,5 @@ SolveResult parse_result(const std::string& text, const std::string& where);
 System parse_result_system(const std::string& text, const std::string& where);
 /// The system embedded in a result file.
 System load_result_system(const std::string& path);
-/// Only what verify, trajectory and the plots need of each SPP (t1, t2, x0, v0, admissible, energy).
-std::vector<SppCandidate> load_result_candidates(const std::string& path);
 
 }  // namespace spp

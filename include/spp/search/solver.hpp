@@ -22,7 +22,7 @@
 
 #include "spp/core/system.hpp"
 #include "spp/orbit/orbit.hpp"
-#include "spp/stability/floquet.hpp"
+#include "spp/orbit/solution.hpp"
 
 namespace spp {
 
@@ -89,25 +89,6 @@ enum class SolveStatus {
 };
 const char* to_string(SolveStatus s);
 
-struct Solution {
-  double t1 = 0.0, t2 = 0.0, period = 0.0;
-  bool admissible = false;
-  double min_gap = 0.0, min_force = 0.0, energy = 0.0;
-  double residual = 0.0;       ///< relative residual of N a = 0 and z^T p0 = 0 (eqs. 5.1a-b)
-  double return_error = -1.0;  ///< relative periodicity error after one period (-1: not computed)
-  Orbit orbit;
-  Admissibility admissibility;
-  /// Multipliers, spectral radius, margin (stability/floquet.hpp); spectral_radius NaN when not computed (point
-  /// symmetry, compute_stability off). Physical only for an admissible SPP: see stable().
-  Floquet floquet;
-  /// Admissible and every multiplier but the two structural 1s inside the unit circle.
-  bool stable() const { return admissible && floquet.stable; }
-  /// "point_symmetric" (Symmetry::Point),
-  /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip),
-  /// "decoupled_mode_resonant" (a mode that never sees the contact has the same period: any amount of it can be added),
-  /// "gap_closure_degenerate".
-  std::vector<std::string> flags;
-};
 
 struct SolveStats {
   int flight_pole_lines = 0, contact_pole_lines = 0;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "spp/search/solver.hpp"
+#include "spp/orbit/solution.hpp"
 #include "spp/simulation/simulator.hpp"
 
 namespace spp {
@@ -25,17 +25,6 @@ struct VerifyOptions {
   void validate() const;
 };
 
-/// What verify needs of a solution: its half-durations, initial state (contact onset) and the solver's verdict.
-struct SppCandidate {
-  double t1 = 0.0, t2 = 0.0;
-  Eigen::VectorXd x0, v0;
-  bool admissible = false;
-  double energy = 0.0;  ///< 1/2 v0^T M v0 + 1/2 x0^T K x0 (NaN when read from a result without it)
-  double period() const { return 2.0 * (t1 + t2); }
-};
-/// Every solution of a result as a candidate, in the result's order.
-std::vector<SppCandidate> candidates(const SolveResult& result);
-
 enum class Verdict {
   Returns,  ///< over the first period: the expected events, and a return error below return_tol
   Leaves,   ///< the simulation departs from the orbit within the first period (departure_* say when and how)
@@ -43,7 +32,7 @@ enum class Verdict {
 const char* to_string(Verdict v);
 
 struct SppCheck {
-  SppCandidate candidate;
+  Solution spp;  ///< the SPP checked (verify's copy of it): its t1(), t2(), x0(), v0() and the solver's admissible()
   Verdict verdict = Verdict::Leaves;
   bool consistent = false;            ///< admissible <=> Returns
   std::vector<double> return_errors;  ///< |X(kT) - X(0)| / |X(0)|, k = 1..periods
@@ -73,9 +62,9 @@ struct VerifyResult {
   std::string brief_report() const;
 };
 
-/// Re-simulates each candidate from (x0, v0) (both (n)) for `periods` periods: one Simulator (O(n^3)), then O(n^2)
+/// Re-simulates each SPP from its state at contact onset (x0, v0, both (n)) for `periods` periods: one Simulator (O(n^3)), then O(n^2)
 /// per event, a few events per period; with a perturbation, the orbit sampled at 512 points and one golden-section
 /// search of the nearest point per period. Throws std::invalid_argument on sizes that do not match the system.
-VerifyResult verify(const System& system, const std::vector<SppCandidate>& spps, const VerifyOptions& options);
+VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& options);
 
 }  // namespace spp
