@@ -4,11 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "spp/detail/cosine_sum.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -256,7 +258,36 @@ double admissibility_margin(const ModalForm& md, const Orbit& o) {
   return std::min(gmin, fmin);
 }
 
+void check_orbit_basis(const ModalForm& md, const Orbit& o, const char* where) {
+  // Same basis: x0 was computed as Phi W^-1 p0, so the two agree to rounding (~m eps); another basis (an eigenvector
+  // of the other sign) moves them by the size of that mode's part, O(1) of the orbit's scale.
+  constexpr double kSameBasisTol = 1e-8;
+  const bool sizes = o.p0.size() == md.m() && o.p0dot.size() == md.m() && o.x0.size() == md.n() &&
+                     o.v0.size() == md.n();
+  if (!sizes) {
+    std::ostringstream os;
+    os << where << ": expected an orbit of " << md.n() << " dofs and " << md.m() << " coupled modes, got x0 of "
+       << o.x0.size() << " and p0 of " << o.p0.size() << " entries";
+    detail::invalid(os.str());
+  }
+  const Eigen::ArrayXd& w = md.omega().array();
+  const double wmin = w.size() > 0 ? w.minCoeff() : 1.0;  // v / wmin: a length, like x
+  const double mismatch = (md.Phi() * (o.p0.array() / w).matrix() - o.x0).norm() +
+                          (md.Phi() * (o.p0dot.array() / w).matrix() - o.v0).norm() / wmin;
+  const double scale = o.x0.norm() + o.v0.norm() / wmin;
+  if (!(mismatch <= kSameBasisTol * scale)) {
+    std::ostringstream os;
+    os.precision(3);
+    os << where << ": the orbit's modal coordinates do not give its x0 and v0 in this modal form (relative mismatch "
+       << mismatch / scale
+       << "): they were computed in another modal basis (eigenvectors are defined up to sign; e.g. a result file "
+          "written on another machine). Rebuild the orbit here with solution_at(system, modal, t1, t2)";
+    detail::invalid(os.str());
+  }
+}
+
 OrbitSamples sample_orbit(const ModalForm& md, const Orbit& o, int samples) {
+  check_orbit_basis(md, o, "sample_orbit");
   OrbitSamples s{Eigen::VectorXd(samples), Eigen::VectorXd(samples), Eigen::VectorXd(samples),
                  Eigen::MatrixXd(samples, md.n()), Eigen::MatrixXd(samples, md.n())};
   const double T = o.period();

@@ -20,6 +20,7 @@ void require_axial(const ModalForm& md, const Orbit& orbit, const char* where) {
     os << where << ": expected an orbit of " << md.m() << " coupled modes, got " << orbit.p0.size();
     detail::invalid(os.str());
   }
+  check_orbit_basis(md, orbit, where);
 }
 
 // The monodromy on the coupled modes, in energy-scaled modal coordinates y = (p, q') = (W q, q') (energy |y|^2 / 2;

@@ -41,11 +41,19 @@ struct OrbitState {
   double gap = 0.0, force = 0.0;
 };
 
+/// An orbit's modal coordinates (a, c, p0, p0dot) belong to the modal form that computed them: eigenvectors are
+/// defined up to sign, and another machine's LAPACK may choose other signs for the same system. Checks that
+/// Phi W^-1 p0 and Phi W^-1 p0dot give the orbit's physical x0 and v0 (to kSameBasisTol relative to the orbit's
+/// scale); throws std::invalid_argument naming `where` otherwise (e.g. an orbit read from a result file written
+/// elsewhere: rebuild it with solution_at(system, modal, t1, t2)). Cost O(n m).
+void check_orbit_basis(const ModalForm& modal, const Orbit& orbit, const char* where);
+
 /// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight). x, v: (n); cost O(m^2 + n m).
 OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
 
 /// One period sampled at `samples` (>= 2) equally spaced times t_k = T k / (samples - 1), both ends included: the
 /// rows of spp trajectory's CSV and of Python's spp.trajectory.
+/// Checks the orbit's basis first (check_orbit_basis).
 struct OrbitSamples {
   Eigen::VectorXd t, gap, force;  ///< (samples)
   Eigen::MatrixXd x, v;           ///< (samples, n)
