@@ -1,5 +1,7 @@
 #pragma once
 // CSV (header line, then one row per item; doubles with 17 significant digits).
+// Cost: linear in the rows written (result: solutions x (2n + 11) numbers; trajectory: samples x (2n + 3), each
+// sample O(m^2 + n m) through orbit_state), ~25 characters per number.
 
 #include <string>
 

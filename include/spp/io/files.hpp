@@ -1,6 +1,7 @@
 #pragma once
 // Whole files: every writer of spp goes through write_file_atomic (a temporary file renamed over the target), so that
 // a failure never leaves a half-written output.
+// Cost: one read or one write of the whole file (plus a rename), memory the file's size.
 
 #include <cstdint>
 #include <string>

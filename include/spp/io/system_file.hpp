@@ -3,6 +3,8 @@
 // "file.mtx"} relative to the JSON file; w a list of n numbers), and parametric system files (the same with
 // "parameter": {"name": "k2", "min": 1, "max": 10} and each of M, K, w either a value or {"constant": value,
 // "k2": value}, affine in the parameter). Unknown fields and keys given twice are refused.
+// Units are the user's (consistent ones: spp is invariant under their change). Cost: linear in the file; a dense
+// system holds M and K (16 n^2 bytes), and reading holds the text and its JSON tree at once (~3x the file's size).
 
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 // Result files of spp verify: {"checks": [{"t1", "t2", "period", "admissible", "verdict", "consistent",
 // "return_errors", "impacts", "contact_onsets", "releases", "periods_followed", "departure"?,
 // "perturbed_distances"?, "growth_per_period"?}], "returned", "left", "inconsistent", "all_consistent"}.
+// Cost: linear in the checks x periods written.
 
 #include <string>
 
