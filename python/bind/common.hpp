@@ -1,0 +1,111 @@
+#pragma once
+// What every binding file shares: pybind11 with Eigen and STL conversions, the result enums as Python enums
+// (spp._outcome.Outcome), Options filled from keyword arguments, and the checks on numpy input.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+// (every header that declares a result enum's to_string: outcome() names them qualified, so they must be seen here)
+#include "spp/continuation/continuation.hpp"
+#include "spp/modal/modal.hpp"
+#include "spp/search/solver.hpp"
+#include "spp/simulation/simulator.hpp"
+#include "spp/simulation/verify.hpp"
+
+namespace spp::python {
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+// Result statuses and kinds as Python enums (spp._outcome.Outcome: str subclasses) whose members are the C++
+// to_string names: one mechanism for every result enum, its members taken from C++ so that they cannot drift.
+template <class E>
+py::handle& outcome_class() {
+  static py::handle cls;  // owned by the module (m.attr), never freed before it
+  return cls;
+}
+template <class E>
+void bind_outcome(py::module_& m, const char* name, std::initializer_list<E> values, const char* doc) {
+  py::list members;
+  for (const E v : values) members.append(py::make_tuple(spp::to_string(v), spp::to_string(v)));
+  py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
+  cls.attr("__doc__") = doc;
+  m.attr(name) = cls;
+  outcome_class<E>() = cls;
+}
+template <class E>
+py::object outcome(E v) {
+  return outcome_class<E>()(spp::to_string(v));
+}
+
+// The options (or their defaults) with the keyword arguments set on them, field by field: one mechanism for every
+// function that takes an Options struct. An unknown keyword is refused with the list of fields; the list is the bound
+// attributes (not the dunders nor validate), so it cannot drift from the binding.
+template <class Options>
+Options with_fields(const py::object& options, const py::kwargs& fields, const char* where, const char* type_name) {
+  py::object o = options.is_none() ? py::cast(Options{}) : py::cast(options.cast<Options>());
+  std::vector<std::string> known;
+  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
+    const std::string n = py::str(a);
+    if (n.rfind("_", 0) != 0 && n != "validate") known.push_back(n);
+  }
+  for (const auto& [key, value] : fields) {
+    const std::string name = py::str(key);
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+      throw std::invalid_argument(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
+                                  " fields: " + list + ")");
+    }
+    py::setattr(o, key, value);
+  }
+  return o.cast<Options>();
+}
+
+// "<spp.Name field=value ...>" of the bound fields (those of with_fields), for the options' __repr__.
+inline std::string fields_repr(const py::object& o, const char* type_name) {
+  std::string out = std::string("<spp.") + type_name;
+  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
+    const std::string n = py::str(a);
+    if (n.rfind("_", 0) == 0 || n == "validate") continue;
+    out += " " + n + "=" + py::repr(o.attr(a)).cast<std::string>();
+  }
+  return out + ">";
+}
+
+// A complex array is refused, naming `what` (pybind11's conversion to double, and numpy's asarray(dtype=float64), keep
+// the real part with a mere ComplexWarning: found by an independent review).
+inline void require_real(const py::object& a, const std::string& what) {
+  const py::module_ np = py::module_::import("numpy");
+  if (np.attr("iscomplexobj")(a).cast<bool>())
+    throw std::invalid_argument(what + " must be real, got a complex array (dtype " +
+                                py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
+}
+
+
+// The symmetry from the enum or its name ("axial", "point").
+inline spp::Symmetry symmetry_of(const py::object& v) {
+  if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
+  const std::string name = py::str(v);
+  if (const std::optional<spp::Symmetry> s = spp::symmetry_named(name)) return *s;
+  throw std::invalid_argument("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" +
+                              name + "\"");
+}
+
+// One function per area (python/bind/<area>.cpp), called in this order by module.cpp: types before the functions
+// that return them.
+void bind_core(py::module_& m);
+void bind_modal(py::module_& m);
+void bind_orbit(py::module_& m);
+void bind_search(py::module_& m);
+void bind_stability(py::module_& m);
+void bind_simulation(py::module_& m);
+void bind_continuation(py::module_& m);
+void bind_io(py::module_& m);
+
+}  // namespace spp::python

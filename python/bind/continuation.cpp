@@ -1,0 +1,103 @@
+// Python bindings, continuation/: SPP branches in a parameter.
+#include <iomanip>
+#include <sstream>
+
+#include "common.hpp"
+#include "spp/continuation/continuation.hpp"
+
+namespace spp::python {
+
+void bind_continuation(py::module_& m) {
+  bind_outcome(m, "ContinuationStatus", {spp::ContinuationStatus::Success, spp::ContinuationStatus::Incomplete},
+               "ContinuationResult.status");
+  bind_outcome(m, "BranchEventKind",
+               {spp::BranchEventKind::LeavesWindow, spp::BranchEventKind::RangeEnd, spp::BranchEventKind::Fold,
+                spp::BranchEventKind::AdmissibilityLost, spp::BranchEventKind::AdmissibilityGained,
+                spp::BranchEventKind::GapClosure, spp::BranchEventKind::ClosedLoop, spp::BranchEventKind::Stalled,
+                spp::BranchEventKind::StabilityLost, spp::BranchEventKind::StabilityGained},
+               "BranchEvent.kind");
+
+  py::class_<spp::BranchPoint>(m, "BranchPoint")
+      .def_readonly("mu", &spp::BranchPoint::mu)
+      .def_readonly("t1", &spp::BranchPoint::t1)
+      .def_readonly("t2", &spp::BranchPoint::t2)
+      .def_readonly("period", &spp::BranchPoint::period)
+      .def_readonly("admissible", &spp::BranchPoint::admissible)
+      .def_readonly("margin", &spp::BranchPoint::margin, "admissibility margin (NaN where meaningless)")
+      .def_readonly("spectral_radius", &spp::BranchPoint::spectral_radius,
+                    "largest |Floquet multiplier| but the two structural 1s (NaN where not computed)")
+      .def_readonly("closure", &spp::BranchPoint::closure)
+      .def_readonly("energy", &spp::BranchPoint::energy)
+      .def_readonly("x0", &spp::BranchPoint::x0)
+      .def_readonly("v0", &spp::BranchPoint::v0);
+  py::class_<spp::BranchEvent>(m, "BranchEvent")
+      .def_property_readonly("kind", [](const spp::BranchEvent& e) { return outcome(e.kind); })
+      .def_readonly("at", &spp::BranchEvent::at)
+      .def_readonly("detail", &spp::BranchEvent::detail);
+  py::class_<spp::Branch>(m, "Branch")
+      .def_readonly("points", &spp::Branch::points)
+      .def_readonly("events", &spp::Branch::events)
+      .def_property_readonly(
+          "arrays",
+          [](const spp::Branch& b) {
+            Eigen::MatrixXd a(static_cast<Eigen::Index>(b.points.size()), 4);
+            for (size_t i = 0; i < b.points.size(); ++i)
+              a.row(static_cast<Eigen::Index>(i)) << b.points[i].mu, b.points[i].t1, b.points[i].t2, b.points[i].margin;
+            return a;
+          },
+          "(N, 4): mu, t1, t2, margin of every point");
+  py::class_<spp::ContinuationResult>(m, "ContinuationResult")
+      .def_property_readonly("status", [](const spp::ContinuationResult& r) { return outcome(r.status); })
+      .def_readonly("incomplete_seed_solves", &spp::ContinuationResult::incomplete_seed_solves)
+      .def_readonly("stalled_branches", &spp::ContinuationResult::stalled_branches)
+      .def_readonly("unlisted_crossings", &spp::ContinuationResult::unlisted_crossings)
+      .def_readonly("branches", &spp::ContinuationResult::branches)
+      .def_readonly("warnings", &spp::ContinuationResult::warnings)
+      .def("brief_report", &spp::ContinuationResult::brief_report)
+      .def(
+          "gap_closures", [](const spp::ContinuationResult& r) { return spp::gap_closures(r); },
+          "GapClosure events sorted by mu: with g0 = 0, the SPPs of paper §6.1");
+  py::class_<spp::ContinueOptions>(m, "ContinueOptions",
+                                   "Options of continue_branches (the C++ ContinueOptions, field by field; "
+                                   "continue_branches(system, t1_max, t2_max, options, **fields) also takes any field "
+                                   "as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("t1_max", &spp::ContinueOptions::t1_max, "upper end of the window in t1 (> 0)")
+      .def_readwrite("t2_max", &spp::ContinueOptions::t2_max, "upper end of the window in t2 (> 0)")
+      .def_readwrite("t1_min", &spp::ContinueOptions::t1_min, "lower end (0: as solve)")
+      .def_readwrite("t2_min", &spp::ContinueOptions::t2_min, "lower end (0: as solve)")
+      .def_readwrite("seeds", &spp::ContinueOptions::seeds,
+                     "parameter values (min, max and evenly between) where solve seeds branches")
+      .def_readwrite("max_step", &spp::ContinueOptions::max_step,
+                     "largest step, in arclength of (t1/t1_max, t2/t2_max, mu/(max - min))")
+      .def_readwrite("min_step", &spp::ContinueOptions::min_step,
+                     "a branch whose step falls below this stops with a \"stalled\" event")
+      .def_readwrite("max_turn", &spp::ContinueOptions::max_turn, "largest angle (rad) between successive tangents")
+      .def_readwrite("max_points", &spp::ContinueOptions::max_points, "per branch and direction")
+      .def_readwrite("locate_tol", &spp::ContinueOptions::locate_tol,
+                     "events located to this, in the same scaled arclength")
+      .def_readwrite("threads", &spp::ContinueOptions::threads, "for the seeding solves (0: all)")
+      .def_property(
+          "symmetry", [](const spp::ContinueOptions& o) { return o.symmetry; },
+          [](spp::ContinueOptions& o, const py::object& v) { o.symmetry = symmetry_of(v); },
+          "Symmetry.axial (default) or Symmetry.point (or their names)")
+      .def("validate", &spp::ContinueOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "ContinueOptions"); });
+  m.def(
+      "continue_branches",
+      [](const spp::ParametricSystem& s, std::optional<double> t1_max, std::optional<double> t2_max,
+         const py::object& options, const py::kwargs& fields) {
+        spp::ContinueOptions o =
+            with_fields<spp::ContinueOptions>(options, fields, "continue_branches", "ContinueOptions");
+        if (t1_max) o.t1_max = *t1_max;
+        if (t2_max) o.t2_max = *t2_max;
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::continue_branches(s, o);
+      },
+      "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
+      "Every SPP of the window followed over the parameter's range: continue_branches(system, t1_max=3, t2_max=1, "
+      "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Raises ValueError.");
+}
+
+}  // namespace spp::python

@@ -1,0 +1,25 @@
+// Python bindings, io/: result files read back.
+#include <iomanip>
+#include <sstream>
+
+#include "common.hpp"
+#include "spp/io.hpp"
+
+namespace spp::python {
+
+void bind_io(py::module_& m) {
+  m.def(
+      "load_result",
+      [](const std::string& path) {
+        spp::System system = spp::load_result_system(path);
+        py::object result = py::cast(spp::load_result(path));
+        result.attr("system") = std::move(system);
+        return result;
+      },
+      "path"_a,
+      "The SolveResult of a result file (spp solve --json, SolveResult.to_json), as C++'s spp::load_result, with its "
+      "system as attribute system (the same as SolveResult.from_json). Raises ValueError naming the file and the "
+      "field.");
+}
+
+}  // namespace spp::python

@@ -1,0 +1,75 @@
+// Python bindings, orbit/: Solution, and one period of an SPP (trajectory).
+#include <iomanip>
+#include <sstream>
+
+#include "common.hpp"
+#include "spp/orbit/orbit.hpp"
+#include "spp/orbit/solution.hpp"
+#include "spp/search/solver.hpp"
+
+namespace spp::python {
+
+void bind_orbit(py::module_& m) {
+  py::class_<spp::Solution>(m, "Solution", "One potential SPP")
+      .def_property_readonly("t1", &spp::Solution::t1, "flight half-duration")
+      .def_property_readonly("t2", &spp::Solution::t2, "contact half-duration")
+      .def_property_readonly("period", &spp::Solution::period, "2 (t1 + t2)")
+      .def_property_readonly("admissible", &spp::Solution::admissible)
+      .def_property_readonly("min_gap", &spp::Solution::min_gap, "smallest gap over the flight")
+      .def_property_readonly("min_force", &spp::Solution::min_force, "smallest contact force over the contact phase")
+      .def_property_readonly("energy", &spp::Solution::energy)
+      .def_readonly("residual", &spp::Solution::residual)
+      .def_readonly("return_error", &spp::Solution::return_error)
+      .def_readonly("flags", &spp::Solution::flags)
+      .def_property_readonly(
+          "obstacle_velocity", [](const spp::Solution& s) { return s.orbit.obstacle_velocity; },
+          "point symmetry: normal velocity of the obstacle during contact (g0 / t2); 0 for SPPs")
+      .def_property_readonly(
+          "floquet_multipliers",
+          [](const spp::Solution& s) {
+            return Eigen::VectorXcd(Eigen::Map<const Eigen::VectorXcd>(
+                s.floquet.multipliers.data(), static_cast<Eigen::Index>(s.floquet.multipliers.size())));
+          },
+          "(2n,) complex Floquet multipliers under Newton's impact law, e < 1, sorted by modulus (docs/stability.md); "
+          "empty when not computed (point symmetry)")
+      .def_property_readonly(
+          "spectral_radius", [](const spp::Solution& s) { return s.floquet.spectral_radius; },
+          "largest |multiplier| but the two structural 1s (NaN: not computed)")
+      .def_property_readonly(
+          "stability_margin", [](const spp::Solution& s) { return s.floquet.margin; }, "1 - spectral_radius")
+      .def_property_readonly("stable", &spp::Solution::stable, "admissible and spectral_radius < 1")
+      .def_property_readonly(
+          "x0", [](const spp::Solution& s) { return s.orbit.x0; }, "(n,) state at contact onset")
+      .def_property_readonly(
+          "v0", [](const spp::Solution& s) { return s.orbit.v0; }, "(n,)")
+      .def("__repr__", [](const spp::Solution& s) {
+        return "<spp.Solution t1=" + std::to_string(s.t1()) + " t2=" + std::to_string(s.t2()) +
+               (s.admissible() ? " admissible>" : " not admissible>");
+      });
+
+  m.def(
+      "trajectory",
+      [](const spp::System& s, double t1, double t2, int samples) {
+        if (samples < 2)
+          throw std::invalid_argument("trajectory: samples must be >= 2, got " + std::to_string(samples));
+        const spp::ModalForm md(s);
+        spp::SolveOptions o;
+        o.compute_return_error = false;
+        spp::Solution sol;
+        {
+          py::gil_scoped_release release;
+          sol = spp::solution_at(s, md, t1, t2, o);
+        }
+        spp::OrbitSamples os = spp::sample_orbit(md, sol.orbit, samples);
+        return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
+                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(), "t2"_a = sol.t2(),
+                        "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible());
+      },
+      "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
+      "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
+      "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
+      "admissible. Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 somewhere). "
+      "Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
+}
+
+}  // namespace spp::python

@@ -1,0 +1,340 @@
+// Python bindings, search/: solve (options, progress, result), the fundamental box, nearest_spp, the root map.
+#include <iomanip>
+#include <sstream>
+
+#include "common.hpp"
+#include "spp/io.hpp"
+#include "spp/search/root_map.hpp"
+#include "spp/search/solver.hpp"
+
+namespace spp::python {
+
+void bind_search(py::module_& m) {
+  bind_outcome(m, "SolveStatus", {spp::SolveStatus::NotRun, spp::SolveStatus::Success, spp::SolveStatus::Incomplete},
+               "SolveResult.status (and NearestSpp.search_status): success (every check of completeness passed) or "
+               "incomplete (SolveResult.uncertified says where and why)");
+  // Results of solve() carry their system (attribute `system`), so that they pickle (as their result file's text,
+  // the one format that holds every field) and can be plotted, verified or written without it being passed again.
+  py::class_<spp::SolveResult>(m, "SolveResult", py::dynamic_attr())
+      .def_property_readonly("status", [](const spp::SolveResult& r) { return outcome(r.status); })
+      .def_readonly("solutions", &spp::SolveResult::solutions)
+      .def_readonly("warnings", &spp::SolveResult::warnings)
+      .def_readonly("t1_min", &spp::SolveResult::t1_min)
+      .def_readonly("t1_max", &spp::SolveResult::t1_max)
+      .def_readonly("t2_min", &spp::SolveResult::t2_min)
+      .def_readonly("t2_max", &spp::SolveResult::t2_max)
+      .def_property_readonly("symmetry", [](const spp::SolveResult& r) { return r.symmetry; })
+      .def_property_readonly(
+          "stats",
+          [](const spp::SolveResult& r) {
+            const spp::SolveStats& st = r.stats;
+            py::dict d;  // the result file's "stats", key for key (tested against it)
+            d["flight_pole_lines"] = st.flight_pole_lines;
+            d["contact_pole_lines"] = st.contact_pole_lines;
+            d["rectangles"] = st.rectangles;
+            d["curve_pieces"] = st.curve_pieces;
+            d["roots"] = st.roots;
+            d["evaluations"] = st.evaluations;
+            d["strip_pairs"] = st.strip_pairs;
+            d["certified_steps"] = st.certified_steps;
+            d["heuristic_steps"] = st.heuristic_steps;
+            d["uncertified_steps"] = st.uncertified_steps;
+            d["uncertified_corners"] = st.uncertified_corners;
+            d["unpaired_crossings"] = st.unpaired_crossings;
+            d["unresolved_pieces"] = st.unresolved_pieces;
+            d["unpolished_roots"] = st.unpolished_roots;
+            d["unsearched_cells"] = st.unsearched_cells;
+            d["pole_line_artifacts"] = st.pole_line_artifacts;
+            d["decoupled_modes"] = r.decoupled_modes;
+            d["repeated_frequency_groups"] = r.repeated_groups;
+            d["seconds"] = st.seconds;
+            return d;
+          },
+          "counters of the search (dict, the result file's \"stats\")")
+      .def_property_readonly(
+          "uncertified",
+          [](const spp::SolveResult& r) {
+            py::list l;
+            for (const spp::UncertifiedRegion& u : r.uncertified)
+              l.append(py::dict("t1_lo"_a = u.t1_lo, "t1_hi"_a = u.t1_hi, "t2_lo"_a = u.t2_lo, "t2_hi"_a = u.t2_hi,
+                                "cause"_a = u.cause));
+            return l;
+          },
+          "parts of the window not certified, with their cause (empty exactly when status is success)")
+      .def("brief_report", &spp::SolveResult::brief_report)
+      .def(
+          "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_json(s, r, -1); },
+          "system"_a, "The result JSON text, as spp solve --json writes it.")
+      .def(
+          "to_dataframe",
+          [](const spp::SolveResult& r) {
+            py::module_ pd;
+            try {
+              pd = py::module_::import("pandas");
+            } catch (const py::error_already_set&) {
+              throw py::import_error("to_dataframe needs pandas (Debian: apt-get install python3-pandas)");
+            }
+            py::list t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags;
+            for (const spp::Solution& x : r.solutions) {
+              t1.append(x.t1());
+              t2.append(x.t2());
+              period.append(x.period());
+              admissible.append(x.admissible());
+              min_gap.append(x.min_gap());
+              min_force.append(x.min_force());
+              energy.append(x.energy());
+              residual.append(x.residual);
+              return_error.append(x.return_error);
+              std::string f;
+              for (const std::string& s : x.flags) f += (f.empty() ? "" : ",") + s;
+              flags.append(f);
+            }
+            return pd.attr("DataFrame")(
+                py::dict("t1"_a = t1, "t2"_a = t2, "period"_a = period, "admissible"_a = admissible,
+                         "min_gap"_a = min_gap, "min_force"_a = min_force, "energy"_a = energy, "residual"_a = residual,
+                         "return_error"_a = return_error, "flags"_a = flags));
+          },
+          "One row per SPP (t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags), in "
+          "the result's order (by period); needs pandas.")
+      .def("__repr__", [](const spp::SolveResult& r) { return "<spp.SolveResult " + r.brief_report().substr(5) + ">"; })
+      .def("_repr_html_",
+           [](const spp::SolveResult& r) {
+             std::ostringstream h;
+             h << "<p><b>spp.SolveResult</b>: " << r.brief_report().substr(5) << "</p>";
+             h << "<table><tr><th>#</th><th>t1</th><th>t2</th><th>period</th><th>admissible</th><th>min gap</th>"
+                  "<th>min force</th><th>energy</th></tr>";
+             const size_t shown = std::min<size_t>(r.solutions.size(), 20);
+             h << std::setprecision(8);
+             for (size_t i = 0; i < shown; ++i) {
+               const spp::Solution& x = r.solutions[i];
+               h << "<tr><td>" << i << "</td><td>" << x.t1() << "</td><td>" << x.t2() << "</td><td>" << x.period()
+                 << "</td><td>" << (x.admissible() ? "yes" : "no") << "</td><td>" << x.min_gap() << "</td><td>"
+                 << x.min_force() << "</td><td>" << x.energy() << "</td></tr>";
+             }
+             h << "</table>";
+             if (shown < r.solutions.size()) h << "<p>(" << r.solutions.size() - shown << " more: to_dataframe())</p>";
+             return h.str();
+           })
+      .def(py::pickle(
+          [](const py::object& self) {
+            if (!py::hasattr(self, "system") || !py::isinstance<spp::System>(self.attr("system")))
+              throw std::invalid_argument(
+                  "SolveResult pickle: its attribute system must be the spp.System it was "
+                  "solved for (results of solve() have it)");
+            const spp::System sys = self.attr("system").cast<spp::System>();
+            const spp::SolveResult& r = self.cast<const spp::SolveResult&>();
+            for (const spp::Solution& x : r.solutions)
+              if (x.orbit.x0.size() != sys.n())
+                throw std::invalid_argument("SolveResult pickle: its system has n = " + std::to_string(sys.n()) +
+                                            " dofs, its solutions " + std::to_string(x.orbit.x0.size()));
+            return py::make_tuple(spp::result_json(sys, r, -1));
+          },
+          [](const py::tuple& state) {
+            if (state.size() != 1) throw std::invalid_argument("SolveResult pickle: expected one field");
+            const std::string text = state[0].cast<std::string>();
+            py::dict attrs;
+            attrs["system"] = spp::parse_result_system(text, "pickled SolveResult");
+            return std::make_pair(spp::parse_result(text, "pickled SolveResult"), attrs);
+          }))
+      .def_static(
+          "from_json",
+          [](const std::string& path) {
+            spp::System system = spp::load_result_system(path);
+            py::object result = py::cast(spp::load_result(path));
+            result.attr("system") = std::move(system);
+            return result;
+          },
+          "path"_a,
+          "The SolveResult of a result file (spp solve --json, SolveResult.to_json), with its system as attribute "
+          "system: the status, solutions, stats, uncertified regions and warnings that were written. Raises "
+          "ValueError naming the file and the field.");
+
+  py::class_<spp::SolveOptions>(m, "SolveOptions",
+                                "Options of solve (the C++ SolveOptions, field by field; solve(system, options, "
+                                "**fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("t1_max", &spp::SolveOptions::t1_max, "upper end of the flight half-duration window (> 0)")
+      .def_readwrite("t2_max", &spp::SolveOptions::t2_max, "upper end of the contact half-duration window (> 0)")
+      .def_readwrite("t1_min", &spp::SolveOptions::t1_min, "lower end (0: from the axis)")
+      .def_readwrite("t2_min", &spp::SolveOptions::t2_min, "lower end (0: from the axis)")
+      .def_readwrite("max_cells", &spp::SolveOptions::max_cells, "refuse windows with more cells than this")
+      .def_readwrite("certify_steps", &spp::SolveOptions::certify_steps,
+                     "prove every trace step (default True: status success only if all are; False: the midpoint "
+                     "check, 3-25x faster, a heuristic, so the status is incomplete)")
+      .def_readwrite("pole_margin", &spp::SolveOptions::pole_margin)
+      .def_readwrite("max_turn", &spp::SolveOptions::max_turn)
+      .def_readwrite("min_step", &spp::SolveOptions::min_step)
+      .def_readwrite("admissibility_tol", &spp::SolveOptions::admissibility_tol)
+      .def_readwrite("admissible_only", &spp::SolveOptions::admissible_only)
+      .def_readwrite("compute_return_error", &spp::SolveOptions::compute_return_error)
+      .def_readwrite("compute_stability", &spp::SolveOptions::compute_stability)
+      .def_readwrite("threads", &spp::SolveOptions::threads, "worker threads (0: all)")
+      .def_property(
+          "symmetry", [](const spp::SolveOptions& o) { return o.symmetry; },
+          [](spp::SolveOptions& o, const py::object& v) { o.symmetry = symmetry_of(v); },
+          "Symmetry.axial (default) or Symmetry.point (or their names)")
+      .def("validate", &spp::SolveOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const spp::SolveOptions& o) {
+        std::ostringstream os;
+        os << "<spp.SolveOptions t1 in (" << o.t1_min << ", " << o.t1_max << "], t2 in (" << o.t2_min << ", "
+           << o.t2_max << "], symmetry " << spp::to_string(o.symmetry)
+           << (o.certify_steps ? "" : ", certify_steps=False") << ">";
+        return os.str();
+      });
+  const auto solve_options = [](const py::object& options, const py::kwargs& fields, const char* where) {
+    return with_fields<spp::SolveOptions>(options, fields, where, "SolveOptions");
+  };
+  py::class_<spp::SolveProgress>(m, "SolveProgress",
+                                 "What a running solve reports to its progress callback (solve(..., progress=f)).")
+      .def_readonly("cells_done", &spp::SolveProgress::cells_done, "cells of the window traced so far")
+      .def_readonly("cells_total", &spp::SolveProgress::cells_total, "cells of the window")
+      .def_readonly("candidates", &spp::SolveProgress::candidates, "sign changes of g found so far (before polish)")
+      .def_readonly("seconds", &spp::SolveProgress::seconds, "time since the trace started")
+      .def("__repr__", [](const spp::SolveProgress& p) { return "<spp.SolveProgress " + p.line() + ">"; });
+  m.def(
+      "solve",
+      [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
+        // progress is not a SolveOptions field (a callable): taken out of the keywords first
+        py::dict rest;
+        py::object progress = py::none();
+        for (const auto& [key, value] : fields) {
+          if (py::str(key).cast<std::string>() == "progress")
+            progress = py::reinterpret_borrow<py::object>(value);
+          else
+            rest[key] = value;
+        }
+        spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "solve");
+        o.validate();
+        // a callable is called; anything else is taken for its truth (True, numpy.True_: the text line)
+        const bool call = PyCallable_Check(progress.ptr()) != 0;
+        auto truth = [](const py::object& v) {
+          const int t = PyObject_IsTrue(v.ptr());
+          if (t < 0) throw py::error_already_set();
+          return t != 0;
+        };
+        const bool text = !call && truth(progress);
+        bool interrupted = false, shown = false;
+        // Called from this thread every 0.2 s (spp::SolveOptions::progress): Ctrl-C (KeyboardInterrupt) stops the
+        // search and keeps what was found; the user's callable may stop it too (by returning False) or raise.
+        o.progress = [&](const spp::SolveProgress& p) {
+          const py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) {
+            if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+            PyErr_Clear();
+            interrupted = true;
+            return false;
+          }
+          if (text && p.seconds >= 1.0) {
+            py::module_::import("sys").attr("stderr").attr("write")("\r  " + p.line() + "   ");
+            shown = true;
+          }
+          if (!call) return true;
+          const py::object r = progress(p);
+          return r.is_none() || truth(r);  // None continues; otherwise the value's truth
+        };
+        spp::SolveResult r;
+        {
+          py::gil_scoped_release release;
+          r = spp::solve(s, o);
+        }
+        if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
+        // a Ctrl-C that came after the last report (while the roots were polished): the result is complete, so it
+        // is returned, not lost to a KeyboardInterrupt at the next line
+        bool late = false;
+        if (PyErr_CheckSignals() != 0) {
+          if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+          PyErr_Clear();
+          late = !interrupted;
+          interrupted = true;
+        }
+        const std::string message =
+            late && r.stats.unsearched_cells == 0
+                ? std::string("Ctrl-C came after the search had finished: the result is complete")
+                : "solve interrupted (Ctrl-C): " + std::to_string(r.stats.unsearched_cells) +
+                      " cell(s) not searched; the result holds what was found before (status incomplete)";
+        if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0)
+          throw py::error_already_set();  // warnings turned into errors
+        py::object result = py::cast(std::move(r));
+        result.attr("system") = s;
+        return result;
+      },
+      "system"_a, "options"_a = py::none(),
+      "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
+      "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
+      "potential SPPs of paper §6.2; certify_steps=False: the faster midpoint check, a heuristic, status incomplete). "
+      "progress=True prints the cells traced on "
+      "stderr; progress=f calls f(SolveProgress) every 0.2 s (returning False stops the search). Ctrl-C stops it "
+      "too: the result then holds what was found (status incomplete, stats['unsearched_cells'] > 0) and a "
+      "RuntimeWarning says so. Raises ValueError.");
+
+  m.def(
+      "fundamental_box", [](const spp::System& s) { return spp::fundamental_box(spp::ModalForm(s)); }, "system"_a,
+      "(t1_max, t2_max) of the fundamental box: t1 <= pi / omega_1 (slowest free-flight mode that sees the contact), "
+      "t2 <= pi / d_1 (slowest contact-phase oscillation): t1, t2 = fundamental_box(s); solve(s, t1_max=t1, "
+      "t2_max=t2).");
+  py::class_<spp::NearestSpp>(m, "NearestSpp", "Result of nearest_spp: the SPP nearest to a guess")
+      .def_readonly("found", &spp::NearestSpp::found)
+      .def_readonly("solution", &spp::NearestSpp::solution)
+      .def_property_readonly("search_status", [](const spp::NearestSpp& r) { return outcome(r.search_status); })
+      .def_readonly("candidates", &spp::NearestSpp::candidates, "SPPs in the window searched")
+      .def_property_readonly(
+          "window", [](const spp::NearestSpp& r) { return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi); });
+  m.def(
+      "nearest_spp",
+      [solve_options](const spp::System& s, double t1, double t2, double radius, const py::object& options,
+                      const py::kwargs& fields) {
+        const spp::SolveOptions o = solve_options(options, fields, "nearest_spp");
+        py::gil_scoped_release release;
+        return spp::nearest_spp(s, t1, t2, radius, o);
+      },
+      "system"_a, "t1"_a, "t2"_a, "radius"_a = 0.05, "options"_a = py::none(),
+      "The SPP nearest to a guess (t1, t2), e.g. read off the root map: the complete solver on the window "
+      "(t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the nearest root. "
+      "found is False when that window holds none. Raises ValueError.");
+
+  py::class_<spp::RootMapCell>(m, "RootMapCell", "One rectangle between pole lines, sampled on its own grid")
+      .def_readonly("t1", &spp::RootMapCell::t1, "(n1,) ascending")
+      .def_readonly("t2", &spp::RootMapCell::t2, "(n2,) ascending")
+      .def_readonly("symmetric", &spp::RootMapCell::symmetric,
+                    "(n2, n1) sign(det H) min|eig H|: its zero curves are eq. (5.1a)")
+      .def_readonly("onset", &spp::RootMapCell::onset,
+                    "(n2, n1) the same for P^T H P on z-perp: its zero curves are eq. (5.1b)");
+  py::class_<spp::RootMap>(m, "RootMap")
+      .def_readonly("flight_poles", &spp::RootMap::flight_poles, "pole lines t1 = (k + 1/2) pi / omega_i")
+      .def_readonly("contact_poles", &spp::RootMap::contact_poles, "pole lines t2 = (k + 1/2) pi / d_j")
+      .def_readonly("cells", &spp::RootMap::cells)
+      .def_readonly("evaluations", &spp::RootMap::evaluations);
+  py::class_<spp::RootMapOptions>(m, "RootMapOptions",
+                                  "Options of root_map (the C++ RootMapOptions, field by field; root_map(system, "
+                                  "t1_max, t2_max, options, **fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("t1_min", &spp::RootMapOptions::t1_min, "lower end of the window in t1 (>= 0)")
+      .def_readwrite("t1_max", &spp::RootMapOptions::t1_max, "upper end of the window in t1 (> t1_min)")
+      .def_readwrite("t2_min", &spp::RootMapOptions::t2_min, "lower end of the window in t2 (>= 0)")
+      .def_readwrite("t2_max", &spp::RootMapOptions::t2_max, "upper end of the window in t2 (> t2_min)")
+      .def_readwrite("t1_points", &spp::RootMapOptions::t1_points, "grid points across the window along t1 (>= 16)")
+      .def_readwrite("t2_points", &spp::RootMapOptions::t2_points, "grid points across the window along t2 (>= 16)")
+      .def_readwrite("min_cell_points", &spp::RootMapOptions::min_cell_points,
+                     "at least this many points per cell and axis (>= 2)")
+      .def_readwrite("pole_margin", &spp::RootMapOptions::pole_margin,
+                     "distance kept from pole lines, relative to the cell width (in [0, 0.25))")
+      .def("validate", &spp::RootMapOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "RootMapOptions"); });
+  m.def(
+      "root_map",
+      [](const spp::System& s, std::optional<double> t1_max, std::optional<double> t2_max, const py::object& options,
+         const py::kwargs& fields) {
+        spp::RootMapOptions o = with_fields<spp::RootMapOptions>(options, fields, "root_map", "RootMapOptions");
+        if (t1_max) o.t1_max = *t1_max;
+        if (t2_max) o.t2_max = *t2_max;
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::root_map(s, o);
+      },
+      "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
+      "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4): "
+      "root_map(system, t1_max, t2_max, t1_points=400, ...) or root_map(system, options=RootMapOptions) with any "
+      "field also as a keyword. Raises ValueError.");
+}
+
+}  // namespace spp::python

@@ -1,0 +1,163 @@
+// Python bindings, simulation/: the exact event-driven simulator and verify.
+#include <iomanip>
+#include <sstream>
+
+#include "common.hpp"
+#include "spp/search/solver.hpp"
+#include "spp/simulation/simulator.hpp"
+#include "spp/simulation/verify.hpp"
+
+namespace spp::python {
+
+namespace {
+// One column of the samples as an (N,) array, or a vector field as an (N, n) array.
+Eigen::VectorXd scalars(const spp::SimulationResult& r, double spp::Sample::*field) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(r.samples.size()));
+  for (size_t k = 0; k < r.samples.size(); ++k) out(static_cast<Eigen::Index>(k)) = r.samples[k].*field;
+  return out;
+}
+Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample::*field) {
+  const Eigen::Index n = r.samples.empty() ? 0 : (r.samples[0].*field).size();
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(r.samples.size()), n);
+  for (size_t k = 0; k < r.samples.size(); ++k)
+    out.row(static_cast<Eigen::Index>(k)) = (r.samples[k].*field).transpose();
+  return out;
+}
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  bind_outcome(m, "SimulationStatus",
+               {spp::SimulationStatus::NotRun, spp::SimulationStatus::Success, spp::SimulationStatus::EventLimit,
+                spp::SimulationStatus::Stalled},
+               "SimulationResult.status");
+  bind_outcome(m, "EventKind", {spp::EventKind::Impact, spp::EventKind::ContactOnset, spp::EventKind::Release},
+               "Event.kind");
+  bind_outcome(m, "VerifyStatus", {spp::VerifyStatus::Success, spp::VerifyStatus::Inconsistent},
+               "VerifyResult.status: inconsistent when a simulation disagrees with the solver's admissibility");
+  bind_outcome(m, "Verdict", {spp::Verdict::Returns, spp::Verdict::Leaves}, "SppCheck.verdict");
+  py::class_<spp::Event>(m, "Event")
+      .def_readonly("t", &spp::Event::t)
+      .def_property_readonly("kind", [](const spp::Event& e) { return outcome(e.kind); })
+      .def_readonly("x", &spp::Event::x)
+      .def_readonly("v_before", &spp::Event::v_before)
+      .def_readonly("v_after", &spp::Event::v_after)
+      .def_readonly("normal_velocity_before", &spp::Event::normal_velocity_before)
+      .def_readonly("normal_velocity_after", &spp::Event::normal_velocity_after)
+      .def_readonly("force", &spp::Event::force);
+
+  py::class_<spp::SimulationResult>(m, "SimulationResult")
+      .def_property_readonly("status", [](const spp::SimulationResult& r) { return outcome(r.status); })
+      .def_property_readonly(
+          "t", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::t); }, "(N,) sample times")
+      .def_property_readonly(
+          "x", [](const spp::SimulationResult& r) { return rows(r, &spp::Sample::x); }, "(N, n) positions")
+      .def_property_readonly(
+          "v", [](const spp::SimulationResult& r) { return rows(r, &spp::Sample::v); }, "(N, n) velocities")
+      .def_property_readonly(
+          "gap", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::gap); }, "(N,) gap w^T x + g0")
+      .def_property_readonly(
+          "force", [](const spp::SimulationResult& r) { return scalars(r, &spp::Sample::force); },
+          "(N,) normal contact force (0 in flight)")
+      .def_readonly("events", &spp::SimulationResult::events)
+      .def_readonly("impacts", &spp::SimulationResult::impacts)
+      .def_readonly("contact_onsets", &spp::SimulationResult::contact_onsets)
+      .def_readonly("releases", &spp::SimulationResult::releases)
+      .def_readonly("energy_initial", &spp::SimulationResult::energy_initial)
+      .def_readonly("energy_final", &spp::SimulationResult::energy_final)
+      .def_readonly("impact_energy_loss", &spp::SimulationResult::impact_energy_loss)
+      .def("brief_report", &spp::SimulationResult::brief_report);
+
+  py::class_<spp::SimulateOptions>(m, "SimulateOptions",
+                                   "Options of simulate (the C++ SimulateOptions, field by field; simulate(system, x0, "
+                                   "v0, duration, options=..., **fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("duration", &spp::SimulateOptions::duration,
+                     "simulated time T > 0; the last sample is at t = T exactly")
+      .def_readwrite("restitution", &spp::SimulateOptions::restitution,
+                     "Newton's coefficient e in [0, 1]: normal velocity after = -e * before")
+      .def_readwrite("sample_times", &spp::SimulateOptions::sample_times,
+                     "samples at these times (sorted, in [0, duration]); empty: samples_per_unit of simulate")
+      .def_readwrite("sample_events", &spp::SimulateOptions::sample_events,
+                     "add a sample with the state just after each event")
+      .def_readwrite("max_events", &spp::SimulateOptions::max_events)
+      .def_readwrite("event_rel_tol", &spp::SimulateOptions::event_rel_tol,
+                     "excursions below zero shallower than this (relative to the phase's amplitude) are not events")
+      .def_readwrite("rest_velocity_rel_tol", &spp::SimulateOptions::rest_velocity_rel_tol,
+                     "impacts slower than this (relative) are plastic: where chattering ends in lasting contact")
+      .def("validate", &spp::SimulateOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "SimulateOptions"); });
+  m.def(
+      "simulate",
+      [](const spp::System& s, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, std::optional<double> duration,
+         std::optional<double> restitution, double samples_per_unit, const py::object& options,
+         const py::kwargs& fields) {
+        spp::SimulateOptions o = with_fields<spp::SimulateOptions>(options, fields, "simulate", "SimulateOptions");
+        if (duration) o.duration = *duration;
+        if (restitution) o.restitution = *restitution;
+        o.validate();
+        if (!(samples_per_unit > 0.0))
+          throw std::invalid_argument("simulate: samples_per_unit must be > 0, got " +
+                                      std::to_string(samples_per_unit));
+        if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
+        py::gil_scoped_release release;
+        return spp::simulate(s, x0, v0, o);
+      },
+      "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(), "samples_per_unit"_a = 100.0,
+      "options"_a = py::none(),
+      "Exact event-driven simulation from (x0, v0), shapes (n,): simulate(system, x0, v0, duration, restitution=0, "
+      "samples_per_unit=100), or with a SimulateOptions and any field also as a keyword (sample_times=[...] replaces "
+      "the uniform samples). Raises ValueError.");
+
+  py::class_<spp::SppCheck>(m, "SppCheck")
+      .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.spp.t1(); })
+      .def_property_readonly("t2", [](const spp::SppCheck& c) { return c.spp.t2(); })
+      .def_property_readonly("admissible", [](const spp::SppCheck& c) { return c.spp.admissible(); })
+      .def_property_readonly("verdict", [](const spp::SppCheck& c) { return outcome(c.verdict); })
+      .def_readonly("consistent", &spp::SppCheck::consistent)
+      .def_readonly("return_errors", &spp::SppCheck::return_errors)
+      .def_readonly("periods_followed", &spp::SppCheck::periods_followed)
+      .def_readonly("departure_time", &spp::SppCheck::departure_time)
+      .def_readonly("departure", &spp::SppCheck::departure)
+      .def_readonly("perturbed_distances", &spp::SppCheck::perturbed_distances)
+      .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period);
+
+  py::class_<spp::VerifyResult>(m, "VerifyResult")
+      .def_property_readonly("status", [](const spp::VerifyResult& r) { return outcome(r.status); })
+      .def_readonly("checks", &spp::VerifyResult::checks)
+      .def_readonly("returned", &spp::VerifyResult::returned)
+      .def_readonly("left", &spp::VerifyResult::left)
+      .def_readonly("inconsistent", &spp::VerifyResult::inconsistent)
+      .def("all_consistent", &spp::VerifyResult::all_consistent)
+      .def("brief_report", &spp::VerifyResult::brief_report);
+
+  py::class_<spp::VerifyOptions>(m, "VerifyOptions",
+                                 "Options of verify (the C++ VerifyOptions, field by field; verify(system, result, "
+                                 "options, **fields) also takes any field as a keyword)")
+      .def(py::init<>())
+      .def_readwrite("periods", &spp::VerifyOptions::periods, "simulated periods (>= 1)")
+      .def_readwrite("perturbation", &spp::VerifyOptions::perturbation,
+                     "relative size of the perturbation of the mid-flight state; 0: none")
+      .def_readwrite("restitution", &spp::VerifyOptions::restitution,
+                     "Newton's e for the simulations (matters only once the orbit is left)")
+      .def_readwrite("return_tol", &spp::VerifyOptions::return_tol,
+                     "an admissible SPP must come back to this relative error after one period")
+      .def_readwrite("follow_tol", &spp::VerifyOptions::follow_tol,
+                     "later periods count as followed while the return error stays below this")
+      .def_readwrite("event_time_tol", &spp::VerifyOptions::event_time_tol,
+                     "relative to the period: events within it of the expected times match")
+      .def("validate", &spp::VerifyOptions::validate, "Raises ValueError naming the first invalid field.")
+      .def("__repr__", [](const py::object& o) { return fields_repr(o, "VerifyOptions"); });
+  m.def(
+      "verify",
+      [](const spp::System& s, const spp::SolveResult& r, const py::object& options, const py::kwargs& fields) {
+        const spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::verify(s, r.solutions, o);
+      },
+      "system"_a, "result"_a, "options"_a = py::none(),
+      "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "
+      "or with a VerifyOptions and any field also as a keyword. Raises ValueError.");
+}
+
+}  // namespace spp::python

@@ -1,0 +1,28 @@
+// Python bindings, stability/: the monodromy of an SPP (its multipliers are Solution fields).
+#include <iomanip>
+#include <sstream>
+
+#include "common.hpp"
+#include "spp/search/solver.hpp"
+#include "spp/stability/floquet.hpp"
+
+namespace spp::python {
+
+void bind_stability(py::module_& m) {
+  m.def(
+      "monodromy",
+      [](const spp::System& s, double t1, double t2) {
+        const spp::ModalForm md(s);
+        spp::SolveOptions o;
+        o.compute_return_error = false;
+        o.compute_stability = false;
+        const spp::Solution sol = spp::solution_at(s, md, t1, t2, o);
+        return py::make_tuple(spp::monodromy(md, sol.orbit), sol.orbit.x0, sol.orbit.v0, sol.period());
+      },
+      "system"_a, "t1"_a, "t2"_a,
+      "The linearised one-period map of the SPP at (t1, t2) (polished there first) under Newton's impact law, e < 1: "
+      "(Mono, x0, v0, period), Mono (2n, 2n) acting on (dx, dv) from just before the contact onset (x0, v0) "
+      "(docs/stability.md). Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
+}
+
+}  // namespace spp::python
