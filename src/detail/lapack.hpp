@@ -19,6 +19,12 @@ void dsytrd_(const char* uplo, const int* n, double* a, const int* lda, double* 
 void dormtr_(const char* side, const char* uplo, const char* trans, const int* m, const int* n, const double* a,
              const int* lda, const double* tau, double* c, const int* ldc, double* work, const int* lwork, int* info,
              std::size_t, std::size_t, std::size_t);
+void dsytrf_(const char* uplo, const int* n, double* a, const int* lda, int* ipiv, double* work, const int* lwork,
+             int* info, std::size_t);
+void dsyconv_(const char* uplo, const char* way, const int* n, double* a, const int* lda, const int* ipiv, double* e,
+              int* info, std::size_t, std::size_t);
+void dlaed4_(const int* n, const int* i, const double* d, const double* z, double* delta, const double* rho,
+             double* dlam, int* info);
 #ifdef SPP_OPENBLAS
 void openblas_set_num_threads(int);
 int openblas_get_num_threads(void);

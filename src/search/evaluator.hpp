@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <memory>
 
+#include "search/loewner_contact.hpp"
 #include "spp/detail/tridiagonal.hpp"
 #include "spp/modal/equation_set.hpp"
 
@@ -43,23 +44,43 @@ class Evaluator {
   long evaluations_ = 0;
 };
 
-/// Dense: H formed explicitly (O(m^2) with the contact part G e(t2) G^T cached per t2, O(m^3) otherwise), Householder
-/// tridiagonal form, Sturm counts, bisection and inverse iteration (detail::SymmetricTridiagonal); bordered solves
-/// by LU of the (m + 1)-square bordered matrix.
+/// Dense: H formed explicitly, Householder tridiagonal form, Sturm counts, bisection and inverse iteration
+/// (detail::SymmetricTridiagonal); bordered solves by LU of the (m + 1)-square bordered matrix. Below m = kLapackFrom
+/// (128) H's contact part is the product G e(t2) G^T (O(m^3), cached for the last two t2: a cell's corners alternate
+/// between two), as it always was, so results there stay bit for bit. From kLapackFrom on, where the modal form allows
+/// it (LoewnerContact::applies), H's entries come from its Loewner structure in O(m^2) with an a posteriori bound of
+/// their rounding, falling back to the product point by point where the bound exceeds a quarter of eigen_error; and
+/// onset_inertia's inertia from two Bunch–Kaufman LDL^T (detail::count_below_ldlt) instead of a tridiagonalisation.
 class DenseEvaluator final : public Evaluator {
  public:
-  explicit DenseEvaluator(const EquationSet& equations) : eq_(equations) {}
+  explicit DenseEvaluator(const EquationSet& equations);
   std::shared_ptr<const HPoint> at(double t1, double t2) override;
   /// Sturm count of the bordered matrix [[H, chat], [chat^T, 0]], chat = c / |c| (inertia of Hc plus one negative
   /// eigenvalue), formed in the modal basis or, when the contact part dominates (next to a contact pole line), in the
   /// contact basis G, and scaled by the size of its diagonal (Sylvester: the inertia is unchanged) so that the error
-  /// bound 8 (m + 1) eps |A| stays O(eps) next to a pole line.
+  /// bound 8 (m + 1) eps |A| stays O(eps) next to a pole line. From m = kLapackFrom on, the counts of A - delta I and
+  /// A + delta I by LDL^T, delta = 4 * 8 (m + 1) eps || |A| ||_inf, each exact for a matrix within its a posteriori
+  /// bound beta of A (detail::count_below_ldlt): where both betas are below delta, equal counts prove that no
+  /// eigenvalue of A lies in [-delta + beta, delta - beta) (Weyl), so A's count at 0 is theirs, and unequal counts put
+  /// one within 2 delta of 0 (-1 returned); where a beta reaches delta (element growth), the tridiagonal count decides
+  /// as below.
   int onset_inertia(double t1, double t2) override;
+  /// Points whose H came from the Loewner structure, and those that fell back to the product (m >= kLapackFrom).
+  long structured() const { return structured_; }
+  long structured_declined() const { return structured_declined_; }
+  /// onset_inertia calls decided by the LDL^T counts, and those that fell back to the tridiagonal form.
+  long ldlt_inertias() const { return ldlt_inertias_; }
+  long ldlt_declined() const { return ldlt_declined_; }
 
  private:
+  const Eigen::MatrixXd& contact_part(double t2);
   const EquationSet& eq_;
-  double cached_t2_ = std::numeric_limits<double>::quiet_NaN();
-  Eigen::MatrixXd C_;
+  std::unique_ptr<LoewnerContact> loewner_;  // m >= kLapackFrom and the structure holds
+  bool ldlt_ = false;                        // m >= kLapackFrom
+  double cached_t2_[2] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  Eigen::MatrixXd C_[2];
+  int next_slot_ = 0;
+  long structured_ = 0, structured_declined_ = 0, ldlt_inertias_ = 0, ldlt_declined_ = 0;
 };
 
 }  // namespace spp::search

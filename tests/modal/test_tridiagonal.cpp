@@ -9,6 +9,7 @@
 
 #include "spp/detail/dense_products.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
+#include "spp/detail/symmetric_inertia.hpp"
 #include "spp/detail/tridiagonal.hpp"
 
 using spp::detail::SymmetricTridiagonal;
@@ -94,6 +95,7 @@ TEST(SymmetricEigen, ConcurrentLapackCallsFromSolverThreadsGiveTheSingleThreadRe
   const Eigen::MatrixXd ref_product = spp::detail::product(A, false, B, true);
   const SymmetricTridiagonal ref_t(A);
   const Eigen::VectorXd ref_v = ref_t.eigenvector(ref_t.eigenvalue(m / 2));
+  const spp::detail::ShiftedInertia ref_ldlt = spp::detail::count_below_ldlt(A, 0.1);
   const int threads = 4, rounds = 40;
   std::vector<int> mismatches(threads, 0);
   std::vector<std::thread> pool;
@@ -104,8 +106,9 @@ TEST(SymmetricEigen, ConcurrentLapackCallsFromSolverThreadsGiveTheSingleThreadRe
         const Eigen::MatrixXd p = spp::detail::product(A, false, B, true);
         const SymmetricTridiagonal T(A);
         const Eigen::VectorXd v = T.eigenvector(T.eigenvalue(m / 2));
-        mismatches[t] +=
-            !es.ok || es.values != ref.values || es.vectors != ref.vectors || p != ref_product || v != ref_v;
+        const spp::detail::ShiftedInertia ldlt = spp::detail::count_below_ldlt(A, 0.1);
+        mismatches[t] += !es.ok || es.values != ref.values || es.vectors != ref.vectors || p != ref_product ||
+                         v != ref_v || ldlt.below != ref_ldlt.below || ldlt.error_bound != ref_ldlt.error_bound;
       }
     });
   for (std::thread& th : pool) th.join();
