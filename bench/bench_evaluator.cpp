@@ -9,9 +9,11 @@
 //   Tridiagonal/m     the kernel alone: detail::SymmetricTridiagonal of H (dsytrd from m = 128 on)
 #include <benchmark/benchmark.h>
 
+#include <limits>
 #include <memory>
 
 #include "search/evaluator.hpp"
+#include "search/loewner_contact.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/detail/dense_products.hpp"
 #include "spp/detail/symmetric_inertia.hpp"
@@ -41,6 +43,8 @@ void Eigenpair(benchmark::State& state) {
     const double lam = h->eigenvalue(h->size() / 2);
     benchmark::DoNotOptimize(h->eigenvector(lam).data());
   }
+  state.counters["structured"] = static_cast<double>(ev.structured());  // points whose H came from LoewnerContact
+  state.counters["declined"] = static_cast<double>(ev.structured_declined());
 }
 
 void CornerCount(benchmark::State& state) {
@@ -61,12 +65,26 @@ void OnsetInertia(benchmark::State& state) {
   spp::search::DenseEvaluator ev(*c.eq);
   int i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(ev.onset_inertia(kT1, kT2 + kDt2 * (++i % 1000)));
+  state.counters["ldlt"] = static_cast<double>(ev.ldlt_inertias());  // decided by the LDL^T counts
+  state.counters["ldlt_declined"] = static_cast<double>(ev.ldlt_declined());
 }
 
 Eigen::MatrixXd h_of(const Chain& c) {
   Eigen::MatrixXd H = c.eq->contact_part(kT2);
   H.diagonal() += c.eq->flight_part(kT1);
   return H;
+}
+
+// The Loewner-structured H alone (O(m^2)) and its a posteriori rounding bound, in units of m eps || |H| ||_inf
+// (LoewnerContact accepts up to its budget, 4).
+void LoewnerEntries(benchmark::State& state) {
+  const Chain c(static_cast<int>(state.range(0)));
+  const spp::search::LoewnerContact lc(c.modal);
+  const Eigen::VectorXd f = c.eq->flight_part(kT1), e = c.eq->contact_eigs(kT2);
+  Eigen::MatrixXd H;
+  for (auto _ : state) benchmark::DoNotOptimize(lc.form(f, e, H));
+  state.counters["bound_in_m_eps_H"] =
+      lc.last_bound() / (static_cast<double>(H.rows()) * std::numeric_limits<double>::epsilon() * lc.last_norm());
 }
 
 void LdltCount(benchmark::State& state) {
@@ -91,6 +109,7 @@ void Tridiagonal(benchmark::State& state) {
 BENCHMARK(Eigenpair)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(CornerCount)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(OnsetInertia)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(LoewnerEntries)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(LdltCount)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Tridiagonal)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -47,10 +47,11 @@ class DenseHPoint final : public HPoint {
 };
 
 // The LDL^T shift of onset_inertia, in units of the tridiagonal path's 8 (m + 1) eps |A|: the a posteriori bound of
-// a factorisation is 8 (m + 1) eps (|A| + |L||D||L^T|) >= 16 (m + 1) eps |A|, so 4 leaves room for |L||D||L^T| up to
-// ~3 |A|; where growth exceeds that (Bunch–Kaufman's |L||D||L^T| reached ~75-150 |A| on random dense matrices shifted
-// into their spectrum), the tridiagonal count decides (DenseEvaluator::ldlt_declined counts those).
-constexpr double kLdltShift = 4.0;
+// a factorisation is 8 (m + 1) eps (|A| + |L||D||L^T|) >= 16 (m + 1) eps |A|, and the Loewner entries' bound may add up
+// to 16 m eps |A| (twice 8 m eps |A|), so 8 leaves room for |L||D||L^T| up to ~3 |A|; where growth exceeds that
+// (Bunch–Kaufman's |L||D||L^T| reached ~75-150 |A| on random dense matrices shifted into their spectrum), the
+// tridiagonal count decides (DenseEvaluator::ldlt_declined counts those).
+constexpr double kLdltShift = 8.0;
 
 }  // namespace
 
@@ -99,7 +100,7 @@ int DenseEvaluator::onset_inertia(double t1, double t2) {
   double entry_error = 0.0;  // of the scaled A's entries (2-norm), from the Loewner structure's bound
   if (e.cwiseAbs().maxCoeff() <= f.cwiseAbs().maxCoeff()) {  // modal basis
     Eigen::MatrixXd Hm;
-    if (loewner_ && loewner_->form(f, e, Hm, 4.0, ref)) {
+    if (loewner_ && loewner_->form(f, e, Hm, 16.0, ref)) {
       A.topLeftCorner(m, m) = Hm;
       entry_error = loewner_->last_bound();
     } else {

@@ -49,8 +49,9 @@ class Evaluator {
 /// (128) H's contact part is the product G e(t2) G^T (O(m^3), cached for the last two t2: a cell's corners alternate
 /// between two), as it always was, so results there stay bit for bit. From kLapackFrom on, where the modal form allows
 /// it (LoewnerContact::applies), H's entries come from its Loewner structure in O(m^2) with an a posteriori bound of
-/// their rounding, falling back to the product point by point where the bound exceeds a quarter of eigen_error; and
-/// onset_inertia's inertia from two Bunch–Kaufman LDL^T (detail::count_below_ldlt) instead of a tridiagonalisation.
+/// their rounding (added to eigen_error), falling back to the product point by point where the bound exceeds 16 m eps
+/// |H|; and onset_inertia's inertia from two Bunch–Kaufman LDL^T (detail::count_below_ldlt) instead of a
+/// tridiagonalisation.
 class DenseEvaluator final : public Evaluator {
  public:
   explicit DenseEvaluator(const EquationSet& equations);
@@ -59,7 +60,7 @@ class DenseEvaluator final : public Evaluator {
   /// eigenvalue), formed in the modal basis or, when the contact part dominates (next to a contact pole line), in the
   /// contact basis G, and scaled by the size of its diagonal (Sylvester: the inertia is unchanged) so that the error
   /// bound 8 (m + 1) eps |A| stays O(eps) next to a pole line. From m = kLapackFrom on, the counts of A - delta I and
-  /// A + delta I by LDL^T, delta = 4 * 8 (m + 1) eps || |A| ||_inf, each exact for a matrix within its a posteriori
+  /// A + delta I by LDL^T, delta = 8 * 8 (m + 1) eps || |A| ||_inf, each exact for a matrix within its a posteriori
   /// bound beta of A (detail::count_below_ldlt): where both betas are below delta, equal counts prove that no
   /// eigenvalue of A lies in [-delta + beta, delta - beta) (Weyl), so A's count at 0 is theirs, and unequal counts put
   /// one within 2 delta of 0 (-1 returned); where a beta reaches delta (element growth), the tridiagonal count decides
