@@ -6,6 +6,7 @@
 #include "spp/io/csv.hpp"
 #include "spp/io/files.hpp"
 #include "spp/io/matrix_market.hpp"
+#include "spp/io/modes_file.hpp"
 #include "spp/io/result_file.hpp"
 #include "spp/io/system_file.hpp"
 #include "spp/io/verify_file.hpp"

@@ -1,0 +1,102 @@
+#pragma once
+// Symmetric periodic orbits with k elastic impacts per period (k-IPPs, the "nonsmooth modes" of Thorin, Delezoide,
+// Legrand, the paper's refs [15], [16]) of M x'' + K x = 0 with g(x) = w^T x + g0 >= 0 and the impact law e = 1:
+//   v+ = v- - 2 (w^T v-) / (w^T M^-1 w) M^-1 w   at g = 0.
+// Derivation and conventions: docs/modes.md. In the modal coordinates x = Phi q (K Phi = M Phi W^2, Phi^T M Phi = I,
+// all n modes) the flight is q'' = -W^2 q, the gap b^T q + g0 with b = Phi^T w, and the impact reflects the modal
+// velocity in the hyperplane b^perp: q'+ = R q'-, R = I - 2 b b^T / |b|^2. The system is time-reversible (t -> -t,
+// q' -> -q' maps orbits to orbits, an impact to an impact), and a reversible periodic orbit has two symmetric points
+// per period: a turning point in flight (q' = 0) or an impact whose velocity is normal (q'- parallel to b). Half an
+// orbit, from one to the other, determines it (docs/modes.md §2): the unknowns are the symmetric point's state and the
+// durations tau_0..tau_m of the m + 1 flights of the half orbit; the equations are linear in the state given the
+// durations. Non-reversible k-IPPs, if any, are not computed.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "spp/core/system.hpp"
+
+namespace spp::modes {
+
+/// The two symmetric points of the half orbit: F a turning point in flight, I an impact with normal velocity.
+/// k = 2m (FlightFlight), 2m + 1 (FlightImpact), 2m + 2 (ImpactImpact), m the impacts strictly inside the half orbit.
+enum class KippSymmetry { FlightFlight, FlightImpact, ImpactImpact };
+const char* to_string(KippSymmetry s);  ///< "flight-flight", "flight-impact", "impact-impact"
+
+/// The symmetric point types that give k impacts per period (k >= 1): k odd, FlightImpact; k even, FlightFlight
+/// and ImpactImpact (k = 2: ImpactImpact with m = 0 is the 1-IPP traversed twice, docs/modes.md §2: not listed).
+std::vector<KippSymmetry> symmetries_for(int k);
+/// m, the impacts strictly inside the half orbit, for k and s (k must suit s: symmetries_for).
+int interior_impacts(int k, KippSymmetry s);
+
+/// The free flow of the system in its modal coordinates, computed once (model/workspace split). Cost O(n^3).
+/// Throws std::invalid_argument when g0 <= 0 (no equilibrium in flight: no grazing start; docs/modes.md §5).
+class KippModel {
+ public:
+  explicit KippModel(const System& system);
+  const System& system() const { return system_; }
+  int n() const { return system_.n(); }
+  const Eigen::VectorXd& omega() const { return omega_; }  ///< (n) free frequencies, ascending, rad / time unit
+  const Eigen::MatrixXd& Phi() const { return Phi_; }      ///< n x n, M-normalised mode shapes
+  const Eigen::VectorXd& b() const { return b_; }          ///< (n) Phi^T w: modal gap weights
+  const Eigen::MatrixXd& tangent_basis() const { return Q_; }  ///< n x (n-1) orthonormal basis of b^perp
+  double g0() const { return system_.g0(); }
+
+ private:
+  System system_;
+  Eigen::VectorXd omega_, b_;
+  Eigen::MatrixXd Phi_, Q_;
+};
+
+/// The unknowns y of a symmetric half orbit: y = (q_A (n), [s,] tau_0..tau_m), with s only for ImpactImpact
+/// (post-impact modal velocity s b / |b| at A). size = n + m + 1 (+1 for ImpactImpact); the equations number
+/// size - 1: a one-parameter family (the energy).
+struct KippShape {
+  int k = 1;
+  KippSymmetry symmetry = KippSymmetry::FlightImpact;
+  int n = 0;
+  int m() const { return interior_impacts(k, symmetry); }
+  int unknowns() const { return n + m() + 1 + (symmetry == KippSymmetry::ImpactImpact ? 1 : 0); }
+  int equations() const { return unknowns() - 1; }
+  int first_tau() const { return n + (symmetry == KippSymmetry::ImpactImpact ? 1 : 0); }
+};
+
+/// F(y) (equations) and its Jacobian J (equations x unknowns), analytic (forward mode through the flows and
+/// reflections). Units: q in the units of x times sqrt(mass); tau in time. Cost O(n (m + 1) unknowns).
+void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, Eigen::VectorXd& F,
+                   Eigen::MatrixXd& J);
+
+/// One k-IPP in physical terms, time origin at its first impact (the first impact after the symmetric point A).
+struct KippOrbit {
+  double period = 0.0;        ///< T, time units
+  double energy = 0.0;        ///< 1/2 v^T M v + 1/2 x^T K x
+  std::vector<double> impact_times;  ///< k times in [0, T), first 0, ascending
+  Eigen::VectorXd x0, v0;     ///< (n) state just after the first impact (v0: post-impact velocity)
+  std::vector<double> impact_speeds;  ///< k incoming normal speeds -w^T v- (> 0: towards the obstacle)
+  /// Smallest gap over the open flights, certified by Taylor bounds (docs/modes.md §4); 0 when a speed is <= 0
+  /// (the flight ends are then not separated from zero).
+  double min_flight_gap = 0.0;
+  bool gap_certified = false;
+  /// Signed admissibility margin, continuous along a family: min(min_flight_gap / g0, min speed / speed scale),
+  /// speed scale = g0 * omega_max * |b|. >= 0 admissible (to the tolerance of the minimisation).
+  double margin = 0.0;
+  bool speed_limited = false;  ///< the margin is set by an impact speed (else by a flight gap)
+  /// r > 1 when the orbit is an r-fold repetition of an orbit with k / r impacts (its least period is T / r).
+  int multiplicity = 1;
+};
+
+/// The orbit of a solution y of kipp_residual (F(y) ~ 0). rel_tol: the gap minimisation's tolerance relative to g0.
+/// Cost O(n k) plus a few hundred O(n) gap evaluations per flight.
+KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, double rel_tol = 1e-10);
+
+/// The grazing start: the linear mode `mode` (0-based, b(mode) != 0) of amplitude g0 / |b_mode|, whose extreme just
+/// touches the obstacle, traversed k times (period 2 pi k / omega_mode) and written as a solution y of shape
+/// (F(y) = 0 to rounding). Throws std::invalid_argument for a mode index out of range or a mode with b = 0.
+Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int mode);
+
+/// The 1-dof closed form (issue 15): x'' + x = 0 against a stop at g0, e = 1, amplitude A >= g0:
+/// frequency 2 pi / T = pi / (pi - arccos(g0 / A)); energy A^2 / 2 (unit mass and stiffness).
+double one_dof_frequency(double g0, double amplitude);
+
+}  // namespace spp::modes

@@ -1,0 +1,101 @@
+#pragma once
+// Families of symmetric k-IPPs (kipp.hpp) continued in energy: the nonsmooth modes of the paper's refs [15], [16] and
+// their backbone curves on the frequency-energy plot (docs/modes.md).
+//   - Starts: for each k, each symmetric type (symmetries_for) and each linear mode j that sees the obstacle, the
+//     grazing start (the mode of amplitude g0 / |b_j| traversed k times). From it the family is the k-fold repetition
+//     of mode j's 1-IPP family (docs/modes.md §3: the equations are regular there, one curve passes): its points have
+//     multiplicity k. Genuine k-IPPs (multiplicity 1) branch off these repetitions where the augmented Jacobian
+//     [J; tangent^T] is singular (a simple branch point, located by bisection on the sign of its determinant); both
+//     directions of the other branch are followed as families of their own (one level: branch points on those are
+//     not followed). Families not connected to a repetition (isolas) are not found.
+//   - Continuation: pseudo-arclength with the project's corrector (continuation/corrector.hpp) on the unknowns of
+//     kipp.hpp scaled by g0 / |b| (positions), g0 omega_max / |b| (speed) and 2 pi / omega_min (durations).
+//   - Events, located by bisection along the arclength: admissibility lost (an impact speed reaches 0: ImpactGrazing;
+//     the gap touches 0 inside a flight: FlightGrazing), energy_max reached; the family ends there.
+// Units: energy 1/2 v^T M v + 1/2 x^T K x, times and periods in the time unit of M and K, frequency 2 pi / T (rad per
+// time unit).
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "spp/core/system.hpp"
+#include "spp/modes/kipp.hpp"
+
+namespace spp::modes {
+
+/// Largest k accepted (the half orbit then has up to 25 flights; beyond, rounding in long flights grows).
+inline constexpr int kMaxImpactsPerPeriod = 40;
+
+struct ModesOptions {
+  std::vector<int> k_values;    ///< impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required)
+  double energy_max = 0.0;      ///< families end where the energy reaches it (required, > 0)
+  double max_step = 0.05;       ///< largest continuation step, in scaled arclength
+  double min_step = 1e-9;       ///< a family whose step falls below this ends with a Stalled event
+  double max_turn = 0.3;        ///< largest angle (rad) between successive tangents
+  int max_points = 4000;        ///< per family
+  double locate_tol = 1e-12;    ///< events located to this, in scaled arclength
+  bool branch_points = true;    ///< follow the genuine k-IPPs that branch off the k-fold repetitions
+  /// Throws std::invalid_argument naming the field, its value and the rule.
+  void validate() const;
+};
+
+struct ModePoint {
+  double energy = 0.0, period = 0.0, frequency = 0.0;  ///< frequency = 2 pi / period
+  std::vector<double> impact_times;                    ///< k, first 0 (kipp.hpp KippOrbit)
+  Eigen::VectorXd x0, v0;                              ///< state just after the first impact
+  bool admissible = false;                             ///< margin >= 0
+  double margin = 0.0;                                 ///< KippOrbit::margin
+  int multiplicity = 1;                                ///< KippOrbit::multiplicity
+  Eigen::VectorXd y;                                   ///< the unknowns of kipp.hpp (half orbit)
+};
+
+enum class ModeEventKind {
+  GrazingStart,   ///< the family's first point: a linear mode touching the obstacle (impact speeds 0)
+  BranchStart,    ///< the family's first point: a branch point on a k-fold repetition
+  BranchPoint,    ///< a branch point met along the family (a family of genuine k-IPPs leaves it there)
+  ImpactGrazing,  ///< admissibility lost: an impact's incoming speed reaches 0 (the family ends)
+  FlightGrazing,  ///< admissibility lost: the gap touches 0 inside a flight, an extra contact (the family ends)
+  EnergyMax,      ///< the energy reached energy_max (the family ends)
+  Stalled,        ///< the step fell below min_step or max_points was reached (the family ends)
+  NoAdmissibleSide  ///< neither direction from the start is admissible (the family is its start only)
+};
+const char* to_string(ModeEventKind kind);
+
+struct ModeEvent {
+  ModeEventKind kind = ModeEventKind::Stalled;
+  ModePoint at;
+  std::string detail;
+};
+
+struct ModeFamily {
+  int k = 1;
+  KippSymmetry symmetry = KippSymmetry::FlightImpact;
+  int mode = -1;       ///< 0-based linear mode of the grazing start (of the repetition it branches from)
+  int multiplicity = 1;  ///< of its points past the start: k for a repetition of a 1-IPP, 1 for a genuine k-IPP
+  std::string label;
+  std::vector<ModePoint> points;  ///< in the order traced (energy increasing from a grazing start)
+  std::vector<ModeEvent> events;
+};
+
+/// Success: every family ended at an admissibility or energy_max event; Incomplete: some stalled.
+enum class ModesStatus { NotRun, Success, Incomplete };
+const char* to_string(ModesStatus s);
+
+struct ModesResult {
+  ModesStatus status = ModesStatus::NotRun;
+  std::vector<ModeFamily> families;
+  Eigen::VectorXd linear_frequencies;  ///< (n) omega, rad per time unit (the backbones' low-energy ends are omega / k)
+  long corrector_solves = 0;
+  long stalled_families = 0;
+  double seconds = 0.0;
+  /// One line: status, families (genuine / repetitions), points, events by kind, time.
+  std::string brief_report() const;
+};
+
+/// Every family from the grazing starts of the requested k and their branch points. Cost: per family and step a few
+/// corrector iterations of O(n k (n + k)) each, plus O(k) certified gap minimisations per point.
+/// Throws std::invalid_argument for invalid options or g0 <= 0.
+ModesResult nonsmooth_modes(const System& system, const ModesOptions& options);
+
+}  // namespace spp::modes

@@ -1,0 +1,287 @@
+#include "spp/modes/kipp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "spp/detail/cosine_sum.hpp"
+#include "spp/detail/internal_error.hpp"
+#include "spp/detail/invalid.hpp"
+#include "spp/detail/symmetric_eigen.hpp"
+
+namespace spp::modes {
+
+const char* to_string(KippSymmetry s) {
+  switch (s) {
+    case KippSymmetry::FlightFlight: return "flight-flight";
+    case KippSymmetry::FlightImpact: return "flight-impact";
+    case KippSymmetry::ImpactImpact: return "impact-impact";
+  }
+  return "?";
+}
+
+std::vector<KippSymmetry> symmetries_for(int k) {
+  if (k < 1) detail::invalid_option("symmetries_for", "k", k, "at least 1");
+  if (k % 2 == 1) return {KippSymmetry::FlightImpact};
+  if (k == 2) return {KippSymmetry::FlightFlight};
+  return {KippSymmetry::FlightFlight, KippSymmetry::ImpactImpact};
+}
+
+int interior_impacts(int k, KippSymmetry s) {
+  switch (s) {
+    case KippSymmetry::FlightFlight: return k / 2;
+    case KippSymmetry::FlightImpact: return (k - 1) / 2;
+    case KippSymmetry::ImpactImpact: return (k - 2) / 2;
+  }
+  return 0;
+}
+
+KippModel::KippModel(const System& system) : system_(system) {
+  if (!(system.g0() > 0.0))
+    detail::invalid_option("KippModel", "g0", system.g0(),
+                           "positive (an obstacle away from the rest position: k-IPP families start at grazing)");
+  const detail::SymmetricEigen es = detail::generalized_symmetric_eigen(system.K(), system.M());
+  if (!es.ok) detail::internal_error("KippModel: the generalized eigenproblem did not converge");
+  omega_ = es.values.cwiseMax(0.0).cwiseSqrt();
+  Phi_ = es.vectors;
+  b_ = Phi_.transpose() * system.w();
+  // Orthonormal basis of b^perp: the last n - 1 columns of the Householder Q of b.
+  const int n = system.n();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(b_);
+  const Eigen::MatrixXd Qfull = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
+  Q_ = Qfull.rightCols(n - 1);
+}
+
+namespace {
+
+// Flight over time t of the modal state (q, p), with the derivative of every state column (Dq, Dp) carried along.
+void flow(const Eigen::VectorXd& omega, double t, Eigen::VectorXd& q, Eigen::VectorXd& p, Eigen::MatrixXd* Dq,
+          Eigen::MatrixXd* Dp) {
+  const Eigen::ArrayXd c = (omega.array() * t).cos(), s = (omega.array() * t).sin();
+  // sin(w t) / w, with its limit t at w = 0 (a rigid mode is refused by System, kept safe anyway)
+  Eigen::ArrayXd sw(omega.size());
+  for (Eigen::Index i = 0; i < omega.size(); ++i) sw(i) = omega(i) > 0 ? s(i) / omega(i) : t;
+  const Eigen::ArrayXd ws = omega.array() * s;
+  const Eigen::VectorXd q1 = (c * q.array() + sw * p.array()).matrix();
+  const Eigen::VectorXd p1 = (-ws * q.array() + c * p.array()).matrix();
+  q = q1;
+  p = p1;
+  if (Dq) {
+    const Eigen::MatrixXd Dq1 = c.matrix().asDiagonal() * *Dq + sw.matrix().asDiagonal() * *Dp;
+    const Eigen::MatrixXd Dp1 = (-ws).matrix().asDiagonal() * *Dq + c.matrix().asDiagonal() * *Dp;
+    *Dq = Dq1;
+    *Dp = Dp1;
+  }
+}
+
+void reflect(const Eigen::VectorXd& b, Eigen::VectorXd& p, Eigen::MatrixXd* Dp) {
+  const double bb = b.squaredNorm();
+  p -= (2.0 * b.dot(p) / bb) * b;
+  if (Dp) *Dp -= (2.0 / bb) * b * (b.transpose() * *Dp);
+}
+
+// The state at A: (q_A, 0) or (q_A, s b/|b|), and its derivative in y.
+void start_state(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, Eigen::VectorXd& q,
+                 Eigen::VectorXd& p, Eigen::MatrixXd& Dq, Eigen::MatrixXd& Dp) {
+  const int n = shape.n, N = shape.unknowns();
+  q = y.head(n);
+  Dq = Eigen::MatrixXd::Zero(n, N);
+  Dp = Eigen::MatrixXd::Zero(n, N);
+  Dq.leftCols(n).setIdentity();
+  if (shape.symmetry == KippSymmetry::ImpactImpact) {
+    const Eigen::VectorXd bh = model.b().normalized();
+    p = y(n) * bh;
+    Dp.col(n) = bh;
+  } else {
+    p = Eigen::VectorXd::Zero(n);
+  }
+}
+
+}  // namespace
+
+void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, Eigen::VectorXd& F,
+                   Eigen::MatrixXd& J) {
+  const int n = shape.n, N = shape.unknowns(), m = shape.m(), t0 = shape.first_tau();
+  if (n != model.n() || y.size() != N) detail::invalid("kipp_residual: expected y of the shape's size");
+  F.resize(N - 1);
+  J.resize(N - 1, N);
+  const Eigen::VectorXd& b = model.b();
+  const double g0 = model.g0();
+  Eigen::VectorXd q, p;
+  Eigen::MatrixXd Dq, Dp;
+  start_state(model, shape, y, q, p, Dq, Dp);
+  int row = 0;
+  if (shape.symmetry == KippSymmetry::ImpactImpact) {  // A is on the obstacle
+    F(row) = b.dot(q) + g0;
+    J.row(row++) = b.transpose() * Dq;
+  }
+  for (int j = 0; j <= m; ++j) {
+    flow(model.omega(), y(t0 + j), q, p, &Dq, &Dp);
+    // d/dtau of the flight: (q', p') = (p, -W^2 q) at its end
+    Dq.col(t0 + j) += p;
+    Dp.col(t0 + j) += (-model.omega().array().square() * q.array()).matrix();
+    if (j < m) {  // an interior impact: on the obstacle, then reflected
+      F(row) = b.dot(q) + g0;
+      J.row(row++) = b.transpose() * Dq;
+      reflect(b, p, &Dp);
+    }
+  }
+  if (shape.symmetry == KippSymmetry::FlightFlight) {  // B a turning point: p = 0
+    F.segment(row, n) = p;
+    J.middleRows(row, n) = Dp;
+    row += n;
+  } else {  // B an impact with normal velocity: on the obstacle, tangential velocity 0
+    F(row) = b.dot(q) + g0;
+    J.row(row++) = b.transpose() * Dq;
+    const Eigen::MatrixXd& Q = model.tangent_basis();
+    F.segment(row, n - 1) = Q.transpose() * p;
+    J.middleRows(row, n - 1) = Q.transpose() * Dp;
+    row += n - 1;
+  }
+  if (row != N - 1) detail::internal_error("kipp_residual: equation count");
+}
+
+namespace {
+
+struct ImpactRecord {
+  double t = 0.0;
+  Eigen::VectorXd q, p_before, p_after;
+  bool self_mirror = false;  ///< A or B: its own image under t -> -t
+};
+
+}  // namespace
+
+KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, double rel_tol) {
+  const int n = shape.n, m = shape.m(), t0 = shape.first_tau();
+  const Eigen::VectorXd& b = model.b();
+  const Eigen::VectorXd& omega = model.omega();
+  const double g0 = model.g0();
+  KippOrbit out;
+  double half = 0.0;
+  for (int j = 0; j <= m; ++j) half += y(t0 + j);
+  out.period = 2.0 * half;
+
+  Eigen::VectorXd q = y.head(n), p = Eigen::VectorXd::Zero(n);
+  std::vector<ImpactRecord> half_impacts;  // impacts of the half orbit [0, T/2], A at t = 0
+  if (shape.symmetry == KippSymmetry::ImpactImpact) {
+    p = y(n) * b.normalized();
+    half_impacts.push_back({0.0, q, -p, p, true});
+  }
+  out.energy = 0.5 * (p.squaredNorm() + (omega.array().square() * q.array().square()).sum());
+
+  // Flights of the half orbit: each a cosine sum of the gap, with impact ends separated from zero (docs/modes.md §4).
+  const double speed_scale = g0 * omega.maxCoeff();
+  double min_gap = std::numeric_limits<double>::infinity(), min_speed = std::numeric_limits<double>::infinity();
+  bool certified = true, ends_positive = true;
+  double t = 0.0;
+  const bool starts_at_impact = shape.symmetry == KippSymmetry::ImpactImpact;
+  for (int j = 0; j <= m; ++j) {
+    const double tau = y(t0 + j);
+    const detail::CosineSum g = detail::CosineSum::from_cos_sin(
+        g0, (b.array() * q.array()).matrix(),
+        (b.array() * p.array() / omega.array()).matrix(), omega);
+    const bool left_impact = j > 0 || starts_at_impact;
+    const bool right_impact = j < m || shape.symmetry != KippSymmetry::FlightFlight;
+    Eigen::VectorXd qe = q, pe = p;
+    flow(omega, tau, qe, pe, nullptr, nullptr);
+    const double v_out = left_impact ? b.dot(p) : 0.0;    // > 0: leaving the obstacle
+    const double v_in = right_impact ? -b.dot(pe) : 0.0;  // > 0: arriving at it
+    if (left_impact) min_speed = std::min(min_speed, v_out);
+    if (right_impact) min_speed = std::min(min_speed, v_in);
+    const double M2 = std::max(g.bound(2), std::numeric_limits<double>::min());
+    if ((left_impact && !(v_out > 0)) || (right_impact && !(v_in > 0))) {
+      ends_positive = false;
+    } else {
+      // g' >= v - t M2 near an impact end: g is monotone (and > 0) within v / (2 M2) of it.
+      const double lo = left_impact ? 0.5 * v_out / M2 : 0.0;
+      const double hi = right_impact ? tau - 0.5 * v_in / M2 : tau;
+      if (lo < hi) {
+        const detail::CosineMinimum mn = detail::minimize(g, lo, hi, rel_tol * g0);
+        min_gap = std::min(min_gap, mn.value);
+        certified = certified && mn.certified;
+      } else {
+        min_gap = std::min(min_gap, g.value(0.5 * (lo + hi)));
+      }
+    }
+    t += tau;
+    q = qe;
+    p = pe;
+    if (right_impact) {
+      ImpactRecord r{t, q, p, p, j == m};  // j == m: B, normal velocity, reflected into its opposite
+      reflect(b, p, nullptr);
+      r.p_after = p;
+      half_impacts.push_back(r);
+    }
+  }
+  out.gap_certified = certified && ends_positive;
+  out.min_flight_gap = ends_positive ? min_gap : 0.0;
+  const double speed_margin = min_speed / speed_scale;
+  const double gap_margin = ends_positive ? min_gap / g0 : 0.0;
+  out.speed_limited = speed_margin <= gap_margin;
+  out.margin = std::min(speed_margin, gap_margin);
+
+  // Whole period: the half orbit's impacts and their mirrors t -> -t (q same, velocities reversed and swapped).
+  std::vector<ImpactRecord> all;
+  for (const ImpactRecord& r : half_impacts) {
+    all.push_back(r);
+    if (!r.self_mirror) all.push_back({out.period - r.t, r.q, -r.p_after, -r.p_before});
+  }
+  std::sort(all.begin(), all.end(), [](const ImpactRecord& a, const ImpactRecord& c) { return a.t < c.t; });
+  if (static_cast<int>(all.size()) != shape.k) detail::internal_error("kipp_orbit: impact count");
+  const double origin = all.front().t;
+  for (const ImpactRecord& r : all) {
+    out.impact_times.push_back(r.t - origin);
+    out.impact_speeds.push_back(-b.dot(r.p_before));
+  }
+  out.x0 = model.Phi() * all.front().q;
+  out.v0 = model.Phi() * all.front().p_after;
+
+  // Least period: the smallest shift d (k % d == 0) that maps the impact sequence onto itself.
+  const double scale = std::sqrt(2.0 * std::max(out.energy, 1e-300));
+  for (int d = 1; d < shape.k; ++d) {
+    if (shape.k % d != 0) continue;
+    bool same = true;
+    for (int i = 0; i < shape.k && same; ++i) {
+      const ImpactRecord& a = all[i];
+      const ImpactRecord& c = all[(i + d) % shape.k];
+      const double dt = std::fmod(c.t - a.t + out.period, out.period);
+      same = std::abs(dt - out.period * d / shape.k) <= 1e-8 * out.period &&
+             (a.q - c.q).norm() * omega.maxCoeff() <= 1e-7 * scale && (a.p_after - c.p_after).norm() <= 1e-7 * scale;
+    }
+    if (same) {
+      out.multiplicity = shape.k / d;
+      break;
+    }
+  }
+  return out;
+}
+
+Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int mode) {
+  const int n = shape.n;
+  if (mode < 0 || mode >= n) detail::invalid_option("grazing_start", "mode", mode, "in [0, n)");
+  const double bj = model.b()(mode);
+  if (std::abs(bj) <= 1e-12 * model.b().norm())
+    detail::invalid_option("grazing_start", "mode", mode, "a mode that sees the obstacle (b_mode != 0)");
+  const double T = 2.0 * std::acos(-1.0) / model.omega()(mode);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(shape.unknowns());
+  const double a = model.g0() / std::abs(bj);
+  const int t0 = shape.first_tau(), m = shape.m();
+  if (shape.symmetry == KippSymmetry::ImpactImpact) {
+    y(mode) = -a * (bj > 0 ? 1.0 : -1.0);  // A on the obstacle: b_j q_j = -g0
+    for (int j = 0; j <= m; ++j) y(t0 + j) = T;
+  } else {
+    y(mode) = a * (bj > 0 ? 1.0 : -1.0);  // A the far turning point: gap 2 g0
+    y(t0) = 0.5 * T;  // to the first touch; then a whole period between touches
+    for (int j = 1; j <= m; ++j) y(t0 + j) = T;
+    if (shape.symmetry == KippSymmetry::FlightFlight) y(t0 + m) = 0.5 * T;  // B the far turning point again
+  }
+  return y;
+}
+
+double one_dof_frequency(double g0, double amplitude) {
+  if (!(g0 > 0) || !(amplitude >= g0)) detail::invalid_option("one_dof_frequency", "amplitude", amplitude, ">= g0 > 0");
+  const double pi = std::acos(-1.0);
+  return pi / (pi - std::acos(g0 / amplitude));
+}
+
+}  // namespace spp::modes

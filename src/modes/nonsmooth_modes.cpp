@@ -1,0 +1,355 @@
+#include "spp/modes/nonsmooth_modes.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "continuation/corrector.hpp"
+#include "spp/detail/invalid.hpp"
+
+namespace spp::modes {
+
+const char* to_string(ModeEventKind kind) {
+  switch (kind) {
+    case ModeEventKind::GrazingStart: return "grazing_start";
+    case ModeEventKind::BranchStart: return "branch_start";
+    case ModeEventKind::BranchPoint: return "branch_point";
+    case ModeEventKind::ImpactGrazing: return "impact_grazing";
+    case ModeEventKind::FlightGrazing: return "flight_grazing";
+    case ModeEventKind::EnergyMax: return "energy_max";
+    case ModeEventKind::Stalled: return "stalled";
+    case ModeEventKind::NoAdmissibleSide: return "no_admissible_side";
+  }
+  return "?";
+}
+
+const char* to_string(ModesStatus s) {
+  switch (s) {
+    case ModesStatus::NotRun: return "not run";
+    case ModesStatus::Success: return "success";
+    case ModesStatus::Incomplete: return "incomplete";
+  }
+  return "?";
+}
+
+void ModesOptions::validate() const {
+  const char* where = "ModesOptions";
+  if (k_values.empty()) detail::invalid("ModesOptions: k_values must list at least one k, got none");
+  std::set<int> seen;
+  for (int k : k_values) {
+    if (k < 1 || k > kMaxImpactsPerPeriod)
+      detail::invalid_option(where, "k", k, "in [1, " + std::to_string(kMaxImpactsPerPeriod) + "]");
+    if (!seen.insert(k).second) detail::invalid_option(where, "k", k, "listed once");
+  }
+  if (!(energy_max > 0) || !std::isfinite(energy_max)) detail::invalid_option(where, "energy_max", energy_max, "> 0 and finite");
+  if (!(max_step > 0) || !(max_step <= 1)) detail::invalid_option(where, "max_step", max_step, "in (0, 1]");
+  if (!(min_step > 0) || !(min_step < max_step)) detail::invalid_option(where, "min_step", min_step, "in (0, max_step)");
+  if (!(max_turn > 0) || !(max_turn < 1.5)) detail::invalid_option(where, "max_turn", max_turn, "in (0, 1.5)");
+  if (max_points < 2) detail::invalid_option(where, "max_points", max_points, "at least 2");
+  if (!(locate_tol > 0) || !(locate_tol < max_step)) detail::invalid_option(where, "locate_tol", locate_tol, "in (0, max_step)");
+}
+
+std::string ModesResult::brief_report() const {
+  std::ostringstream os;
+  long genuine = 0, points = 0;
+  std::map<std::string, long> kinds;
+  for (const ModeFamily& f : families) {
+    genuine += f.multiplicity == 1;
+    points += static_cast<long>(f.points.size());
+    for (const ModeEvent& e : f.events) ++kinds[to_string(e.kind)];
+  }
+  os << "spp modes: " << to_string(status) << ", " << families.size() << " families (" << genuine << " genuine, "
+     << families.size() - genuine << " repetitions), " << points << " points, events:";
+  for (const auto& [k, c] : kinds) os << " " << k << " " << c;
+  os << "; " << corrector_solves << " corrector solves, " << seconds << " s";
+  return os.str();
+}
+
+namespace {
+
+namespace cont = spp::continuation;
+
+struct Tracer {
+  const KippModel& model;
+  const ModesOptions& options;
+  ModesResult& result;
+  Eigen::VectorXd D;  // y = D z
+
+  Eigen::VectorXd scales(const KippShape& shape) const {
+    const double bn = model.b().norm(), g0 = model.g0();
+    const double wmax = model.omega().maxCoeff(), wmin = model.omega().minCoeff();
+    Eigen::VectorXd d(shape.unknowns());
+    d.head(shape.n).setConstant(g0 / bn);
+    if (shape.symmetry == KippSymmetry::ImpactImpact) d(shape.n) = g0 * wmax / bn;
+    d.tail(shape.m() + 1).setConstant(2.0 * std::acos(-1.0) / wmin);
+    return d;
+  }
+
+  void linearize(const KippShape& shape, const Eigen::VectorXd& z, Eigen::VectorXd& F, Eigen::MatrixXd& J) const {
+    kipp_residual(model, shape, (D.array() * z.array()).matrix(), F, J);
+    J = J * D.asDiagonal();
+  }
+
+  Eigen::MatrixXd jacobian(const KippShape& shape, const Eigen::VectorXd& z) const {
+    Eigen::VectorXd F;
+    Eigen::MatrixXd J;
+    linearize(shape, z, F, J);
+    return J;
+  }
+
+  bool correct(const KippShape& shape, const Eigen::VectorXd& z_pred, const Eigen::VectorXd& tau, Eigen::VectorXd& z) {
+    ++result.corrector_solves;
+    cont::CorrectorOptions co;
+    co.step_tol = 1e-11;
+    co.max_iterations = 15;
+    const auto lin = [&](const Eigen::VectorXd& zz, Eigen::VectorXd& F, Eigen::MatrixXd& J) { linearize(shape, zz, F, J); };
+    const cont::CorrectorResult r = cont::correct_pseudo_arclength(lin, z_pred, tau, z, co);
+    if (!r.converged) return false;
+    // the durations must stay positive: a flight of zero length is two impacts merging
+    for (int j = shape.first_tau(); j < shape.unknowns(); ++j)
+      if (!(z(j) > 0)) return false;
+    return true;
+  }
+
+  ModePoint point(const KippShape& shape, const Eigen::VectorXd& z) const {
+    const Eigen::VectorXd y = (D.array() * z.array()).matrix();
+    const KippOrbit o = kipp_orbit(model, shape, y);
+    ModePoint p;
+    p.energy = o.energy;
+    p.period = o.period;
+    p.frequency = 2.0 * std::acos(-1.0) / o.period;
+    p.impact_times = o.impact_times;
+    p.x0 = o.x0;
+    p.v0 = o.v0;
+    p.margin = o.margin;
+    p.admissible = o.margin >= 0.0;
+    p.multiplicity = o.multiplicity;
+    p.y = y;
+    return p;
+  }
+
+  bool speed_limited(const KippShape& shape, const Eigen::VectorXd& z) const {
+    return kipp_orbit(model, shape, (D.array() * z.array()).matrix()).speed_limited;
+  }
+
+  double bordered_det(const KippShape& shape, const Eigen::VectorXd& z, const Eigen::VectorXd& tau) const {
+    const Eigen::MatrixXd J = jacobian(shape, z);
+    Eigen::MatrixXd A(J.rows() + 1, J.cols());
+    A.topRows(J.rows()) = J;
+    A.row(J.rows()) = tau.transpose();
+    return A.partialPivLu().determinant();
+  }
+
+  // Bisection on s in (0, h) from z0 along tau for the sign change of phi (phi(0) and phi(h) of opposite signs).
+  // z_event: the last point found on z0's side (phi of z0's sign), so that the event point keeps its admissibility.
+  template <class Phi>
+  bool locate(const KippShape& shape, const Eigen::VectorXd& z0, const Eigen::VectorXd& tau, double h, Phi&& phi,
+              Eigen::VectorXd& z_event) {
+    double lo = 0.0, hi = h;
+    const bool sign_lo = phi(z0) >= 0;
+    Eigen::VectorXd z = z0;
+    z_event = z0;
+    for (int it = 0; it < 200 && hi - lo > options.locate_tol; ++it) {
+      const double s = 0.5 * (lo + hi);
+      if (!correct(shape, z0 + s * tau, tau, z)) return false;
+      if ((phi(z) >= 0) == sign_lo) {
+        lo = s;
+        z_event = z;
+      } else {
+        hi = s;
+      }
+    }
+    return true;
+  }
+
+  void add_event(ModeFamily& f, ModeEventKind kind, const ModePoint& p, const std::string& detail) {
+    f.events.push_back({kind, p, detail});
+  }
+
+  // Follows one family from z0 with tangent tau0 (oriented). Branch points of repetitions are reported in `branches`
+  // (z, the other branch's direction) when requested.
+  void trace(ModeFamily& f, const KippShape& shape, const Eigen::VectorXd& z_start, const Eigen::VectorXd& tau0,
+             std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>* branches) {
+    Eigen::VectorXd z = z_start, tau = tau0, zn;
+    double h = std::min(options.max_step, 0.01);
+    double det_prev = bordered_det(shape, z, tau);
+    ModePoint prev = f.points.back();
+    for (int count = 1;; ++count) {
+      if (count >= options.max_points) {
+        add_event(f, ModeEventKind::Stalled, prev, "max_points reached");
+        ++result.stalled_families;
+        return;
+      }
+      bool ok = false;
+      Eigen::VectorXd tn;
+      while (h >= options.min_step) {
+        if (correct(shape, z + h * tau, tau, zn)) {
+          tn = cont::curve_tangent(jacobian(shape, zn), tau);
+          // the first step off a branch point may turn more: the bordered Jacobian is singular at the start
+          const double turn_limit = count == 1 ? 1.2 : options.max_turn;
+          if (tn.allFinite() && std::acos(std::clamp(tn.dot(tau), -1.0, 1.0)) <= turn_limit) {
+            ok = true;
+            break;
+          }
+        }
+        h *= 0.5;
+      }
+      if (!ok) {
+        add_event(f, ModeEventKind::Stalled, prev, "the step fell below min_step");
+        ++result.stalled_families;
+        return;
+      }
+      ModePoint p = point(shape, zn);
+      // admissibility lost between z and zn (prev admissible, or the start at margin 0)
+      if (p.margin < 0) {
+        Eigen::VectorXd ze;
+        const auto margin = [&](const Eigen::VectorXd& zz) { return kipp_orbit(model, shape, (D.array() * zz.array()).matrix()).margin; };
+        locate(shape, z, tau, h, margin, ze);
+        const ModePoint pe = point(shape, ze);  // the last admissible point, to locate_tol
+        const bool by_speed = speed_limited(shape, zn);
+        f.points.push_back(pe);
+        add_event(f, by_speed ? ModeEventKind::ImpactGrazing : ModeEventKind::FlightGrazing, pe,
+                  by_speed ? "an impact's incoming speed reaches 0" : "the gap touches 0 inside a flight");
+        return;
+      }
+      if (p.energy > options.energy_max) {
+        Eigen::VectorXd ze;
+        const auto de = [&](const Eigen::VectorXd& zz) { return point(shape, zz).energy - options.energy_max; };
+        locate(shape, z, tau, h, de, ze);
+        const ModePoint pe = point(shape, ze);
+        f.points.push_back(pe);
+        add_event(f, ModeEventKind::EnergyMax, pe, "energy_max reached");
+        return;
+      }
+      const double det = bordered_det(shape, zn, tn);
+      if (branches && std::isfinite(det) && std::isfinite(det_prev) && (det > 0) != (det_prev > 0) && det != 0 &&
+          det_prev != 0) {
+        Eigen::VectorXd zb;
+        const auto sd = [&](const Eigen::VectorXd& zz) {
+          return bordered_det(shape, zz, cont::curve_tangent(jacobian(shape, zz), tau));
+        };
+        if (locate(shape, z, tau, h, sd, zb)) {
+          // the other branch: the kernel of J at zb orthogonal to this branch's tangent
+          const Eigen::MatrixXd J = jacobian(shape, zb);
+          const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+          const Eigen::MatrixXd V = svd.matrixV().rightCols(2);
+          const Eigen::VectorXd tb = tau;  // this branch's direction (J is singular at zb: its kernel is 2-D)
+          Eigen::VectorXd other = V.col(0) - V.col(0).dot(tb) * tb;
+          const Eigen::VectorXd other1 = V.col(1) - V.col(1).dot(tb) * tb;
+          if (other1.norm() > other.norm()) other = other1;
+          if (other.norm() > 1e-3) {
+            branches->push_back({zb, other.normalized()});
+            const ModePoint pb = point(shape, zb);
+            add_event(f, ModeEventKind::BranchPoint, pb, "a family of genuine k-IPPs branches off here");
+          }
+        }
+      }
+      det_prev = det;
+      f.points.push_back(p);
+      prev = p;
+      z = zn;
+      tau = tn;
+      h = std::min(options.max_step, 1.5 * h);
+    }
+  }
+
+  Eigen::VectorXd energy_gradient(const KippShape& shape, const Eigen::VectorXd& z) const {
+    const Eigen::VectorXd y = (D.array() * z.array()).matrix();
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(shape.unknowns());
+    g.head(shape.n) = (model.omega().array().square() * y.head(shape.n).array()).matrix();
+    if (shape.symmetry == KippSymmetry::ImpactImpact) g(shape.n) = y(shape.n);
+    return (g.array() * D.array()).matrix();  // dE/dz
+  }
+
+  // A family from a start z with a first tangent: tries `dir`, then -dir, keeping the first with an admissible step.
+  bool start_family(ModeFamily& f, const KippShape& shape, const Eigen::VectorXd& z0, const Eigen::VectorXd& dir,
+                    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>* branches) {
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::VectorXd tau = sign * dir;
+      Eigen::VectorXd z1;
+      double h = std::min(options.max_step, 1e-3);
+      if (!correct(shape, z0 + h * tau, tau, z1)) continue;
+      const ModePoint p1 = point(shape, z1);
+      if (p1.margin < 0) continue;
+      trace(f, shape, z0, tau, branches);
+      return true;
+    }
+    add_event(f, ModeEventKind::NoAdmissibleSide, f.points.back(), "no admissible orbit on either side of the start");
+    return false;
+  }
+
+  void run_start(const KippShape& shape, int mode) {
+    D = scales(shape);
+    const Eigen::VectorXd y0 = grazing_start(model, shape, mode);
+    Eigen::VectorXd z0 = (y0.array() / D.array()).matrix();
+    ModeFamily f;
+    f.k = shape.k;
+    f.symmetry = shape.symmetry;
+    f.mode = mode;
+    ModePoint p0 = point(shape, z0);
+    if (p0.energy >= options.energy_max) return;  // the family starts above the requested energies
+    p0.admissible = true;  // the linear mode touching the obstacle: gap >= 0, impact speeds 0
+    f.points.push_back(p0);
+    add_event(f, ModeEventKind::GrazingStart, p0, "linear mode " + std::to_string(mode + 1) + " touching the obstacle");
+    const Eigen::VectorXd tau = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
+    start_family(f, shape, z0, tau, options.branch_points && shape.k > 1 ? &branches : nullptr);
+    f.multiplicity = f.points.size() > 1 ? f.points[1].multiplicity : p0.multiplicity;
+    std::ostringstream label;
+    label << "k" << shape.k << " " << to_string(shape.symmetry) << " mode " << mode + 1;
+    if (f.multiplicity > 1) label << " (" << shape.k / f.multiplicity << "-IPP x" << f.multiplicity << ")";
+    f.label = label.str();
+    result.families.push_back(f);
+    int index = 0;
+    for (const auto& [zb, dir] : branches) {
+      for (double sign : {1.0, -1.0}) {
+        ModeFamily g;
+        g.k = shape.k;
+        g.symmetry = shape.symmetry;
+        g.mode = mode;
+        ModePoint pb = point(shape, zb);
+        g.points.push_back(pb);
+        add_event(g, ModeEventKind::BranchStart, pb, "branch point on " + f.label);
+        Eigen::VectorXd z1;
+        const Eigen::VectorXd tau1 = sign * dir;
+        if (!correct(shape, zb + 1e-3 * tau1, tau1, z1) || point(shape, z1).margin < 0) {
+          add_event(g, ModeEventKind::NoAdmissibleSide, pb, "this side of the branch point is not admissible");
+        } else {
+          trace(g, shape, zb, tau1, nullptr);
+        }
+        g.multiplicity = g.points.size() > 1 ? g.points.back().multiplicity : pb.multiplicity;
+        std::ostringstream gl;
+        gl << "k" << shape.k << " " << to_string(shape.symmetry) << " branch " << ++index << (sign > 0 ? "+" : "-")
+           << " of mode " << mode + 1;
+        g.label = gl.str();
+        result.families.push_back(g);
+      }
+    }
+  }
+};
+
+}  // namespace
+
+ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  const KippModel model(system);
+  ModesResult result;
+  result.linear_frequencies = model.omega();
+  Tracer tracer{model, options, result, {}};
+  std::vector<int> ks = options.k_values;
+  std::sort(ks.begin(), ks.end());
+  const double bn = model.b().norm();
+  for (int k : ks)
+    for (KippSymmetry s : symmetries_for(k))
+      for (int j = 0; j < system.n(); ++j)
+        if (std::abs(model.b()(j)) > 1e-10 * bn) tracer.run_start(KippShape{k, s, system.n()}, j);
+  result.status = result.stalled_families > 0 ? ModesStatus::Incomplete : ModesStatus::Success;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace spp::modes

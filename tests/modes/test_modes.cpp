@@ -1,0 +1,267 @@
+// k-IPP families (docs/modes.md): closed forms (1 dof; the explicit 1-IPP of §2), the analytic Jacobian against
+// differences, grazing starts against the linear modes, and every sampled point against the exact simulator (e = 1):
+// it must return after one period with exactly k impacts.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "spp/core/generators.hpp"
+#include "spp/modes/kipp.hpp"
+#include "spp/modes/nonsmooth_modes.hpp"
+#include "spp/simulation/simulator.hpp"
+
+namespace spp::modes {
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+System one_dof(double g0) {  // x'' + x = 0, stop at x = g0: g = g0 - x
+  return System(Eigen::MatrixXd::Identity(1, 1), Eigen::MatrixXd::Identity(1, 1), -Eigen::VectorXd::Ones(1), g0);
+}
+System chain5() {  // paper §5.2 (examples/chain5.json)
+  return chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+}
+System paper_two_dof() {  // paper §2.3 with unit masses, springs and gap
+  return two_dof(1, 1, 1, 1, 1);
+}
+
+ModesResult run(const System& s, std::vector<int> ks, double energy_max) {
+  ModesOptions o;
+  o.k_values = std::move(ks);
+  o.energy_max = energy_max;
+  return nonsmooth_modes(s, o);
+}
+
+TEST(Modes, OneDofFrequencyIsTheClosedForm) {
+  const double g0 = 0.5;
+  const ModesResult r = run(one_dof(g0), {1}, 8.0);
+  ASSERT_EQ(r.status, ModesStatus::Success);
+  ASSERT_EQ(r.families.size(), 1u);
+  const ModeFamily& f = r.families[0];
+  ASSERT_GE(f.points.size(), 20u);
+  for (const ModePoint& p : f.points) {
+    const double A = std::sqrt(2.0 * p.energy);  // unit mass and stiffness
+    EXPECT_NEAR(p.frequency, one_dof_frequency(g0, A), 1e-10 * p.frequency) << "energy " << p.energy;
+    EXPECT_TRUE(p.admissible);
+  }
+  EXPECT_EQ(f.events.front().kind, ModeEventKind::GrazingStart);
+  EXPECT_NEAR(f.points.front().energy, 0.5 * g0 * g0, 1e-15);  // amplitude g0: the stop just touched
+  EXPECT_EQ(f.events.back().kind, ModeEventKind::EnergyMax);
+  EXPECT_NEAR(f.points.back().energy, 8.0, 1e-8);
+  // the closed form at A = 4: pi / (pi - arccos(1/8))
+  EXPECT_NEAR(one_dof_frequency(0.5, 4.0), kPi / (kPi - std::acos(0.125)), 1e-15);
+}
+
+TEST(Modes, OneDofRepetitionsHaveMultiplicityK) {
+  // one dof: the energy fixes the orbit, so every k-IPP is the 1-IPP repeated k times (frequency divided by k)
+  const ModesResult r = run(one_dof(1.0), {2, 3}, 3.0);
+  ASSERT_EQ(r.families.size(), 2u);
+  for (const ModeFamily& f : r.families) {
+    EXPECT_EQ(f.multiplicity, f.k) << f.label;
+    for (const ModePoint& p : f.points)
+      EXPECT_NEAR(p.frequency * f.k, one_dof_frequency(1.0, std::sqrt(2.0 * p.energy)), 1e-9) << f.label;
+  }
+}
+
+TEST(Modes, JacobianMatchesCentralDifferences) {
+  const KippModel model(chain5());
+  for (int k : {1, 2, 3, 4, 5})
+    for (KippSymmetry s : symmetries_for(k)) {
+      const KippShape shape{k, s, model.n()};
+      Eigen::VectorXd y = grazing_start(model, shape, 1);
+      y += 0.1 * Eigen::VectorXd::LinSpaced(y.size(), -1.0, 1.0);  // away from any solution: a generic point
+      Eigen::VectorXd F, Fp, Fm;
+      Eigen::MatrixXd J, Jd;
+      kipp_residual(model, shape, y, F, J);
+      ASSERT_EQ(J.rows(), shape.equations());
+      ASSERT_EQ(J.cols(), shape.unknowns());
+      Eigen::MatrixXd Jfd(J.rows(), J.cols());
+      for (int i = 0; i < y.size(); ++i) {
+        const double h = 1e-6;
+        Eigen::VectorXd yp = y, ym = y;
+        yp(i) += h;
+        ym(i) -= h;
+        kipp_residual(model, shape, yp, Fp, Jd);
+        kipp_residual(model, shape, ym, Fm, Jd);
+        Jfd.col(i) = (Fp - Fm) / (2 * h);
+      }
+      EXPECT_LT((J - Jfd).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + J.cwiseAbs().maxCoeff())) << k << to_string(s);
+    }
+}
+
+// The 1-IPP of half period tau in closed form (docs/modes.md §2), from an eigensolve of its own.
+Eigen::VectorXd one_ipp_closed_form(const System& s, double tau) {
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.K(), s.M());
+  const Eigen::VectorXd w = es.eigenvalues().cwiseSqrt();
+  const Eigen::MatrixXd Phi = es.eigenvectors();
+  const Eigen::VectorXd b = Phi.transpose() * s.w();
+  double sum = 0.0;
+  for (int i = 0; i < w.size(); ++i) sum += b(i) * b(i) / std::tan(w(i) * tau) / w(i);
+  const double c = -s.g0() / sum;
+  Eigen::VectorXd q(w.size());
+  for (int i = 0; i < w.size(); ++i) q(i) = c * b(i) / (w(i) * std::sin(w(i) * tau));
+  return Phi * q;  // physical position at the turning point A
+}
+
+TEST(Modes, OneIppFamilyAgreesWithItsClosedForm) {
+  for (const System& s : {paper_two_dof(), chain5()}) {
+    const ModesResult r = run(s, {1}, 6.0);
+    const KippModel model(s);
+    int checked = 0;
+    for (const ModeFamily& f : r.families)
+      for (const ModePoint& p : f.points) {
+        const int n = s.n();
+        const double tau = p.y(n);
+        const Eigen::VectorXd xA = model.Phi() * p.y.head(n);  // mode shapes may differ in sign: compare x
+        const Eigen::VectorXd expected = one_ipp_closed_form(s, tau);
+        EXPECT_LT((xA - expected).norm(), 1e-8 * (1.0 + expected.norm())) << f.label << " tau " << tau;
+        ++checked;
+      }
+    EXPECT_GE(checked, 20) << s.name();
+  }
+}
+
+TEST(Modes, GrazingStartsAtTheLinearFrequencyOverK) {
+  const System s = chain5();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.K(), s.M());
+  const Eigen::VectorXd w = es.eigenvalues().cwiseSqrt();
+  const Eigen::VectorXd b = es.eigenvectors().transpose() * s.w();
+  const ModesResult r = run(s, {1, 2, 3}, 1e3);
+  int starts = 0;
+  for (const ModeFamily& f : r.families) {
+    if (f.events.front().kind != ModeEventKind::GrazingStart) continue;
+    ++starts;
+    const ModePoint& p = f.points.front();
+    EXPECT_NEAR(p.frequency, w(f.mode) / f.k, 1e-12);
+    EXPECT_NEAR(p.energy, 0.5 * std::pow(w(f.mode) * s.g0() / b(f.mode), 2), 1e-12 * p.energy);
+  }
+  EXPECT_EQ(starts, 5 * 3);  // every mode of the chain sees the contact; one type for k = 1, 2, 3 each
+}
+
+// Near grazing (small margin) an impact is slow and the return is sensitive: a rounding-level error in the gap moves
+// the impact time by about error / speed, and the map's saltation grows like 1 / speed. Measured (chain5, k <= 3):
+// return errors 1e-14..6e-10 at margins above 1e-4, up to 6e-7 at margins 2e-6. The errors are kept apart.
+struct ReturnCheck {
+  int points = 0, impact_mismatches = 0;
+  double max_return_error = 0.0, max_time_error = 0.0;  ///< margin >= 1e-4
+  double max_return_error_near_grazing = 0.0;           ///< margin in (1e-6, 1e-4)
+};
+
+// Simulates each sampled admissible point from its first impact over t_mid + T (t_mid: the middle of its first
+// flight) and compares the states at t_mid and t_mid + T; counts the impacts in between.
+ReturnCheck check_returns(const System& s, const ModesResult& r, int per_family) {
+  const Simulator sim(s);
+  ReturnCheck out;
+  for (const ModeFamily& f : r.families) {
+    std::vector<const ModePoint*> pts;
+    for (const ModePoint& p : f.points)
+      if (p.admissible && p.margin > 1e-6) pts.push_back(&p);
+    const size_t stride = std::max<size_t>(1, pts.size() / per_family);
+    for (size_t i = 0; i < pts.size(); i += stride) {
+      const ModePoint& p = *pts[i];
+      const double T = p.period;
+      const double first_flight = f.k > 1 ? p.impact_times[1] : T;
+      const double t_mid = 0.5 * first_flight;
+      SimulateOptions o;
+      o.duration = t_mid + T;
+      o.restitution = 1.0;
+      o.sample_times = {t_mid};
+      o.sample_events = false;
+      const SimulationResult sr = sim.run(p.x0, p.v0, o);
+      EXPECT_EQ(sr.status, SimulationStatus::Success);
+      ++out.points;
+      if (sr.impacts != f.k || sr.contact_onsets != 0) {
+        ++out.impact_mismatches;
+        ADD_FAILURE() << f.label << " E " << p.energy << ": " << sr.impacts << " impacts, " << sr.contact_onsets
+                      << " contact onsets in one period, expected " << f.k << " impacts";
+        continue;
+      }
+      const Sample& a = sr.samples[1];
+      const Sample& b = sr.samples.back();
+      EXPECT_NEAR(a.t, t_mid, 1e-12 * T);
+      const double scale = p.x0.norm() + p.v0.norm();
+      const double err = ((b.x - a.x).norm() + (b.v - a.v).norm()) / scale;
+      if (std::getenv("SPP_MODES_DEBUG")) std::printf("%s E %g margin %g err %g\n", f.label.c_str(), p.energy, p.margin, err);
+      if (p.margin < 1e-4) {
+        out.max_return_error_near_grazing = std::max(out.max_return_error_near_grazing, err);
+        continue;
+      }
+      out.max_return_error = std::max(out.max_return_error, err);
+      for (int j = 1; j < f.k; ++j)
+        out.max_time_error = std::max(out.max_time_error, std::abs(sr.events[j - 1].t - p.impact_times[j]) / T);
+      out.max_time_error = std::max(out.max_time_error, std::abs(sr.events[f.k - 1].t - T) / T);
+    }
+  }
+  return out;
+}
+
+TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsTwoDof) {
+  const System s = paper_two_dof();
+  const ModesResult r = run(s, {1, 2, 3}, 6.0);
+  const ReturnCheck c = check_returns(s, r, 8);
+  EXPECT_GE(c.points, 30);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+  EXPECT_LT(c.max_time_error, 1e-9);
+  EXPECT_LT(c.max_return_error_near_grazing, 1e-5);
+  std::printf("points %d, return error %.3g (%.3g near grazing), impact time error %.3g of T\n", c.points,
+              c.max_return_error, c.max_return_error_near_grazing, c.max_time_error);
+}
+
+TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsChain5) {
+  const System s = chain5();
+  const ModesResult r = run(s, {1, 2, 3}, 6.0);
+  const ReturnCheck c = check_returns(s, r, 6);
+  EXPECT_GE(c.points, 30);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+  EXPECT_LT(c.max_time_error, 1e-9);
+  EXPECT_LT(c.max_return_error_near_grazing, 1e-5);
+  std::printf("points %d, return error %.3g (%.3g near grazing), impact time error %.3g of T\n", c.points,
+              c.max_return_error, c.max_return_error_near_grazing, c.max_time_error);
+}
+
+TEST(Modes, TwoDofHasGenuineTwoImpactFamilies) {
+  // measured: the doubled 1-IPP of mode 1 has a branch point where genuine 2-IPPs (least period T) leave it
+  const ModesResult r = run(paper_two_dof(), {2}, 5.0);
+  int genuine = 0;
+  for (const ModeFamily& f : r.families) {
+    if (f.multiplicity != 1) continue;
+    ++genuine;
+    ASSERT_GE(f.points.size(), 3u);
+    for (size_t i = 1; i < f.points.size(); ++i) EXPECT_EQ(f.points[i].multiplicity, 1) << f.label;
+  }
+  EXPECT_GE(genuine, 1);
+}
+
+TEST(Modes, InvalidOptionsAndSystemsAreRefused) {
+  EXPECT_THROW(run(chain5(), {}, 1.0), std::invalid_argument);
+  EXPECT_THROW(run(chain5(), {0}, 1.0), std::invalid_argument);
+  EXPECT_THROW(run(chain5(), {1, 1}, 1.0), std::invalid_argument);
+  EXPECT_THROW(run(chain5(), {kMaxImpactsPerPeriod + 1}, 1.0), std::invalid_argument);
+  EXPECT_THROW(run(chain5(), {1}, 0.0), std::invalid_argument);
+  EXPECT_THROW(run(chain5(), {1}, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(run(one_dof(-1.0), {1}, 1.0), std::invalid_argument);  // no free rest position: no grazing start
+}
+
+TEST(Modes, FamiliesStartingAboveEnergyMaxAreNotListed) {
+  // chain5's grazing energies omega_j^2 g0^2 / (2 b_j^2) grow with j; between the first two only mode 1 starts
+  const System s = chain5();
+  const ModesResult all = run(s, {1}, 1e3);
+  ASSERT_EQ(all.families.size(), 5u);
+  std::vector<double> starts;
+  for (const ModeFamily& f : all.families) starts.push_back(f.points.front().energy);
+  std::sort(starts.begin(), starts.end());
+  EXPECT_TRUE(run(s, {1}, 0.5 * starts[0]).families.empty());
+  const ModesResult one = run(s, {1}, 0.5 * (starts[0] + starts[1]));
+  ASSERT_EQ(one.families.size(), 1u);
+  EXPECT_EQ(one.families[0].events.back().kind, ModeEventKind::EnergyMax);
+}
+
+}  // namespace
+}  // namespace spp::modes
