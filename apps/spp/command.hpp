@@ -19,6 +19,8 @@ struct Subcommand {
 
 Subcommand add_solve(CLI::App& app);
 Subcommand add_continue(CLI::App& app);
+/// modes: k-IPP families (nonsmooth modes, e = 1), docs/modes.md.
+Subcommand add_modes(CLI::App& app);
 Subcommand add_trajectory(CLI::App& app);
 Subcommand add_simulate(CLI::App& app);
 Subcommand add_verify(CLI::App& app);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -813,4 +814,64 @@ TEST(Cli, MessagesNameTheOptionGiven) {
   expect_refused_without_output(
       "reduce " + bar.string() + " --modes 3 --out " + red.string() + " --csv " + red.string(),
       "--csv: \"" + red.string() + "\" is also the output of --out", red);
+}
+
+TEST(Cli, ModesWritesTheIssueLayout) {
+  // issue 15's JSON layout: {"system", "families": [{"k", "label", "points": [{"energy", "frequency", "period",
+  // "impact_times", "x0", "v0", "admissible"}], "events"}]}
+  const fs::path js = dir() / "modes.json";
+  fs::remove(js);
+  const CliRun r = run("modes " + kChain + " --k 1..3 --energy-max 2 --json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("spp modes: success"), std::string::npos) << r.out;
+  std::ifstream in(js);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["system"]["n"], 5);
+  ASSERT_GT(j["families"].size(), 3u);
+  std::set<int> ks;
+  for (const auto& f : j["families"]) {
+    ks.insert(f["k"].get<int>());
+    EXPECT_TRUE(f["label"].is_string());
+    ASSERT_GT(f["points"].size(), 0u);
+    ASSERT_GT(f["events"].size(), 0u);
+    for (const auto& p : f["points"]) {
+      for (const char* key : {"energy", "frequency", "period", "impact_times", "x0", "v0", "admissible"})
+        ASSERT_TRUE(p.contains(key)) << key;
+      EXPECT_EQ(p["impact_times"].size(), f["k"].get<size_t>());
+      EXPECT_EQ(p["impact_times"][0], 0.0);
+      EXPECT_NEAR(p["frequency"].get<double>() * p["period"].get<double>(), 2 * std::acos(-1.0), 1e-12);
+      EXPECT_LE(p["energy"].get<double>(), 2.0 * (1 + 1e-9));
+    }
+  }
+  EXPECT_EQ(ks, (std::set<int>{1, 2, 3}));
+  // a single k
+  const CliRun one = run("modes " + kChain + " --k 2 --energy-max 2 --json " + js.string());
+  ASSERT_EQ(one.code, 0) << one.out;
+  std::ifstream in2(js);
+  const auto j2 = nlohmann::json::parse(in2);
+  for (const auto& f : j2["families"]) EXPECT_EQ(f["k"], 2);
+}
+
+TEST(Cli, ModesRejectsBadInput) {
+  const fs::path js = dir() / "modes_bad.json";
+  fs::remove(js);
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--k 0 --energy-max 1", "--k"},
+           {"--k 3..1 --energy-max 1", "--k"},
+           {"--k 1..x --energy-max 1", "--k"},
+           {"--k 1..99 --energy-max 1", "--k"},
+           {"--k 1 --energy-max -1", "energy_max"},
+           {"--k 1 --energy-max 1 --max-step 0", "max_step"}}) {
+    const CliRun r = run("modes " + kChain + " " + args + " --json " + js.string());
+    EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << ": " << r.out;
+    EXPECT_FALSE(fs::exists(js)) << args;
+  }
+  const std::string zero_gap = std::string(SPP_SOURCE_DIR) + "/examples/two_dof_zero_gap.json";
+  const CliRun z = run("modes " + zero_gap + " --k 1 --energy-max 1 --json " + js.string());
+  EXPECT_EQ(z.code, 1) << z.out;
+  EXPECT_NE(z.out.find("g0"), std::string::npos) << z.out;
+  EXPECT_FALSE(fs::exists(js));
+  const CliRun missing = run("modes " + kChain + " --energy-max 1");
+  EXPECT_EQ(missing.code, 1) << missing.out;
 }
