@@ -32,7 +32,7 @@ py::handle& outcome_class() {
 template <class E>
 void bind_outcome(py::module_& m, const char* name, std::initializer_list<E> values, const char* doc) {
   py::list members;
-  for (const E v : values) members.append(py::make_tuple(spp::to_string(v), spp::to_string(v)));
+  for (const E v : values) members.append(py::make_tuple(to_string(v), to_string(v)));  // found by ADL, in spp or spp::modes
   py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
   cls.attr("__doc__") = doc;
   m.attr(name) = cls;
@@ -40,7 +40,7 @@ void bind_outcome(py::module_& m, const char* name, std::initializer_list<E> val
 }
 template <class E>
 py::object outcome(E v) {
-  return outcome_class<E>()(spp::to_string(v));
+  return outcome_class<E>()(to_string(v));
 }
 
 // The options (or their defaults) with the keyword arguments set on them, field by field: one mechanism for every
@@ -107,5 +107,6 @@ void bind_stability(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_continuation(py::module_& m);
 void bind_io(py::module_& m);
+void bind_modes(py::module_& m);
 
 }  // namespace spp::python

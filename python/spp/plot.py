@@ -270,3 +270,44 @@ def multipliers_figure(solutions, path=None, ax=None):
     if own:
         fig.tight_layout()
     return _save(fig, path)
+
+
+def modes_figure(result, solutions=(), path=None, ax=None, admissible_spps_only=True):
+    """Frequency-energy plot of the nonsmooth modes (docs/modes.md): the backbone of every k-IPP family of a
+    spp.modes() result (genuine families solid, coloured by k, gid "k<k>"; repetitions of a shorter orbit thin grey
+    dashes, gid "repetition"), the linear frequencies omega_j as dotted lines (gid "linear"), and the SPPs of
+    `solutions` (solve() solutions or result candidates) as markers, a ring around the transversally stable ones."""
+    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.4, 3.2))
+    ks = sorted({f.k for f in result.families})
+    colors = {k: f"C{i % 10}" for i, k in enumerate(ks)}
+    labelled = set()
+    for f in result.families:
+        a = f.arrays
+        keep = a[:, 2] >= 0
+        if not keep.any():
+            continue
+        if f.multiplicity > 1:
+            ax.plot(a[keep, 0], a[keep, 1], "--", color="0.6", lw=0.6, gid="repetition",
+                    label=None if "rep" in labelled else "repetition of a shorter orbit")
+            labelled.add("rep")
+        else:
+            ax.plot(a[keep, 0], a[keep, 1], "-", color=colors[f.k], lw=1.1, gid=f"k{f.k}",
+                    label=None if f.k in labelled else f"{f.k}-IPP")
+            labelled.add(f.k)
+    for w in result.linear_frequencies:
+        ax.axhline(w, ls=":", color="0.3", lw=0.6, gid="linear")
+    sols = [s for s in solutions if s.admissible or not admissible_spps_only]
+    if sols:
+        _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
+        stable = [(s.energy, 2 * np.pi / s.period) for s in sols if getattr(s, "stable", False)]
+        if stable:
+            a, b = np.array(stable).T
+            ax.scatter(a, b, s=70, facecolors="none", edgecolors="k", lw=1.0, zorder=4, gid="stable",
+                       label="transversally stable SPP")
+    ax.set_xscale("log")
+    ax.set_xlabel("energy $E$ (-)")
+    ax.set_ylabel(r"frequency $2\pi/T$ (-)")
+    ax.legend(fontsize=6, frameon=False)
+    if own:
+        fig.tight_layout()
+    return _save(fig, path)

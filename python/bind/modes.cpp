@@ -1,0 +1,74 @@
+// Python bindings, modes/: k-impact periodic orbits (nonsmooth modes, docs/modes.md).
+#include "common.hpp"
+#include "spp/modes/nonsmooth_modes.hpp"
+
+namespace spp::python {
+
+namespace md = spp::modes;
+
+void bind_modes(py::module_& m) {
+  bind_outcome(m, "ModeEventKind",
+               {md::ModeEventKind::GrazingStart, md::ModeEventKind::BranchStart, md::ModeEventKind::BranchPoint,
+                md::ModeEventKind::ImpactGrazing, md::ModeEventKind::FlightGrazing, md::ModeEventKind::EnergyMax,
+                md::ModeEventKind::Stalled, md::ModeEventKind::NoAdmissibleSide},
+               "ModeEvent.kind");
+  bind_outcome(m, "ModesStatus", {md::ModesStatus::NotRun, md::ModesStatus::Success, md::ModesStatus::Incomplete},
+               "ModesResult.status: incomplete when a family stalled");
+  // Nonsmooth modes: k-IPP families (docs/modes.md). Kinds and statuses as their C++ to_string names.
+  py::class_<md::ModePoint>(m, "ModePoint", "One k-IPP of a family (state just after its first impact)")
+      .def_readonly("energy", &md::ModePoint::energy)
+      .def_readonly("period", &md::ModePoint::period)
+      .def_readonly("frequency", &md::ModePoint::frequency, "2 pi / period")
+      .def_readonly("impact_times", &md::ModePoint::impact_times, "k times in [0, period), first 0")
+      .def_readonly("x0", &md::ModePoint::x0)
+      .def_readonly("v0", &md::ModePoint::v0, "velocity just after the first impact")
+      .def_readonly("admissible", &md::ModePoint::admissible)
+      .def_readonly("margin", &md::ModePoint::margin)
+      .def_readonly("multiplicity", &md::ModePoint::multiplicity, "r > 1: an r-fold repetition of a shorter orbit");
+  py::class_<md::ModeEvent>(m, "ModeEvent")
+      .def_property_readonly("kind", [](const md::ModeEvent& e) { return outcome(e.kind); })
+      .def_readonly("at", &md::ModeEvent::at)
+      .def_readonly("detail", &md::ModeEvent::detail);
+  py::class_<md::ModeFamily>(m, "ModeFamily")
+      .def_readonly("k", &md::ModeFamily::k)
+      .def_property_readonly("symmetry", [](const md::ModeFamily& f) { return std::string(md::to_string(f.symmetry)); })
+      .def_property_readonly("mode", [](const md::ModeFamily& f) { return f.mode + 1; }, "1-based linear mode")
+      .def_readonly("multiplicity", &md::ModeFamily::multiplicity)
+      .def_readonly("label", &md::ModeFamily::label)
+      .def_readonly("points", &md::ModeFamily::points)
+      .def_readonly("events", &md::ModeFamily::events)
+      .def_property_readonly(
+          "arrays",
+          [](const md::ModeFamily& f) {
+            Eigen::MatrixXd a(static_cast<Eigen::Index>(f.points.size()), 3);
+            for (size_t i = 0; i < f.points.size(); ++i)
+              a.row(static_cast<Eigen::Index>(i)) << f.points[i].energy, f.points[i].frequency, f.points[i].margin;
+            return a;
+          },
+          "(N, 3): energy, frequency, margin of every point");
+  py::class_<md::ModesResult>(m, "ModesResult")
+      .def_property_readonly("status", [](const md::ModesResult& r) { return outcome(r.status); })
+      .def_readonly("families", &md::ModesResult::families)
+      .def_readonly("linear_frequencies", &md::ModesResult::linear_frequencies)
+      .def_readonly("corrector_solves", &md::ModesResult::corrector_solves)
+      .def_readonly("seconds", &md::ModesResult::seconds)
+      .def("brief_report", &md::ModesResult::brief_report);
+  m.def(
+      "modes",
+      [](const spp::System& s, const py::object& k, double energy_max, double max_step, bool branch_points) {
+        md::ModesOptions o;
+        if (py::isinstance<py::int_>(k)) o.k_values = {k.cast<int>()};
+        else o.k_values = k.cast<std::vector<int>>();
+        o.energy_max = energy_max;
+        o.max_step = max_step;
+        o.branch_points = branch_points;
+        o.validate();
+        py::gil_scoped_release release;
+        return md::nonsmooth_modes(s, o);
+      },
+      "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true,
+      "k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: an int "
+      "or a list. Raises ValueError.");
+}
+
+}  // namespace spp::python

@@ -1,0 +1,67 @@
+"""spp.modes (k-IPP families, docs/modes.md) and its frequency-energy figure."""
+import math
+import os
+
+import matplotlib.image as mpimg
+import numpy as np
+import pytest
+
+import spp
+from spp import plot
+
+SRC = os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def test_one_dof_backbone_is_the_closed_form():
+    # x'' + x = 0 against a stop at g0, e = 1: frequency pi / (pi - arccos(g0 / A)), E = A^2 / 2 (issue 15)
+    g0 = 0.5
+    s = spp.System(np.eye(1), np.eye(1), [-1.0], g0)
+    r = spp.modes(s, k=1, energy_max=4.0)
+    assert r.status == "success"
+    (f,) = r.families
+    e, freq, margin = f.arrays.T
+    amp = np.sqrt(2 * e)
+    assert np.allclose(freq, math.pi / (math.pi - np.arccos(g0 / amp)), rtol=1e-10, atol=0)
+    assert (margin >= 0).all() and len(e) > 10
+
+
+def test_points_return_in_the_simulator_with_k_impacts():
+    s = spp.two_dof()
+    r = spp.modes(s, k=[1, 2, 3], energy_max=3.0)
+    checked = 0
+    for f in r.families:
+        for p in f.points[1::7]:
+            if p.margin < 1e-4:
+                continue
+            sim = spp.simulate(s, p.x0, p.v0, duration=p.period * (1 - 1e-6), restitution=1.0)
+            assert sim.impacts == f.k - 1, f.label  # the k-th impact is the return, at t = period
+            checked += 1
+    assert checked >= 10
+
+
+def test_modes_figure_draws_backbones_linear_frequencies_and_spps(tmp_path):
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    r = spp.modes(s, k=[1, 2], energy_max=8.0)
+    sols = [x for x in spp.solve(s, t1_max=12, t2_max=12).solutions if x.admissible]
+    fig = plot.modes_figure(r, sols, path=tmp_path / "modes.png")
+    ax = fig.axes[0]
+    gids = [ln.get_gid() for ln in ax.lines]
+    assert gids.count("linear") == 5
+    assert "k1" in gids and "repetition" in gids
+    k1 = [ln for ln in ax.lines if ln.get_gid() == "k1"][0]
+    e, fr = k1.get_data()
+    fam = [f for f in r.families if f.k == 1 and f.multiplicity == 1][0]
+    assert np.allclose(e, fam.arrays[fam.arrays[:, 2] >= 0, 0])
+    marked = {c.get_gid(): c.get_offsets() for c in ax.collections}
+    assert len(marked["admissible"]) == len(sols)
+    assert mpimg.imread(tmp_path / "modes.png").shape[2] in (3, 4)
+
+
+def test_invalid_arguments_raise_value_error():
+    s = spp.two_dof()
+    with pytest.raises(ValueError, match="k"):
+        spp.modes(s, k=0, energy_max=1.0)
+    with pytest.raises(ValueError, match="energy_max"):
+        spp.modes(s, k=1, energy_max=-1.0)
+    with pytest.raises(ValueError, match="g0"):
+        spp.modes(spp.two_dof(g0=0.0), k=1, energy_max=1.0)
