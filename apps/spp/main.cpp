@@ -1,6 +1,6 @@
-// spp: command-line tool. Each subcommand (one file each: solve.cpp, continue.cpp, modes.cpp, trajectory.cpp, simulate.cpp,
-// verify.cpp, figures.cpp, generate.cpp, reduce.cpp) registers its options and runs: parse -> options -> validate ->
-// run -> write (atomically, every output prepared before any is written).
+// spp: command-line tool. Each subcommand (one file each: solve.cpp, continue.cpp, modes.cpp, trajectory.cpp,
+// simulate.cpp, verify.cpp, figures.cpp, generate.cpp, reduce.cpp) registers its options and runs: parse -> options ->
+// validate -> run -> write (atomically, every output prepared before any is written).
 // Exit codes: 0 success, 1 invalid input, usage error, failed run or internal error (message on stderr; an internal
 // error, a defect of spp, says so), 3 verify: a simulation disagrees with the solver's admissibility.
 
@@ -33,9 +33,9 @@ int main(int argc, char** argv) {
       "error, failed run, out of memory or internal error (one message on stderr naming what and where; no output "
       "file written); 3 spp verify: a simulation disagrees with the solver's admissibility; 130 spp solve stopped "
       "by Ctrl-C (what was found is written, status incomplete).");
-  std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app), spp::cli::add_continue(app), spp::cli::add_modes(app),
-                                                spp::cli::add_trajectory(app), spp::cli::add_simulate(app),
-                                                spp::cli::add_verify(app)};
+  std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app),    spp::cli::add_continue(app),
+                                                spp::cli::add_modes(app),    spp::cli::add_trajectory(app),
+                                                spp::cli::add_simulate(app), spp::cli::add_verify(app)};
   for (spp::cli::Subcommand& f : spp::cli::add_figures(app)) commands.push_back(std::move(f));
   commands.push_back(spp::cli::add_generate(app));
   commands.push_back(spp::cli::add_reduce(app));

@@ -50,9 +50,9 @@ std::string table(const modes::ModesResult& r) {
   os << line;
   int i = 0;
   for (const modes::ModeFamily& f : r.families) {
-    std::snprintf(line, sizeof line, "%4d %3d %-44s %6zu %12.6g %12.6g %11.7g %11.7g  %s\n", i++, f.k,
-                  f.label.c_str(), f.points.size(), f.points.front().energy, f.points.back().energy,
-                  f.points.front().frequency, f.points.back().frequency, modes::to_string(f.events.back().kind));
+    std::snprintf(line, sizeof line, "%4d %3d %-44s %6zu %12.6g %12.6g %11.7g %11.7g  %s\n", i++, f.k, f.label.c_str(),
+                  f.points.size(), f.points.front().energy, f.points.back().energy, f.points.front().frequency,
+                  f.points.back().frequency, modes::to_string(f.events.back().kind));
     os << line;
   }
   return os.str();

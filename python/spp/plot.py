@@ -307,7 +307,7 @@ def modes_figure(result, solutions=(), path=None, ax=None, admissible_spps_only=
     ax.set_xscale("log")
     ax.set_xlabel("energy $E$ (-)")
     ax.set_ylabel(r"frequency $2\pi/T$ (-)")
-    ax.legend(fontsize=6, frameon=False)
+    ax.legend(fontsize=6, frameon=False, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     if own:
         fig.tight_layout()
     return _save(fig, path)

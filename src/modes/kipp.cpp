@@ -178,8 +178,7 @@ KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen
   for (int j = 0; j <= m; ++j) {
     const double tau = y(t0 + j);
     const detail::CosineSum g = detail::CosineSum::from_cos_sin(
-        g0, (b.array() * q.array()).matrix(),
-        (b.array() * p.array() / omega.array()).matrix(), omega);
+        g0, (b.array() * q.array()).matrix(), (b.array() * p.array() / omega.array()).matrix(), omega);
     const bool left_impact = j > 0 || starts_at_impact;
     const bool right_impact = j < m || shape.symmetry != KippSymmetry::FlightFlight;
     Eigen::VectorXd qe = q, pe = p;
@@ -197,6 +196,10 @@ KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen
       const double hi = right_impact ? tau - 0.5 * v_in / M2 : tau;
       if (lo < hi) {
         const detail::CosineMinimum mn = detail::minimize(g, lo, hi, rel_tol * g0);
+        if (mn.value < min_gap) {
+          out.min_gap_flight = j;
+          out.min_gap_time = mn.t;
+        }
         min_gap = std::min(min_gap, mn.value);
         certified = certified && mn.certified;
       } else {
@@ -271,7 +274,7 @@ Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, in
     for (int j = 0; j <= m; ++j) y(t0 + j) = T;
   } else {
     y(mode) = a * (bj > 0 ? 1.0 : -1.0);  // A the far turning point: gap 2 g0
-    y(t0) = 0.5 * T;  // to the first touch; then a whole period between touches
+    y(t0) = 0.5 * T;                      // to the first touch; then a whole period between touches
     for (int j = 1; j <= m; ++j) y(t0 + j) = T;
     if (shape.symmetry == KippSymmetry::FlightFlight) y(t0 + m) = 0.5 * T;  // B the far turning point again
   }

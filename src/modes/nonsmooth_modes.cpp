@@ -16,6 +16,7 @@ const char* to_string(ModeEventKind kind) {
   switch (kind) {
     case ModeEventKind::GrazingStart: return "grazing_start";
     case ModeEventKind::BranchStart: return "branch_start";
+    case ModeEventKind::GrazingContinuation: return "grazing_continuation";
     case ModeEventKind::BranchPoint: return "branch_point";
     case ModeEventKind::ImpactGrazing: return "impact_grazing";
     case ModeEventKind::FlightGrazing: return "flight_grazing";
@@ -44,12 +45,15 @@ void ModesOptions::validate() const {
       detail::invalid_option(where, "k", k, "in [1, " + std::to_string(kMaxImpactsPerPeriod) + "]");
     if (!seen.insert(k).second) detail::invalid_option(where, "k", k, "listed once");
   }
-  if (!(energy_max > 0) || !std::isfinite(energy_max)) detail::invalid_option(where, "energy_max", energy_max, "> 0 and finite");
+  if (!(energy_max > 0) || !std::isfinite(energy_max))
+    detail::invalid_option(where, "energy_max", energy_max, "> 0 and finite");
   if (!(max_step > 0) || !(max_step <= 1)) detail::invalid_option(where, "max_step", max_step, "in (0, 1]");
-  if (!(min_step > 0) || !(min_step < max_step)) detail::invalid_option(where, "min_step", min_step, "in (0, max_step)");
+  if (!(min_step > 0) || !(min_step < max_step))
+    detail::invalid_option(where, "min_step", min_step, "in (0, max_step)");
   if (!(max_turn > 0) || !(max_turn < 1.5)) detail::invalid_option(where, "max_turn", max_turn, "in (0, 1.5)");
   if (max_points < 2) detail::invalid_option(where, "max_points", max_points, "at least 2");
-  if (!(locate_tol > 0) || !(locate_tol < max_step)) detail::invalid_option(where, "locate_tol", locate_tol, "in (0, max_step)");
+  if (!(locate_tol > 0) || !(locate_tol < max_step))
+    detail::invalid_option(where, "locate_tol", locate_tol, "in (0, max_step)");
 }
 
 std::string ModesResult::brief_report() const {
@@ -76,7 +80,9 @@ struct Tracer {
   const KippModel& model;
   const ModesOptions& options;
   ModesResult& result;
-  Eigen::VectorXd D;  // y = D z
+  Eigen::VectorXd D;            // y = D z
+  std::set<int> wanted;         // the requested k
+  std::vector<size_t> pending;  // families ending at flight_grazing, to continue with k + 2 impacts
 
   Eigen::VectorXd scales(const KippShape& shape) const {
     const double bn = model.b().norm(), g0 = model.g0();
@@ -105,7 +111,9 @@ struct Tracer {
     cont::CorrectorOptions co;
     co.step_tol = 1e-11;
     co.max_iterations = 15;
-    const auto lin = [&](const Eigen::VectorXd& zz, Eigen::VectorXd& F, Eigen::MatrixXd& J) { linearize(shape, zz, F, J); };
+    const auto lin = [&](const Eigen::VectorXd& zz, Eigen::VectorXd& F, Eigen::MatrixXd& J) {
+      linearize(shape, zz, F, J);
+    };
     const cont::CorrectorResult r = cont::correct_pseudo_arclength(lin, z_pred, tau, z, co);
     if (!r.converged) return false;
     // the durations must stay positive: a flight of zero length is two impacts merging
@@ -154,7 +162,8 @@ struct Tracer {
     z_event = z0;
     for (int it = 0; it < 200 && hi - lo > options.locate_tol; ++it) {
       const double s = 0.5 * (lo + hi);
-      if (!correct(shape, z0 + s * tau, tau, z)) return false;
+      // at a branch point the bordered system is singular and the corrector may fail close to it: keep what was found
+      if (!correct(shape, z0 + s * tau, tau, z)) return it > 0;
       if ((phi(z) >= 0) == sign_lo) {
         lo = s;
         z_event = z;
@@ -206,7 +215,9 @@ struct Tracer {
       // admissibility lost between z and zn (prev admissible, or the start at margin 0)
       if (p.margin < 0) {
         Eigen::VectorXd ze;
-        const auto margin = [&](const Eigen::VectorXd& zz) { return kipp_orbit(model, shape, (D.array() * zz.array()).matrix()).margin; };
+        const auto margin = [&](const Eigen::VectorXd& zz) {
+          return kipp_orbit(model, shape, (D.array() * zz.array()).matrix()).margin;
+        };
         locate(shape, z, tau, h, margin, ze);
         const ModePoint pe = point(shape, ze);  // the last admissible point, to locate_tol
         const bool by_speed = speed_limited(shape, zn);
@@ -281,6 +292,53 @@ struct Tracer {
     return false;
   }
 
+  void note(size_t index) {
+    const ModeFamily& f = result.families[index];
+    if (!f.events.empty() && f.events.back().kind == ModeEventKind::FlightGrazing && wanted.count(f.k + 2))
+      pending.push_back(index);
+  }
+
+  // The family with k + 2 impacts that continues family `index` past its flight_grazing end.
+  void follow_grazing(size_t index) {
+    const ModeFamily src = result.families[index];  // a copy: result.families grows below
+    const KippShape shape{src.k, src.symmetry, model.n()};
+    const Eigen::VectorXd& y = src.points.back().y;
+    const KippOrbit o = kipp_orbit(model, shape, y);
+    const int j = o.min_gap_flight, t0 = shape.first_tau(), m = shape.m();
+    if (j < 0) return;
+    const double tau = y(t0 + j), tg = o.min_gap_time;
+    const bool turning_start = j == 0 && shape.symmetry != KippSymmetry::ImpactImpact;
+    const bool turning_end = j == m && shape.symmetry == KippSymmetry::FlightFlight;
+    if ((turning_start && tg < 1e-6 * tau) || (turning_end && tau - tg < 1e-6 * tau)) return;  // at a symmetric point
+    const KippShape next{src.k + 2, src.symmetry, model.n()};
+    Eigen::VectorXd y2(next.unknowns());
+    y2.head(t0) = y.head(t0);
+    for (int i = 0; i < j; ++i) y2(t0 + i) = y(t0 + i);
+    y2(t0 + j) = tg;
+    y2(t0 + j + 1) = tau - tg;
+    for (int i = j + 1; i <= m; ++i) y2(t0 + i + 1) = y(t0 + i);
+    D = scales(next);
+    const Eigen::VectorXd z0 = (y2.array() / D.array()).matrix();
+    ModeFamily g;
+    g.k = next.k;
+    g.symmetry = next.symmetry;
+    g.mode = src.mode;
+    ModePoint p0 = point(next, z0);
+    p0.admissible = true;  // the tangency counted twice: zero speed, gap >= 0
+    g.points.push_back(p0);
+    add_event(g, ModeEventKind::GrazingContinuation, p0, "flight_grazing end of " + src.label);
+    Eigen::VectorXd F;
+    Eigen::MatrixXd J;
+    linearize(next, z0, F, J);
+    const Eigen::VectorXd dir = cont::curve_tangent(J, energy_gradient(next, z0));
+    start_family(g, next, z0, dir, nullptr);
+    g.multiplicity = g.points.size() > 1 ? g.points[1].multiplicity : p0.multiplicity;
+    g.label =
+        "k" + std::to_string(next.k) + " " + to_string(next.symmetry) + " past grazing of #" + std::to_string(index);
+    result.families.push_back(g);
+    note(result.families.size() - 1);
+  }
+
   void run_start(const KippShape& shape, int mode) {
     D = scales(shape);
     const Eigen::VectorXd y0 = grazing_start(model, shape, mode);
@@ -291,7 +349,7 @@ struct Tracer {
     f.mode = mode;
     ModePoint p0 = point(shape, z0);
     if (p0.energy >= options.energy_max) return;  // the family starts above the requested energies
-    p0.admissible = true;  // the linear mode touching the obstacle: gap >= 0, impact speeds 0
+    p0.admissible = true;                         // the linear mode touching the obstacle: gap >= 0, impact speeds 0
     f.points.push_back(p0);
     add_event(f, ModeEventKind::GrazingStart, p0, "linear mode " + std::to_string(mode + 1) + " touching the obstacle");
     const Eigen::VectorXd tau = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
@@ -303,6 +361,7 @@ struct Tracer {
     if (f.multiplicity > 1) label << " (" << shape.k / f.multiplicity << "-IPP x" << f.multiplicity << ")";
     f.label = label.str();
     result.families.push_back(f);
+    note(result.families.size() - 1);
     int index = 0;
     for (const auto& [zb, dir] : branches) {
       for (double sign : {1.0, -1.0}) {
@@ -326,6 +385,7 @@ struct Tracer {
            << " of mode " << mode + 1;
         g.label = gl.str();
         result.families.push_back(g);
+        note(result.families.size() - 1);
       }
     }
   }
@@ -339,7 +399,8 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
   const KippModel model(system);
   ModesResult result;
   result.linear_frequencies = model.omega();
-  Tracer tracer{model, options, result, {}};
+  Tracer tracer{model, options, result, {}, {}, {}};
+  tracer.wanted.insert(options.k_values.begin(), options.k_values.end());
   std::vector<int> ks = options.k_values;
   std::sort(ks.begin(), ks.end());
   const double bn = model.b().norm();
@@ -347,6 +408,7 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
     for (KippSymmetry s : symmetries_for(k))
       for (int j = 0; j < system.n(); ++j)
         if (std::abs(model.b()(j)) > 1e-10 * bn) tracer.run_start(KippShape{k, s, system.n()}, j);
+  for (size_t i = 0; i < tracer.pending.size(); ++i) tracer.follow_grazing(tracer.pending[i]);
   result.status = result.stalled_families > 0 ? ModesStatus::Incomplete : ModesStatus::Success;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 #include "spp/core/generators.hpp"
@@ -186,7 +187,8 @@ ReturnCheck check_returns(const System& s, const ModesResult& r, int per_family)
       EXPECT_NEAR(a.t, t_mid, 1e-12 * T);
       const double scale = p.x0.norm() + p.v0.norm();
       const double err = ((b.x - a.x).norm() + (b.v - a.v).norm()) / scale;
-      if (std::getenv("SPP_MODES_DEBUG")) std::printf("%s E %g margin %g err %g\n", f.label.c_str(), p.energy, p.margin, err);
+      if (std::getenv("SPP_MODES_DEBUG"))
+        std::printf("%s E %g margin %g err %g\n", f.label.c_str(), p.energy, p.margin, err);
       if (p.margin < 1e-4) {
         out.max_return_error_near_grazing = std::max(out.max_return_error_near_grazing, err);
         continue;
@@ -237,6 +239,53 @@ TEST(Modes, TwoDofHasGenuineTwoImpactFamilies) {
     for (size_t i = 1; i < f.points.size(); ++i) EXPECT_EQ(f.points[i].multiplicity, 1) << f.label;
   }
   EXPECT_GE(genuine, 1);
+}
+
+TEST(Modes, GrazingContinuationStartsWhereItsFamilyGrazes) {
+  // chain5: a family ending at flight_grazing is continued with k + 2 impacts from that very orbit
+  const ModesResult r = run(chain5(), {1, 2, 3}, 10.0);
+  int continued = 0;
+  for (const ModeFamily& g : r.families) {
+    if (g.events.front().kind != ModeEventKind::GrazingContinuation) continue;
+    ++continued;
+    const ModePoint& p0 = g.points.front();
+    bool found = false;
+    for (const ModeFamily& f : r.families)
+      if (f.k == g.k - 2 && f.events.back().kind == ModeEventKind::FlightGrazing &&
+          std::abs(f.points.back().energy - p0.energy) <= 1e-12 * p0.energy &&
+          std::abs(f.points.back().period - p0.period) <= 1e-12 * p0.period)
+        found = true;
+    EXPECT_TRUE(found) << g.label;
+    ASSERT_GE(g.points.size(), 3u) << g.label;
+    EXPECT_EQ(g.points[1].multiplicity, 1) << g.label;
+  }
+  EXPECT_GE(continued, 2);  // measured: from the 1-IPP families of modes 1 and 2
+}
+
+TEST(Modes, GrazingContinuationsComeCloseToTheChainSpps) {
+  // The paper's conjecture (§1), measured on chain5: the distance on the frequency-energy plot,
+  // d = sqrt(ln(E / E_spp)^2 + ((f - f_spp) / f_spp)^2), from an SPP to the nearest admissible k-IPP of least period T.
+  // SPPs #0 and #6 of README's table (spp solve examples/chain5.json --t1-max 12 --t2-max 12: period 7.487532475,
+  // energy 7.159087587; period 19.69710843, energy 0.7006666623). Measured 2026-11-24: #0 0.0165, 0.0036, 0.0057 and
+  // #6 0.040, 0.0097, 0.0030 for k = 1, 3, 5 (docs/modes.md, README "Nonsmooth modes").
+  const ModesResult r = run(chain5(), {1, 2, 3, 4, 5}, 20.0);
+  const auto distance = [&](int k, double E, double T) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const ModeFamily& f : r.families)
+      if (f.k == k && f.multiplicity == 1)
+        for (const ModePoint& p : f.points)
+          if (p.admissible)
+            best = std::min(best, std::hypot(std::log(p.energy / E), (p.frequency - 2 * kPi / T) / (2 * kPi / T)));
+    return best;
+  };
+  EXPECT_LT(distance(1, 7.159087587, 7.487532475), 0.02);
+  EXPECT_LT(distance(3, 7.159087587, 7.487532475), 0.005);
+  EXPECT_LT(distance(5, 7.159087587, 7.487532475), 0.01);
+  const double d1 = distance(1, 0.7006666623, 19.69710843), d3 = distance(3, 0.7006666623, 19.69710843),
+               d5 = distance(5, 0.7006666623, 19.69710843);
+  EXPECT_LT(d3, d1);
+  EXPECT_LT(d5, d3);
+  EXPECT_LT(d5, 0.005);
 }
 
 TEST(Modes, InvalidOptionsAndSystemsAreRefused) {

@@ -37,9 +37,9 @@ class KippModel {
   explicit KippModel(const System& system);
   const System& system() const { return system_; }
   int n() const { return system_.n(); }
-  const Eigen::VectorXd& omega() const { return omega_; }  ///< (n) free frequencies, ascending, rad / time unit
-  const Eigen::MatrixXd& Phi() const { return Phi_; }      ///< n x n, M-normalised mode shapes
-  const Eigen::VectorXd& b() const { return b_; }          ///< (n) Phi^T w: modal gap weights
+  const Eigen::VectorXd& omega() const { return omega_; }      ///< (n) free frequencies, ascending, rad / time unit
+  const Eigen::MatrixXd& Phi() const { return Phi_; }          ///< n x n, M-normalised mode shapes
+  const Eigen::VectorXd& b() const { return b_; }              ///< (n) Phi^T w: modal gap weights
   const Eigen::MatrixXd& tangent_basis() const { return Q_; }  ///< n x (n-1) orthonormal basis of b^perp
   double g0() const { return system_.g0(); }
 
@@ -69,15 +69,19 @@ void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::
 
 /// One k-IPP in physical terms, time origin at its first impact (the first impact after the symmetric point A).
 struct KippOrbit {
-  double period = 0.0;        ///< T, time units
-  double energy = 0.0;        ///< 1/2 v^T M v + 1/2 x^T K x
-  std::vector<double> impact_times;  ///< k times in [0, T), first 0, ascending
-  Eigen::VectorXd x0, v0;     ///< (n) state just after the first impact (v0: post-impact velocity)
+  double period = 0.0;                ///< T, time units
+  double energy = 0.0;                ///< 1/2 v^T M v + 1/2 x^T K x
+  std::vector<double> impact_times;   ///< k times in [0, T), first 0, ascending
+  Eigen::VectorXd x0, v0;             ///< (n) state just after the first impact (v0: post-impact velocity)
   std::vector<double> impact_speeds;  ///< k incoming normal speeds -w^T v- (> 0: towards the obstacle)
   /// Smallest gap over the open flights, certified by Taylor bounds (docs/modes.md §4); 0 when a speed is <= 0
   /// (the flight ends are then not separated from zero).
   double min_flight_gap = 0.0;
   bool gap_certified = false;
+  /// Where min_flight_gap is reached: the flight of the half orbit (0..m, from the symmetric point A) and the time
+  /// from that flight's start; -1 when no flight was minimised.
+  int min_gap_flight = -1;
+  double min_gap_time = 0.0;
   /// Signed admissibility margin, continuous along a family: min(min_flight_gap / g0, min speed / speed scale),
   /// speed scale = g0 * omega_max * |b|. >= 0 admissible (to the tolerance of the minimisation).
   double margin = 0.0;

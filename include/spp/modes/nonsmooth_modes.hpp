@@ -10,6 +10,10 @@
 //     not followed). Families not connected to a repetition (isolas) are not found.
 //   - Continuation: pseudo-arclength with the project's corrector (continuation/corrector.hpp) on the unknowns of
 //     kipp.hpp scaled by g0 / |b| (positions), g0 omega_max / |b| (speed) and 2 pi / omega_min (durations).
+//   - Grazing continuations: where a family with k impacts ends at a flight_grazing event inside a flight of its half
+//     orbit, that orbit is also a solution with k + 2 impacts (the tangency and its mirror, at zero speed); the
+//     family with k + 2 impacts is followed from there when k + 2 is requested (and so on: k + 4, ...). A tangency at
+//     a symmetric point (it would add one impact and change the symmetry type) is not followed.
 //   - Events, located by bisection along the arclength: admissibility lost (an impact speed reaches 0: ImpactGrazing;
 //     the gap touches 0 inside a flight: FlightGrazing), energy_max reached; the family ends there.
 // Units: energy 1/2 v^T M v + 1/2 x^T K x, times and periods in the time unit of M and K, frequency 2 pi / T (rad per
@@ -28,14 +32,14 @@ namespace spp::modes {
 inline constexpr int kMaxImpactsPerPeriod = 40;
 
 struct ModesOptions {
-  std::vector<int> k_values;    ///< impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required)
-  double energy_max = 0.0;      ///< families end where the energy reaches it (required, > 0)
-  double max_step = 0.05;       ///< largest continuation step, in scaled arclength
-  double min_step = 1e-9;       ///< a family whose step falls below this ends with a Stalled event
-  double max_turn = 0.3;        ///< largest angle (rad) between successive tangents
-  int max_points = 4000;        ///< per family
-  double locate_tol = 1e-12;    ///< events located to this, in scaled arclength
-  bool branch_points = true;    ///< follow the genuine k-IPPs that branch off the k-fold repetitions
+  std::vector<int> k_values;  ///< impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required)
+  double energy_max = 0.0;    ///< families end where the energy reaches it (required, > 0)
+  double max_step = 0.05;     ///< largest continuation step, in scaled arclength
+  double min_step = 1e-9;     ///< a family whose step falls below this ends with a Stalled event
+  double max_turn = 0.3;      ///< largest angle (rad) between successive tangents
+  int max_points = 4000;      ///< per family
+  double locate_tol = 1e-12;  ///< events located to this, in scaled arclength
+  bool branch_points = true;  ///< follow the genuine k-IPPs that branch off the k-fold repetitions
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
 };
@@ -51,13 +55,16 @@ struct ModePoint {
 };
 
 enum class ModeEventKind {
-  GrazingStart,   ///< the family's first point: a linear mode touching the obstacle (impact speeds 0)
-  BranchStart,    ///< the family's first point: a branch point on a k-fold repetition
-  BranchPoint,    ///< a branch point met along the family (a family of genuine k-IPPs leaves it there)
-  ImpactGrazing,  ///< admissibility lost: an impact's incoming speed reaches 0 (the family ends)
-  FlightGrazing,  ///< admissibility lost: the gap touches 0 inside a flight, an extra contact (the family ends)
-  EnergyMax,      ///< the energy reached energy_max (the family ends)
-  Stalled,        ///< the step fell below min_step or max_points was reached (the family ends)
+  GrazingStart,  ///< the family's first point: a linear mode touching the obstacle (impact speeds 0)
+  BranchStart,   ///< the family's first point: a branch point on a k-fold repetition
+  /// the family's first point: the flight_grazing end of a family with k - 2 impacts, whose tangency inside a flight
+  /// (and its mirror image) are counted as two impacts of zero speed
+  GrazingContinuation,
+  BranchPoint,      ///< a branch point met along the family (a family of genuine k-IPPs leaves it there)
+  ImpactGrazing,    ///< admissibility lost: an impact's incoming speed reaches 0 (the family ends)
+  FlightGrazing,    ///< admissibility lost: the gap touches 0 inside a flight, an extra contact (the family ends)
+  EnergyMax,        ///< the energy reached energy_max (the family ends)
+  Stalled,          ///< the step fell below min_step or max_points was reached (the family ends)
   NoAdmissibleSide  ///< neither direction from the start is admissible (the family is its start only)
 };
 const char* to_string(ModeEventKind kind);
@@ -71,7 +78,7 @@ struct ModeEvent {
 struct ModeFamily {
   int k = 1;
   KippSymmetry symmetry = KippSymmetry::FlightImpact;
-  int mode = -1;       ///< 0-based linear mode of the grazing start (of the repetition it branches from)
+  int mode = -1;         ///< 0-based linear mode of the grazing start (of the repetition it branches from)
   int multiplicity = 1;  ///< of its points past the start: k for a repetition of a 1-IPP, 1 for a genuine k-IPP
   std::string label;
   std::vector<ModePoint> points;  ///< in the order traced (energy increasing from a grazing start)
