@@ -83,7 +83,7 @@ struct KippOrbit {
   int min_gap_flight = -1;
   double min_gap_time = 0.0;
   /// Signed admissibility margin, continuous along a family: min(min_flight_gap / g0, min speed / speed scale),
-  /// speed scale = g0 * omega_max * |b|. >= 0 admissible (to the tolerance of the minimisation).
+  /// speed scale = g0 * omega_max. >= 0 admissible (to the tolerance of the minimisation).
   double margin = 0.0;
   bool speed_limited = false;  ///< the margin is set by an impact speed (else by a flight gap)
   /// r > 1 when the orbit is an r-fold repetition of an orbit with k / r impacts (its least period is T / r).

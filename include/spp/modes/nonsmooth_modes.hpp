@@ -7,7 +7,7 @@
 //     multiplicity k. Genuine k-IPPs (multiplicity 1) branch off these repetitions where the augmented Jacobian
 //     [J; tangent^T] is singular (a simple branch point, located by bisection on the sign of its determinant); both
 //     directions of the other branch are followed as families of their own (one level: branch points on those are
-//     not followed). Families not connected to a repetition (isolas) are not found.
+//     not followed). Families reached from none of these starts (isolas) are not found.
 //   - Continuation: pseudo-arclength with the project's corrector (continuation/corrector.hpp) on the unknowns of
 //     kipp.hpp scaled by g0 / |b| (positions), g0 omega_max / |b| (speed) and 2 pi / omega_min (durations).
 //   - Grazing continuations: where a family with k impacts ends at a flight_grazing event inside a flight of its half
@@ -28,7 +28,7 @@
 
 namespace spp::modes {
 
-/// Largest k accepted (the half orbit then has up to 25 flights; beyond, rounding in long flights grows).
+/// Largest k accepted (the half orbit then has up to 21 flights): a bound on the work, not a measured accuracy limit.
 inline constexpr int kMaxImpactsPerPeriod = 40;
 
 struct ModesOptions {
@@ -81,7 +81,7 @@ struct ModeFamily {
   int mode = -1;         ///< 0-based linear mode of the grazing start (of the repetition it branches from)
   int multiplicity = 1;  ///< of its points past the start: k for a repetition of a 1-IPP, 1 for a genuine k-IPP
   std::string label;
-  std::vector<ModePoint> points;  ///< in the order traced (energy increasing from a grazing start)
+  std::vector<ModePoint> points;  ///< in the order traced from its start (its energy need not be monotone)
   std::vector<ModeEvent> events;
 };
 
