@@ -333,8 +333,9 @@ struct Tracer {
     const Eigen::VectorXd dir = cont::curve_tangent(J, energy_gradient(next, z0));
     start_family(g, next, z0, dir, nullptr);
     g.multiplicity = g.points.size() > 1 ? g.points[1].multiplicity : p0.multiplicity;
-    g.label =
-        "k" + std::to_string(next.k) + " " + to_string(next.symmetry) + " past grazing of #" + std::to_string(index);
+    std::ostringstream label;  // not string + string: GCC 12 reports a false -Wrestrict there
+    label << "k" << next.k << " " << to_string(next.symmetry) << " past grazing of #" << index;
+    g.label = label.str();
     result.families.push_back(g);
     note(result.families.size() - 1);
   }
