@@ -3,8 +3,8 @@
 // their backbone curves on the frequency-energy plot (docs/modes.md).
 //   - Starts: for each k, each symmetric type (symmetries_for) and each linear mode j that sees the obstacle, the
 //     grazing start (the mode of amplitude g0 / |b_j| traversed k times). From it the family is the k-fold repetition
-//     of mode j's 1-IPP family (docs/modes.md §3: the equations are regular there, one curve passes): its points have
-//     multiplicity k. Genuine k-IPPs (multiplicity 1) branch off these repetitions where the augmented Jacobian
+//     of mode j's 1-IPP family (observed, docs/modes.md §3; that no other curve leaves it is not proved): its points
+//     have multiplicity k. Genuine k-IPPs (multiplicity 1) branch off these repetitions where the augmented Jacobian
 //     [J; tangent^T] is singular (a simple branch point, located by bisection on the sign of its determinant); both
 //     directions of the other branch are followed as families of their own (one level: branch points on those are
 //     not followed). Families reached from none of these starts (isolas) are not found.
