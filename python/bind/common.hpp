@@ -32,7 +32,8 @@ py::handle& outcome_class() {
 template <class E>
 void bind_outcome(py::module_& m, const char* name, std::initializer_list<E> values, const char* doc) {
   py::list members;
-  for (const E v : values) members.append(py::make_tuple(to_string(v), to_string(v)));  // found by ADL, in spp or spp::modes
+  for (const E v : values)
+    members.append(py::make_tuple(to_string(v), to_string(v)));  // found by ADL, in spp or spp::modes
   py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
   cls.attr("__doc__") = doc;
   m.attr(name) = cls;
@@ -87,14 +88,13 @@ inline void require_real(const py::object& a, const std::string& what) {
                                 py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
 }
 
-
 // The symmetry from the enum or its name ("axial", "point").
 inline spp::Symmetry symmetry_of(const py::object& v) {
   if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
   const std::string name = py::str(v);
   if (const std::optional<spp::Symmetry> s = spp::symmetry_named(name)) return *s;
-  throw std::invalid_argument("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" +
-                              name + "\"");
+  throw std::invalid_argument("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name +
+                              "\"");
 }
 
 // One function per area (python/bind/<area>.cpp), called in this order by module.cpp: types before the functions

@@ -1,9 +1,10 @@
 // Python bindings, continuation/: SPP branches in a parameter.
+#include "spp/continuation/continuation.hpp"
+
 #include <iomanip>
 #include <sstream>
 
 #include "common.hpp"
-#include "spp/continuation/continuation.hpp"
 
 namespace spp::python {
 

@@ -78,7 +78,6 @@ void bind_core(py::module_& m) {
   m.def("two_dof", &spp::two_dof, "m1"_a = 1.0, "m2"_a = 1.0, "k1"_a = 1.0, "k2"_a = 1.0, "g0"_a = 1.0,
         "2-dof system of paper §2.3.");
 
-
   py::class_<spp::ParametricSystem>(m, "ParametricSystem",
                                     "M(mu) = M_constant + mu M_mu, K(mu) likewise, w(mu) likewise, g0 fixed")
       .def(py::init([](const py::object& M0, const py::object& M1, const py::object& K0, const py::object& K1,

@@ -1,9 +1,10 @@
 // Python bindings, io/: result files read back.
+#include "spp/io.hpp"
+
 #include <iomanip>
 #include <sstream>
 
 #include "common.hpp"
-#include "spp/io.hpp"
 
 namespace spp::python {
 

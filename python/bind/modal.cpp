@@ -1,9 +1,10 @@
 // Python bindings, modal/: which equations (Symmetry) and the modal frequencies.
+#include "spp/modal/modal.hpp"
+
 #include <iomanip>
 #include <sstream>
 
 #include "common.hpp"
-#include "spp/modal/modal.hpp"
 
 namespace spp::python {
 

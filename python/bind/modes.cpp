@@ -32,7 +32,8 @@ void bind_modes(py::module_& m) {
   py::class_<md::ModeFamily>(m, "ModeFamily")
       .def_readonly("k", &md::ModeFamily::k)
       .def_property_readonly("symmetry", [](const md::ModeFamily& f) { return std::string(md::to_string(f.symmetry)); })
-      .def_property_readonly("mode", [](const md::ModeFamily& f) { return f.mode + 1; }, "1-based linear mode")
+      .def_property_readonly(
+          "mode", [](const md::ModeFamily& f) { return f.mode + 1; }, "1-based linear mode")
       .def_readonly("multiplicity", &md::ModeFamily::multiplicity)
       .def_readonly("label", &md::ModeFamily::label)
       .def_readonly("points", &md::ModeFamily::points)
@@ -57,8 +58,10 @@ void bind_modes(py::module_& m) {
       "modes",
       [](const spp::System& s, const py::object& k, double energy_max, double max_step, bool branch_points) {
         md::ModesOptions o;
-        if (py::isinstance<py::int_>(k)) o.k_values = {k.cast<int>()};
-        else o.k_values = k.cast<std::vector<int>>();
+        if (py::isinstance<py::int_>(k))
+          o.k_values = {k.cast<int>()};
+        else
+          o.k_values = k.cast<std::vector<int>>();
         o.energy_max = energy_max;
         o.max_step = max_step;
         o.branch_points = branch_points;

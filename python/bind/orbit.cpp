@@ -1,9 +1,10 @@
 // Python bindings, orbit/: Solution, and one period of an SPP (trajectory).
+#include "spp/orbit/orbit.hpp"
+
 #include <iomanip>
 #include <sstream>
 
 #include "common.hpp"
-#include "spp/orbit/orbit.hpp"
 #include "spp/orbit/solution.hpp"
 #include "spp/search/solver.hpp"
 
@@ -62,8 +63,8 @@ void bind_orbit(py::module_& m) {
         }
         spp::OrbitSamples os = spp::sample_orbit(md, sol.orbit, samples);
         return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
-                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(), "t2"_a = sol.t2(),
-                        "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible());
+                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(),
+                        "t2"_a = sol.t2(), "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible());
       },
       "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
       "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
