@@ -99,6 +99,10 @@ inline spp::Symmetry symmetry_of(const py::object& v) {
 
 // One function per area (python/bind/<area>.cpp), called in this order by module.cpp: types before the functions
 // that return them.
+/// The SolveResult of a result file with its system as attribute `system` (python/bind/io.cpp): load_result and
+/// SolveResult.from_json.
+py::object result_with_system(const std::string& path);
+
 void bind_core(py::module_& m);
 void bind_modal(py::module_& m);
 void bind_orbit(py::module_& m);

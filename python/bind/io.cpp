@@ -8,19 +8,18 @@
 
 namespace spp::python {
 
+py::object result_with_system(const std::string& path) {
+  spp::System system = spp::load_result_system(path);
+  py::object result = py::cast(spp::load_result(path));
+  result.attr("system") = std::move(system);
+  return result;
+}
+
 void bind_io(py::module_& m) {
-  m.def(
-      "load_result",
-      [](const std::string& path) {
-        spp::System system = spp::load_result_system(path);
-        py::object result = py::cast(spp::load_result(path));
-        result.attr("system") = std::move(system);
-        return result;
-      },
-      "path"_a,
-      "The SolveResult of a result file (spp solve --json, SolveResult.to_json), as C++'s spp::load_result, with its "
-      "system as attribute system (the same as SolveResult.from_json). Raises ValueError naming the file and the "
-      "field.");
+  m.def("load_result", &result_with_system, "path"_a,
+        "The SolveResult of a result file (spp solve --json, SolveResult.to_json), as C++'s spp::load_result, with its "
+        "system as attribute system (the same as SolveResult.from_json). Raises ValueError naming the file and the "
+        "field.");
 }
 
 }  // namespace spp::python

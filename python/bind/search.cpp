@@ -137,14 +137,7 @@ void bind_search(py::module_& m) {
             return std::make_pair(spp::parse_result(text, "pickled SolveResult"), attrs);
           }))
       .def_static(
-          "from_json",
-          [](const std::string& path) {
-            spp::System system = spp::load_result_system(path);
-            py::object result = py::cast(spp::load_result(path));
-            result.attr("system") = std::move(system);
-            return result;
-          },
-          "path"_a,
+          "from_json", &result_with_system, "path"_a,
           "The SolveResult of a result file (spp solve --json, SolveResult.to_json), with its system as attribute "
           "system: the status, solutions, stats, uncertified regions and warnings that were written. Raises "
           "ValueError naming the file and the field.");

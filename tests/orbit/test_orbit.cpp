@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "paper_examples.hpp"
 #include "physical_flow.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
@@ -14,22 +15,11 @@
 #include "spp/stability/floquet.hpp"
 
 using namespace spp;
+using spp::test::chain5;
+using spp::test::rod4;
+using spp::test::solve_window;
 
 namespace {
-
-SolveResult solve_window(const System& s, double t1max, double t2max) {
-  SolveOptions o;
-  o.t1_max = t1max;
-  o.t2_max = t2max;
-  return solve(s, o);
-}
-
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
-System rod4() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
-}
 
 // All the properties the issue lists for an admissible SPP, checked with physical flows.
 void check_admissible_orbit(const System& s, const Solution& sol) {
@@ -173,7 +163,8 @@ TEST(Orbit, ModalCoordinatesOfAnotherBasisAreRefused) {
   const System s = chain5();
   const ModalForm md(s);
   const SolveResult r = solve_window(s, 12.0, 12.0);
-  const auto sol = std::find_if(r.solutions.begin(), r.solutions.end(), [](const Solution& x) { return x.admissible(); });
+  const auto sol =
+      std::find_if(r.solutions.begin(), r.solutions.end(), [](const Solution& x) { return x.admissible(); });
   ASSERT_NE(sol, r.solutions.end());
   EXPECT_NO_THROW(sample_orbit(md, sol->orbit, 11));
   EXPECT_NO_THROW(floquet(md, sol->orbit));
@@ -201,7 +192,8 @@ TEST(Orbit, SolutionReadBackFromItsResultFileSamplesLikeTheOriginal) {
   const SolveResult back = parse_result(result_json(s, r), "rod4 result");
   ASSERT_EQ(back.solutions.size(), r.solutions.size());
   for (size_t i = 0; i < r.solutions.size(); ++i) {
-    const OrbitSamples a = sample_orbit(md, r.solutions[i].orbit, 31), b = sample_orbit(md, back.solutions[i].orbit, 31);
+    const OrbitSamples a = sample_orbit(md, r.solutions[i].orbit, 31),
+                       b = sample_orbit(md, back.solutions[i].orbit, 31);
     EXPECT_LE((a.x - b.x).norm(), 1e-13 * (a.x.norm() + 1.0)) << i;
     EXPECT_LE((a.force - b.force).norm(), 1e-13 * (a.force.norm() + 1.0)) << i;
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "paper_examples.hpp"
 #include "paper_reference.hpp"
 #include "search/evaluator.hpp"
 #include "search/step_certificate.hpp"
@@ -18,12 +19,9 @@
 #include "spp/search/solver.hpp"
 
 using namespace spp;
+using spp::test::chain5;
 
 namespace {
-
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
 
 // The pole-free interval of sorted poles holding x.
 std::pair<double, double> interval(const std::vector<double>& poles, double x) {

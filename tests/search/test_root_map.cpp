@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "paper_examples.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
@@ -11,12 +12,9 @@
 #include "spp/search/solver.hpp"
 
 using namespace spp;
+using spp::test::chain5;
 
-namespace {
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
-}  // namespace
+namespace {}  // namespace
 
 TEST(RootMap, BothConditionsVanishAtEverySpp) {
   const System s = chain5();

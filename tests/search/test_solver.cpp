@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <tuple>
 
+#include "paper_examples.hpp"
 #include "paper_reference.hpp"
 #include "search/cell_trace.hpp"
 #include "spp/core/generators.hpp"
@@ -15,22 +16,11 @@
 #include "spp/search/solver.hpp"
 
 using namespace spp;
+using spp::test::chain5;
+using spp::test::rod4;
+using spp::test::solve_window;
 
 namespace {
-
-SolveResult solve_window(const System& s, double t1max, double t2max) {
-  SolveOptions o;
-  o.t1_max = t1max;
-  o.t2_max = t2max;
-  return solve(s, o);
-}
-
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
-System rod4() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
-}
 
 void check_paper_equations(const System& s, const SolveResult& r) {
   const ref::PaperForm pf(s);

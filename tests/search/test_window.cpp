@@ -11,18 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "paper_examples.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"
 
 using namespace spp;
+using spp::test::chain5;
 
 namespace {
-
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
 
 SolveResult solve_window(const System& s, double a1, double b1, double a2, double b2, bool certify = true) {
   SolveOptions o;
@@ -99,8 +97,8 @@ TEST(Window, RandomTilingsOfThePapersChainWindowGiveTheWholeWindowsRoots) {
     std::vector<double> c1{0.0, 12.0}, c2{0.0, 12.0};
     for (int i = 0; i < n1 - 1; ++i) c1.push_back(u(rng));
     for (int i = 0; i < n2 - 1; ++i) c2.push_back(u(rng));
-    if (trial == 1) c1.push_back(p1[p1.size() / 2] * (1 + 1e-10));      // next to a pole line
-    if (trial == 2) c2.push_back(p2[p2.size() / 3] * (1 - 1e-10));      // next to a pole line
+    if (trial == 1) c1.push_back(p1[p1.size() / 2] * (1 + 1e-10));        // next to a pole line
+    if (trial == 2) c2.push_back(p2[p2.size() / 3] * (1 - 1e-10));        // next to a pole line
     if (trial == 3) c1.push_back(whole.solutions[10].t1() * (1 + 1e-7));  // next to a root
     if (trial == 3) c2.push_back(whole.solutions[20].t2() * (1 - 1e-7));  // next to a root
     std::sort(c1.begin(), c1.end());

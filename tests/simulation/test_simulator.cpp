@@ -4,12 +4,15 @@
 
 #include <cmath>
 
+#include "paper_examples.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 
 using namespace spp;
+using spp::test::chain5;
+using spp::test::rod4;
 
 namespace {
 
@@ -25,13 +28,6 @@ std::vector<double> impact_times(const SimulationResult& r) {
   for (const Event& e : r.events)
     if (e.kind == EventKind::Impact) t.push_back(e.t);
   return t;
-}
-
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
-System rod4() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
 }
 
 }  // namespace

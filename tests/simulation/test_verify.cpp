@@ -5,19 +5,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "paper_examples.hpp"
 #include "spp/io.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/verify.hpp"
 
 using namespace spp;
+using spp::test::chain5;
+using spp::test::rod4;
 
 namespace {
-System rod4() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/rod4.json");
-}
-System chain5() {
-  return load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
-}
 
 std::vector<Solution> spps_of(const System& s, double t1max, double t2max) {
   SolveOptions o;
