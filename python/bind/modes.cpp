@@ -12,8 +12,8 @@ void bind_modes(py::module_& m) {
                 md::ModeEventKind::ImpactGrazing, md::ModeEventKind::FlightGrazing, md::ModeEventKind::EnergyMax,
                 md::ModeEventKind::Stalled, md::ModeEventKind::NoAdmissibleSide},
                "ModeEvent.kind");
-  bind_outcome(m, "ModesStatus", {md::ModesStatus::NotRun, md::ModesStatus::Success, md::ModesStatus::Incomplete},
-               "ModesResult.status: incomplete when a family stalled");
+  bind_outcome(m, "ModesStatus", {md::ModesStatus::NotRun, md::ModesStatus::Traced, md::ModesStatus::Incomplete},
+               "ModesResult.status: traced (every family found followed to a located end; NOT every k-IPP family: docs/modes.md §5) or incomplete (a family stalled)");
   // Nonsmooth modes: k-IPP families (docs/modes.md). Kinds and statuses as their C++ to_string names.
   py::class_<md::ModePoint>(m, "ModePoint", "One k-IPP of a family (state just after its first impact)")
       .def_readonly("energy", &md::ModePoint::energy)

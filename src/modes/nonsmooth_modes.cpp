@@ -30,7 +30,7 @@ const char* to_string(ModeEventKind kind) {
 const char* to_string(ModesStatus s) {
   switch (s) {
     case ModesStatus::NotRun: return "not run";
-    case ModesStatus::Success: return "success";
+    case ModesStatus::Traced: return "traced";
     case ModesStatus::Incomplete: return "incomplete";
   }
   return "?";
@@ -410,7 +410,7 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
       for (int j = 0; j < system.n(); ++j)
         if (std::abs(model.b()(j)) > 1e-10 * bn) tracer.run_start(KippShape{k, s, system.n()}, j);
   for (size_t i = 0; i < tracer.pending.size(); ++i) tracer.follow_grazing(tracer.pending[i]);
-  result.status = result.stalled_families > 0 ? ModesStatus::Incomplete : ModesStatus::Success;
+  result.status = result.stalled_families > 0 ? ModesStatus::Incomplete : ModesStatus::Traced;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -823,7 +823,7 @@ TEST(Cli, ModesWritesTheIssueLayout) {
   fs::remove(js);
   const CliRun r = run("modes " + kChain + " --k 1..3 --energy-max 2 --json " + js.string());
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("spp modes: success"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("spp modes: traced"), std::string::npos) << r.out;
   std::ifstream in(js);
   const auto j = nlohmann::json::parse(in);
   EXPECT_EQ(j["system"]["n"], 5);

@@ -85,8 +85,11 @@ struct ModeFamily {
   std::vector<ModeEvent> events;
 };
 
-/// Success: every family ended at an admissibility or energy_max event; Incomplete: some stalled.
-enum class ModesStatus { NotRun, Success, Incomplete };
+/// Traced: every family found was followed to a located end (an admissibility or energy_max event); Incomplete: some
+/// stalled. Neither is a claim that every k-IPP family was found: only the families connected to the grazing starts
+/// are (docs/modes.md §5); an independent brute force found admissible 1-IPP branches of the 2-dof system and of the
+/// chain that are not connected to them (they leave grazing orbits at multiples of their period). Hence not "success".
+enum class ModesStatus { NotRun, Traced, Incomplete };
 const char* to_string(ModesStatus s);
 
 struct ModesResult {
