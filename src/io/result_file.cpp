@@ -187,15 +187,16 @@ json result_to_json(const System& s, const SolveResult& r) {
               {"onset_force_rate", x.admissibility.onset_force_rate},
               {"admissibility_certified", x.admissibility.certified},
               {"admissibility_ends_ok", x.admissibility.ends_ok},
-              {"flags", x.flags},
-              // the orbit in modal coordinates (modal form §2), so that load_result rebuilds the same Solution
-              {"orbit",
-               {{"a", vec(x.orbit.a)},
-                {"c", vec(x.orbit.c)},
-                {"p0", vec(x.orbit.p0)},
-                {"p0dot", vec(x.orbit.p0dot)},
-                {"closure_ratio", x.orbit.closure_ratio},
-                {"energy", x.orbit.energy}}}};
+              {"flags", x.flags}};
+    // the orbit in modal coordinates (modal form §2), so that load_result rebuilds the same Solution; absent when it
+    // was read from a file without them (in_modal_basis rebuilds them from x0, v0)
+    if (x.orbit.p0.size() > 0)
+      o["orbit"] = {{"a", vec(x.orbit.a)},
+                    {"c", vec(x.orbit.c)},
+                    {"p0", vec(x.orbit.p0)},
+                    {"p0dot", vec(x.orbit.p0dot)},
+                    {"closure_ratio", x.orbit.closure_ratio},
+                    {"energy", x.orbit.energy}};
     if (x.orbit.symmetry == Symmetry::Point) o["obstacle_velocity"] = x.orbit.obstacle_velocity;
     if (!std::isnan(x.floquet.spectral_radius)) {  // stability/floquet.hpp; absent when not computed
       json mu = json::array();
@@ -289,13 +290,18 @@ SolveResult result_from_json(const json& r, const std::string& where) {
     b.x0 = o.vector("x0");
     b.v0 = o.vector("v0");
     check_solution(o, b.t1, b.t2, b.x0, b.v0, n);
-    const Reader ob{o.at("orbit"), o.where + ": field \"orbit\""};
-    b.a = ob.vector("a");
-    b.c = ob.vector("c");
-    b.p0 = ob.vector("p0");
-    b.p0dot = ob.vector("p0dot");
-    b.closure_ratio = ob.number("closure_ratio");
-    b.energy = ob.number("energy");
+    if (o.o.contains("orbit")) {
+      const Reader ob{o.at("orbit"), o.where + ": field \"orbit\""};
+      b.a = ob.vector("a");
+      b.c = ob.vector("c");
+      b.p0 = ob.vector("p0");
+      b.p0dot = ob.vector("p0dot");
+      b.closure_ratio = ob.number("closure_ratio");
+      b.energy = ob.number("energy");
+    } else {  // files written before the orbit block: in_modal_basis rebuilds the modal coordinates from x0, v0
+      b.closure_ratio = std::numeric_limits<double>::quiet_NaN();
+      b.energy = o.number("energy");
+    }
     if (res.symmetry == Symmetry::Point) b.obstacle_velocity = o.number("obstacle_velocity");
     if (o.o.contains("floquet_multipliers")) {  // files written before stability was computed have none
       const json& mu = o.at("floquet_multipliers");

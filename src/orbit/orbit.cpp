@@ -46,6 +46,8 @@ void flight_flow(const ModalForm& md, double t, const Eigen::VectorXd& p0, const
   p = ((w * t).cos() * p0.array() + (w * t).sin() / w * p0dot.array()).matrix();
   pdot = (-w * (w * t).sin() * p0.array() + (w * t).cos() * p0dot.array()).matrix();
 }
+
+OrbitState state_in_basis(const ModalForm& md, const Orbit& o, double t);
 }  // namespace
 
 namespace {
@@ -81,22 +83,23 @@ Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::Vecto
   return scaled_orbit(eq, t1, t2, a_in, -md.g0() / (md.beta() * r));  // eq. (5.2): w^T x0 = -g0
 }
 
-Admissibility sample_point_admissibility(const ModalForm& md, const Orbit& o) {
+Admissibility sample_point_admissibility(const ModalForm& md, const Orbit& orbit) {
+  const Orbit o = in_modal_basis(md, orbit, "sample_point_admissibility");
   Admissibility adm;
   const int samples = kAdmissibilitySamples;
   adm.min_gap = std::numeric_limits<double>::infinity();
   adm.min_force = std::numeric_limits<double>::infinity();
   double max_force = -std::numeric_limits<double>::infinity();
   for (int i = 0; i <= samples; ++i) {
-    const OrbitState c = orbit_state(md, o, 2.0 * o.t2 * i / samples);
+    const OrbitState c = state_in_basis(md, o, 2.0 * o.t2 * i / samples);
     adm.min_force = std::min(adm.min_force, c.force);
     max_force = std::max(max_force, c.force);
-    const OrbitState f = orbit_state(md, o, 2.0 * o.t2 + 2.0 * o.t1 * i / samples);
+    const OrbitState f = state_in_basis(md, o, 2.0 * o.t2 + 2.0 * o.t1 * i / samples);
     // flight gap against the obstacle where it stands at onset (it moves during contact only)
     adm.min_gap = std::min(adm.min_gap, f.gap);
   }
-  adm.mid_flight_gap = orbit_state(md, o, 2.0 * o.t2 + o.t1).gap;
-  adm.mid_contact_force = orbit_state(md, o, o.t2).force;
+  adm.mid_flight_gap = state_in_basis(md, o, 2.0 * o.t2 + o.t1).gap;
+  adm.mid_contact_force = state_in_basis(md, o, o.t2).force;
   adm.ends_ok = false;
   adm.admissible = adm.min_force >= 0.0 && max_force <= 0.0;  // only if the force vanishes at every sample
   adm.certified = !adm.admissible;  // "never admissible" is structural (an odd force); the converse only sampled
@@ -107,11 +110,13 @@ Orbit make_unit_energy_orbit(const EquationSet& eq, double t1, double t2, const 
   const Orbit one = scaled_orbit(eq, t1, t2, a, 1.0);
   if (!(one.energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
   // The sign that makes the force >= 0 at mid-contact (axial) or at t2 / 2 (point: zero at t2).
-  const double sign = orbit_state(eq.modal(), one, eq.force_probe(t2)).force >= 0.0 ? 1.0 : -1.0;
+  const double sign = state_in_basis(eq.modal(), one, eq.force_probe(t2)).force >= 0.0 ? 1.0 : -1.0;
   return scaled_orbit(eq, t1, t2, a, sign / std::sqrt(one.energy));
 }
 
-OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {
+namespace {
+// orbit_state for an orbit known to be in md's basis (the internal loops: no O(n m) check per sample).
+OrbitState state_in_basis(const ModalForm& md, const Orbit& o, double t) {
   Eigen::VectorXd p, pd;
   OrbitState s;
   if (t <= 2.0 * o.t2) {
@@ -127,6 +132,11 @@ OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {
   s.v = md.Phi() * (pd.array() / w).matrix();
   s.gap = md.beta() * md.u().dot(q) + md.g0();
   return s;
+}
+}  // namespace
+
+OrbitState orbit_state(const ModalForm& md, const Orbit& o, double t) {
+  return state_in_basis(md, in_modal_basis(md, o, "orbit_state"), t);
 }
 
 namespace {
@@ -148,7 +158,8 @@ detail::CosineSum contact_force(const ModalForm& md, const Orbit& o) {
 }
 }  // namespace
 
-Admissibility check_admissibility(const ModalForm& md, const Orbit& o, double rel_tol) {
+Admissibility check_admissibility(const ModalForm& md, const Orbit& orbit, double rel_tol) {
+  const Orbit o = in_modal_basis(md, orbit, "check_admissibility");
   Admissibility adm;
   const detail::CosineSum gap = flight_gap(md, o), force = contact_force(md, o);
 
@@ -229,7 +240,8 @@ double sampled_minimum(const F& f, double len, double fastest) {
 }
 }  // namespace
 
-double admissibility_margin(const ModalForm& md, const Orbit& o) {
+double admissibility_margin(const ModalForm& md, const Orbit& orbit) {
+  const Orbit o = in_modal_basis(md, orbit, "admissibility_margin");
   // Gap about the flight's end: g(t1 - s) over the axis form sum A_k cos(w_k tau), tau = t1 - s; the parts that
   // make g, g', g'' at the end (zero by construction, rounding otherwise) are dropped, then divided by (s/t1)^3.
   const detail::CosineSum g = flight_gap(md, o), f = contact_force(md, o);
@@ -258,42 +270,72 @@ double admissibility_margin(const ModalForm& md, const Orbit& o) {
   return std::min(gmin, fmin);
 }
 
-void check_orbit_basis(const ModalForm& md, const Orbit& o, const char* where) {
-  // Same basis: x0 was computed as Phi W^-1 p0, so the two agree to rounding (~m eps); another basis (an eigenvector
-  // of the other sign) moves them by the size of that mode's part, O(1) of the orbit's scale.
-  constexpr double kSameBasisTol = 1e-8;
-  const bool sizes = o.p0.size() == md.m() && o.p0dot.size() == md.m() && o.x0.size() == md.n() &&
-                     o.v0.size() == md.n();
-  if (!sizes) {
+namespace {
+/// Relative mismatch below which an orbit's modal coordinates are taken as those of the modal form in use: the same
+/// basis gives x0 = Phi W^-1 p0 to rounding (~m eps); another basis (an eigenvector of the other sign, another
+/// rotation of a repeated-frequency group) moves x0 by that mode's part, O(1) of the orbit's scale.
+constexpr double kSameBasisTol = 1e-8;
+
+// |Phi W^-1 p0 - x0| + |Phi W^-1 p0dot - v0| / omega_min, relative to |x0| + |v0| / omega_min (a length, like x).
+double basis_mismatch(const ModalForm& md, const Eigen::VectorXd& p0, const Eigen::VectorXd& p0dot,
+                      const Eigen::VectorXd& x0, const Eigen::VectorXd& v0) {
+  const Eigen::ArrayXd& w = md.omega().array();
+  const double wmin = w.size() > 0 ? w.minCoeff() : 1.0;
+  const double mismatch = (md.Phi() * (p0.array() / w).matrix() - x0).norm() +
+                          (md.Phi() * (p0dot.array() / w).matrix() - v0).norm() / wmin;
+  const double scale = x0.norm() + v0.norm() / wmin;
+  return scale > 0.0 ? mismatch / scale : mismatch;
+}
+}  // namespace
+
+Orbit in_modal_basis(const ModalForm& md, const Orbit& o, const char* where) {
+  if (o.x0.size() != md.n() || o.v0.size() != md.n()) {
     std::ostringstream os;
-    os << where << ": expected an orbit of " << md.n() << " dofs and " << md.m() << " coupled modes, got x0 of "
-       << o.x0.size() << " and p0 of " << o.p0.size() << " entries";
+    os << where << ": expected an orbit of " << md.n() << " dofs, got x0 of " << o.x0.size() << " and v0 of "
+       << o.v0.size() << " entries";
     detail::invalid(os.str());
   }
+  if (!(std::isfinite(o.t1) && std::isfinite(o.t2) && o.t1 >= 0.0 && o.t2 >= 0.0)) {
+    std::ostringstream os;
+    os << where << ": expected finite half-durations t1, t2 >= 0, got (" << o.t1 << ", " << o.t2 << ")";
+    detail::invalid(os.str());
+  }
+  const bool sizes = o.p0.size() == md.m() && o.p0dot.size() == md.m() && o.a.size() == md.m() &&
+                     o.c.size() == md.m();
+  if (sizes && basis_mismatch(md, o.p0, o.p0dot, o.x0, o.v0) <= kSameBasisTol) return o;  // this basis: as it is
+  // Another basis (or none): x0, v0 do not depend on it. Their coupled-mode coordinates by least squares on the mode
+  // shapes (Phi has full column rank), O(n m^2); the flows give a and c from p0, p0dot.
   const Eigen::ArrayXd& w = md.omega().array();
-  const double wmin = w.size() > 0 ? w.minCoeff() : 1.0;  // v / wmin: a length, like x
-  const double mismatch = (md.Phi() * (o.p0.array() / w).matrix() - o.x0).norm() +
-                          (md.Phi() * (o.p0dot.array() / w).matrix() - o.v0).norm() / wmin;
-  const double scale = o.x0.norm() + o.v0.norm() / wmin;
-  if (!(mismatch <= kSameBasisTol * scale)) {
+  Eigen::MatrixXd xv(md.n(), 2);
+  xv << o.x0, o.v0;
+  const Eigen::MatrixXd q = md.Phi().colPivHouseholderQr().solve(xv);
+  Orbit r = o;
+  r.p0 = (w * q.col(0).array()).matrix();
+  r.p0dot = (w * q.col(1).array()).matrix();
+  const double mismatch = basis_mismatch(md, r.p0, r.p0dot, o.x0, o.v0);
+  if (!(mismatch <= kSameBasisTol)) {
     std::ostringstream os;
     os.precision(3);
-    os << where << ": the orbit's modal coordinates do not give its x0 and v0 in this modal form (relative mismatch "
-       << mismatch / scale
-       << "): they were computed in another modal basis (eigenvectors are defined up to sign; e.g. a result file "
-          "written on another machine). Rebuild the orbit here with solution_at(system, modal, t1, t2)";
+    os << where << ": the orbit's x0, v0 are not a motion of this system's modes that see the contact (relative "
+       << "residual " << mismatch << " of their projection on them): it is an orbit of another system";
     detail::invalid(os.str());
   }
+  const Eigen::VectorXd q0 = q.col(0);
+  r.closure_ratio = q0.norm() > 0 ? std::abs(md.u().dot(q0)) / q0.norm() : 0.0;  // as scaled_orbit
+  Eigen::VectorXd pd;
+  flight_flow(md, -o.t1, r.p0, r.p0dot, r.a, pd);
+  contact_flow(md, o.t2, r.p0, r.p0dot, r.c, pd);
+  return r;
 }
 
-OrbitSamples sample_orbit(const ModalForm& md, const Orbit& o, int samples) {
-  check_orbit_basis(md, o, "sample_orbit");
+OrbitSamples sample_orbit(const ModalForm& md, const Orbit& orbit, int samples) {
+  const Orbit o = in_modal_basis(md, orbit, "sample_orbit");
   OrbitSamples s{Eigen::VectorXd(samples), Eigen::VectorXd(samples), Eigen::VectorXd(samples),
                  Eigen::MatrixXd(samples, md.n()), Eigen::MatrixXd(samples, md.n())};
   const double T = o.period();
   for (int k = 0; k < samples; ++k) {
     s.t(k) = T * k / (samples - 1);
-    const OrbitState st = orbit_state(md, o, s.t(k));
+    const OrbitState st = state_in_basis(md, o, s.t(k));
     s.x.row(k) = st.x.transpose();
     s.v.row(k) = st.v.transpose();
     s.gap(k) = st.gap;

@@ -10,17 +10,13 @@
 namespace spp {
 namespace {
 
-void require_axial(const ModalForm& md, const Orbit& orbit, const char* where) {
+// The orbit in md's basis (in_modal_basis), refused unless axially symmetric.
+Orbit axial_in_basis(const ModalForm& md, const Orbit& orbit, const char* where) {
   if (orbit.symmetry != Symmetry::Axial)
     detail::invalid(std::string(where) +
                     ": expected an axially symmetric orbit, got a point-symmetric one (its obstacle moves during "
                     "contact: no impact law applies)");
-  if (orbit.p0.size() != md.m() || orbit.p0dot.size() != md.m()) {
-    std::ostringstream os;
-    os << where << ": expected an orbit of " << md.m() << " coupled modes, got " << orbit.p0.size();
-    detail::invalid(os.str());
-  }
-  check_orbit_basis(md, orbit, where);
+  return in_modal_basis(md, orbit, where);
 }
 
 // The monodromy on the coupled modes, in energy-scaled modal coordinates y = (p, q') = (W q, q') (energy |y|^2 / 2;
@@ -60,8 +56,8 @@ bool by_modulus(const std::complex<double>& a, const std::complex<double>& b) {
 
 }  // namespace
 
-Floquet floquet(const ModalForm& md, const Orbit& orbit) {
-  require_axial(md, orbit, "floquet");
+Floquet floquet(const ModalForm& md, const Orbit& given) {
+  const Orbit orbit = axial_in_basis(md, given, "floquet");
   const int m = md.m();
   const Eigen::VectorXd& W = md.omega();
   Floquet res;
@@ -112,8 +108,8 @@ Floquet floquet(const ModalForm& md, const Orbit& orbit) {
   return res;
 }
 
-Eigen::MatrixXd monodromy(const ModalForm& md, const Orbit& orbit) {
-  require_axial(md, orbit, "monodromy");
+Eigen::MatrixXd monodromy(const ModalForm& md, const Orbit& given) {
+  const Orbit orbit = axial_in_basis(md, given, "monodromy");
   const int m = md.m(), n = md.n(), nd = n - m;
   const double T = orbit.period();
   // y = (p_c, p_d, q'_c, q'_d) -> (x, v): x = Phi W^-1 p_c + Phi_d W_d^-1 p_d, v = Phi q'_c + Phi_d q'_d

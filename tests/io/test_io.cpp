@@ -9,6 +9,8 @@
 #include "io/json.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
+#include "spp/modal/modal.hpp"
+#include "spp/orbit/orbit.hpp"
 #include "spp/search/solver.hpp"
 
 using namespace spp;
@@ -235,6 +237,30 @@ TEST(Io, LoadResultGivesBackTheSolveResultThatWasWritten) {
     EXPECT_EQ(back.K(), systems[i]->K());
   }
   fs::remove(p);
+}
+
+TEST(Io, ResultWithoutModalCoordinatesReadsAndSamplesLikeTheOriginal) {
+  // Files written before the "orbit" block (or edited by hand without it) are read: the modal coordinates are rebuilt
+  // from x0, v0 by whatever uses them (in_modal_basis), so the trajectory is the original's; written again, the file
+  // has no "orbit" block either and still reads.
+  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 12.0;
+  const SolveResult r = solve(s, o);
+  ASSERT_FALSE(r.solutions.empty());
+  nlohmann::json j = nlohmann::json::parse(result_json(s, r));
+  for (auto& x : j.at("solutions")) x.erase("orbit");
+  const SolveResult back = parse_result(j.dump(), "result without orbit blocks");
+  ASSERT_EQ(back.solutions.size(), r.solutions.size());
+  const ModalForm md(s);
+  for (size_t i = 0; i < r.solutions.size(); ++i) {
+    EXPECT_EQ(back.solutions[i].orbit.p0.size(), 0);
+    const OrbitSamples a = sample_orbit(md, r.solutions[i].orbit, 21), b = sample_orbit(md, back.solutions[i].orbit, 21);
+    EXPECT_LE((a.x - b.x).norm(), 1e-10 * a.x.norm()) << i;
+    EXPECT_LE((a.gap - b.gap).norm(), 1e-10 * (a.gap.norm() + 1.0)) << i;
+  }
+  const SolveResult again = parse_result(result_json(s, back), "written again");
+  EXPECT_EQ(again.solutions.size(), r.solutions.size());
 }
 
 TEST(Io, LoadResultNamesWhatItCannotRead) {

@@ -123,6 +123,7 @@ TEST(Orbit, PointAdmissibilityFromSamplesAloneIsNotCertified) {
   o.t1 = o.t2 = 1.0;
   o.symmetry = Symmetry::Point;
   o.a = o.c = o.p0 = o.p0dot = Eigen::VectorXd::Zero(md.m());
+  o.x0 = o.v0 = Eigen::VectorXd::Zero(md.n());
   const Admissibility adm = sample_point_admissibility(md, o);
   EXPECT_TRUE(adm.admissible);
   EXPECT_FALSE(adm.certified);
@@ -156,29 +157,74 @@ TEST(Orbit, SampledPeriodStartsAtTheOnsetAndComesBack) {
   EXPECT_EQ(checked, 7);
 }
 
-TEST(Orbit, ModalCoordinatesOfAnotherBasisAreRefused) {
+TEST(Orbit, ModalCoordinatesOfAnotherBasisAreRebuiltFromX0V0) {
   // Eigenvectors are defined up to sign: an orbit whose modal coordinates came from another machine's modal form
-  // (e.g. read from its result file) would be sampled into a wrong trajectory without a word. Simulated here by
-  // flipping one coupled mode's coordinates, as a flipped eigenvector would.
+  // (e.g. read from its result file) once sampled into a wrong trajectory without a word. Simulated here by flipping
+  // the coupled mode that carries most of the orbit, as a flipped eigenvector would, and by dropping the modal
+  // coordinates altogether (a result file without its "orbit" block): both must give the original's trajectory,
+  // admissibility and multipliers, rebuilt from x0, v0.
   const System s = chain5();
   const ModalForm md(s);
   const SolveResult r = solve_window(s, 12.0, 12.0);
   const auto sol =
       std::find_if(r.solutions.begin(), r.solutions.end(), [](const Solution& x) { return x.admissible(); });
   ASSERT_NE(sol, r.solutions.end());
-  EXPECT_NO_THROW(sample_orbit(md, sol->orbit, 11));
-  EXPECT_NO_THROW(floquet(md, sol->orbit));
-  Orbit other = sol->orbit;
+  Orbit flipped = sol->orbit;
   Eigen::Index k = 0;
-  other.p0.cwiseAbs().maxCoeff(&k);  // the mode that carries most of the orbit
-  for (Eigen::VectorXd* v : {&other.a, &other.c, &other.p0, &other.p0dot}) (*v)(k) = -(*v)(k);
-  for (int which = 0; which < 2; ++which) {
+  flipped.p0.cwiseAbs().maxCoeff(&k);
+  for (Eigen::VectorXd* v : {&flipped.a, &flipped.c, &flipped.p0, &flipped.p0dot}) (*v)(k) = -(*v)(k);
+  Orbit bare = sol->orbit;
+  bare.a = bare.c = bare.p0 = bare.p0dot = Eigen::VectorXd();
+  const OrbitSamples ref = sample_orbit(md, sol->orbit, 41);
+  const Admissibility adm = check_admissibility(md, sol->orbit);
+  const Floquet fl = floquet(md, sol->orbit);
+  for (const Orbit* o : {&flipped, &bare}) {
+    const Orbit back = in_modal_basis(md, *o);
+    EXPECT_LE((back.p0 - sol->orbit.p0).norm(), 1e-10 * sol->orbit.p0.norm());
+    EXPECT_LE((back.a - sol->orbit.a).norm(), 1e-10 * sol->orbit.a.norm());
+    EXPECT_LE((back.c - sol->orbit.c).norm(), 1e-10 * sol->orbit.c.norm());
+    const OrbitSamples smp = sample_orbit(md, *o, 41);
+    EXPECT_LE((smp.x - ref.x).norm(), 1e-10 * ref.x.norm());
+    EXPECT_LE((smp.force - ref.force).norm(), 1e-10 * ref.force.norm());
+    const Admissibility a2 = check_admissibility(md, *o);
+    EXPECT_EQ(a2.admissible, adm.admissible);
+    EXPECT_NEAR(a2.min_force, adm.min_force, 1e-10 * std::abs(adm.mid_contact_force));
+    EXPECT_NEAR(admissibility_margin(md, *o), admissibility_margin(md, sol->orbit), 1e-10);
+    const Floquet f2 = floquet(md, *o);
+    EXPECT_NEAR(f2.spectral_radius, fl.spectral_radius, 1e-10);
+  }
+  // The same basis: returned as it is, bit for bit.
+  const Orbit same = in_modal_basis(md, sol->orbit);
+  EXPECT_EQ(same.p0, sol->orbit.p0);
+  EXPECT_EQ(same.a, sol->orbit.a);
+}
+
+TEST(Orbit, OrbitOfAnotherSystemIsRefused) {
+  // x0, v0 with a part outside the coupled modes' span (here of a system with other masses) are no motion of this
+  // system: refused, naming the function, not sampled into something else.
+  const System s = chain5();
+  const ModalForm md(s);
+  const SolveResult r = solve_window(s, 12.0, 12.0);
+  ASSERT_FALSE(r.solutions.empty());
+  const ModalForm md4(rod4());
+  // M = I, K = diag(1, 2, 3), w = (1, 1, 0): the third mode never sees the contact, so an x0 moving it is no orbit
+  // of this system's coupled modes.
+  const ModalForm md3(System(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix(),
+                             Eigen::Vector3d(1, 1, 0), 1.0));
+  ASSERT_EQ(md3.m(), 2);
+  Orbit other;
+  other.t1 = other.t2 = 1.0;
+  other.x0 = Eigen::Vector3d(-0.5, -0.5, 0.3);
+  other.v0 = Eigen::Vector3d::Zero();
+  for (int which = 0; which < 3; ++which) {
     try {
-      if (which == 0) sample_orbit(md, other, 11);
-      if (which == 1) floquet(md, other);
+      if (which == 0) sample_orbit(md4, r.solutions.front().orbit, 11);  // 4 dofs, not 5
+      if (which == 1) floquet(md, Orbit{});                             // no x0 at all
+      if (which == 2) sample_orbit(md3, other, 11);
       ADD_FAILURE() << "expected a refusal (" << which << ")";
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("another modal basis"), std::string::npos) << e.what();
+      const std::string msg = e.what();
+      EXPECT_TRUE(msg.find("dofs") != std::string::npos || msg.find("another system") != std::string::npos) << msg;
     }
   }
 }

@@ -3,8 +3,9 @@
 // "solutions": [{"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy", "residual",
 // "return_error", ..., "orbit": {"a", "c", "p0", "p0dot", "closure_ratio", "energy"}}]}. The whole system is embedded
 // (after normalising w) so that a result can be verified, plotted or animated alone.
-// The modal coordinates ("orbit") belong to the modal basis of the machine that wrote the file (check_orbit_basis,
-// orbit/orbit.hpp, refuses them in another). Cost: linear in the file (the system's 2 n^2 + n numbers plus
+// The modal coordinates ("orbit") belong to the modal basis of the machine that wrote the file; every function that
+// takes an orbit rebuilds them from x0, v0 where the basis differs (in_modal_basis, orbit/orbit.hpp), so a file is
+// read alike on any machine, and a file without "orbit" is read with empty modal coordinates. Cost: linear in the file (the system's 2 n^2 + n numbers plus
 // solutions x ~(4n + 4m) numbers); reading holds the text and its JSON tree at once (~3x the file's size).
 
 #include <string>

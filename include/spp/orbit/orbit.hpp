@@ -41,19 +41,21 @@ struct OrbitState {
   double gap = 0.0, force = 0.0;
 };
 
-/// An orbit's modal coordinates (a, c, p0, p0dot) belong to the modal form that computed them: eigenvectors are
-/// defined up to sign, and another machine's LAPACK may choose other signs for the same system. Checks that
-/// Phi W^-1 p0 and Phi W^-1 p0dot give the orbit's physical x0 and v0 (to kSameBasisTol relative to the orbit's
-/// scale); throws std::invalid_argument naming `where` otherwise (e.g. an orbit read from a result file written
-/// elsewhere: rebuild it with solution_at(system, modal, t1, t2)). Cost O(n m).
-void check_orbit_basis(const ModalForm& modal, const Orbit& orbit, const char* where);
-
+/// The orbit with its modal coordinates (a, c, p0, p0dot) in `modal`'s basis. They belong to the modal form that
+/// computed them: eigenvectors are defined up to sign (and up to a rotation within a repeated frequency), and another
+/// machine's LAPACK may choose others for the same system, while x0, v0 do not depend on that choice. When
+/// Phi W^-1 p0, Phi W^-1 p0dot give x0, v0 (relative 1e-8) the orbit is returned as it is (O(n m)); otherwise (e.g. an
+/// orbit read from a result file written on another machine) p0, p0dot are rebuilt from x0, v0 by least squares on
+/// the coupled mode shapes and a, c by the flows (O(n m^2)). Every function below that takes an orbit calls it, so a
+/// loaded orbit gives the same trajectory, admissibility and multipliers on any machine.
+/// Throws std::invalid_argument naming `where` when x0, v0 do not have n entries, t1 or t2 is negative or not
+/// finite, or x0, v0 are not a motion of the coupled modes (an orbit of another system).
+Orbit in_modal_basis(const ModalForm& modal, const Orbit& orbit, const char* where = "in_modal_basis");
 /// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight). x, v: (n); cost O(m^2 + n m).
 OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
 
 /// One period sampled at `samples` (>= 2) equally spaced times t_k = T k / (samples - 1), both ends included: the
 /// rows of spp trajectory's CSV and of Python's spp.trajectory.
-/// Checks the orbit's basis first (check_orbit_basis).
 struct OrbitSamples {
   Eigen::VectorXd t, gap, force;  ///< (samples)
   Eigen::MatrixXd x, v;           ///< (samples, n)
