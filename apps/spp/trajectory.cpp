@@ -1,6 +1,7 @@
 // spp trajectory: one period of an SPP (of a result file, or the nearest to a guess) as CSV.
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "command.hpp"
@@ -37,22 +38,22 @@ int run(TrajectoryArgs& a) {
                                   ": the result file holds its system)");
   }
   const ModalForm md(sys);  // once, for the search and the samples
+  std::optional<Solution> loaded;
   if (!a.result.empty()) {
     if (a.solution < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
     const std::vector<Solution> sols = load_result(a.result).solutions;
     if (static_cast<size_t>(a.solution) >= sols.size())
       throw std::invalid_argument(a.result + ": --solution " + std::to_string(a.solution) +
                                   " out of range, the file has " + std::to_string(sols.size()) + " solutions");
-    a.t1 = sols[static_cast<size_t>(a.solution)].t1();
-    a.t2 = sols[static_cast<size_t>(a.solution)].t2();
+    loaded = sols[static_cast<size_t>(a.solution)];
   } else if (a.t1_given->count() == 0) {
     throw std::invalid_argument("trajectory: give --t1 and --t2, or --result and --solution");
   }
   SolveOptions o;
   o.compute_return_error = false;
   Solution s;
-  if (!a.result.empty()) {
-    s = solution_at(sys, md, a.t1, a.t2, o);  // an SPP of a result file: polish it where it is
+  if (loaded) {
+    s = *loaded;  // an SPP of a result file, as it was solved (its orbit rebuilt in this modal basis if need be)
   } else {  // a guess (e.g. read off the root map): the complete solver around it, then the nearest SPP
     const NearestSpp near = nearest_spp(sys, md, a.t1, a.t2, a.radius, o);
     if (!near.found) {

@@ -56,11 +56,13 @@ void bind_orbit(py::module_& m) {
         const spp::ModalForm md(s);
         spp::SolveOptions o;
         o.compute_return_error = false;
-        spp::Solution sol;
+        spp::SolutionAt at;
         {
           py::gil_scoped_release release;
-          sol = spp::solution_at(s, md, t1, t2, o);
+          at = spp::solution_at(s, md, t1, t2, o);
         }
+        if (!at.found) throw py::value_error("trajectory: " + at.brief_report());
+        const spp::Solution& sol = at.solution;
         spp::OrbitSamples os = spp::sample_orbit(md, sol.orbit, samples);
         return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
                         "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(),

@@ -16,7 +16,9 @@ void bind_stability(py::module_& m) {
         spp::SolveOptions o;
         o.compute_return_error = false;
         o.compute_stability = false;
-        const spp::Solution sol = spp::solution_at(s, md, t1, t2, o);
+        const spp::SolutionAt at = spp::solution_at(s, md, t1, t2, o);
+        if (!at.found) throw py::value_error("monodromy: " + at.brief_report());
+        const spp::Solution& sol = at.solution;
         return py::make_tuple(spp::monodromy(md, sol.orbit), sol.orbit.x0, sol.orbit.v0, sol.period());
       },
       "system"_a, "t1"_a, "t2"_a,

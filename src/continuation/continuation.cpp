@@ -257,8 +257,9 @@ class Tracer {
     p.closure = md.u().dot(q0) / (e.a.array() / w).matrix().norm();
     p.margin = std::numeric_limits<double>::quiet_NaN();
     const EquationSet& eq = *c.equations;
-    try {
-      const bool free_scale = md.g0() == 0.0;
+    const bool free_scale = md.g0() == 0.0;
+    // no orbit where eq. (5.2) has no scale (u^T W^-1 p0 = 0 exactly), or no null vector to scale to unit energy
+    if (free_scale ? e.a.squaredNorm() > 0.0 : gap_can_close(eq, p.t1, e.a)) {
       const Orbit o = free_scale ? make_unit_energy_orbit(eq, p.t1, p.t2, e.a) : make_orbit(eq, p.t1, p.t2, e.a);
       p.energy = o.energy;
       p.x0 = o.x0;
@@ -269,7 +270,6 @@ class Tracer {
         p.margin = admissibility_margin(md, o);
         p.spectral_radius = floquet(md, o).spectral_radius;
       }
-    } catch (const std::invalid_argument&) {
     }
     p.admissible = p.margin >= 0.0;
     return p;

@@ -74,6 +74,11 @@ Orbit scaled_orbit(const EquationSet& eq, double t1, double t2, const Eigen::Vec
 }
 }  // namespace
 
+bool gap_can_close(const EquationSet& eq, double t1, const Eigen::VectorXd& a) {
+  const ModalForm& md = eq.modal();
+  return md.u().dot((eq.onset_position(t1, a).array() / md.omega().array()).matrix()) != 0.0;
+}
+
 Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a_in) {
   const ModalForm& md = eq.modal();
   if (md.g0() == 0.0)

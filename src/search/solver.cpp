@@ -170,25 +170,39 @@ std::pair<double, double> axis_band(const ModalForm& md) {
           dmax > 0 ? search::kAxisBand * pi / (2.0 * dmax) : 0.0};
 }
 
-Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
+SolutionAt solution_at(const System& system, double t1, double t2, const SolveOptions& options) {
   require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
   return solution_at(system, ModalForm(system), t1, t2, options);
 }
 
-Solution solution_at(const System& system, const ModalForm& md, double t1, double t2, const SolveOptions& options) {
+SolutionAt solution_at(const System& system, const ModalForm& md, double t1, double t2, const SolveOptions& options) {
   require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
   require_modal_of(system, md, "solution_at");
   const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
   const Polished p = polish(*eq, t1, t2);
-  if (!p.converged || std::hypot(p.t1 - t1, p.t2 - t2) > search::kPolishReach * (t1 + t2)) {
-    std::ostringstream os;
-    os << "solution_at: no SPP near (t1, t2) = (" << t1 << ", " << t2 << "): Newton reached residual " << p.residual
-       << " at (" << p.t1 << ", " << p.t2 << ")";
-    throw std::invalid_argument(os.str());
-  }
-  return build_solution(system, *eq, p, options, options.compute_return_error);
+  SolutionAt out;
+  out.start_t1 = t1;
+  out.start_t2 = t2;
+  out.t1 = p.t1;
+  out.t2 = p.t2;
+  out.residual = p.residual;
+  out.found = p.converged && std::hypot(p.t1 - t1, p.t2 - t2) <= search::kPolishReach * (t1 + t2) &&
+              gap_can_close(*eq, p.t1, p.a);
+  if (out.found) out.solution = build_solution(system, *eq, p, options, options.compute_return_error);
+  return out;
+}
+
+std::string SolutionAt::brief_report() const {
+  std::ostringstream os;
+  if (found)
+    os << "SPP at (t1, t2) = (" << solution.t1() << ", " << solution.t2() << "), period " << solution.period() << ", "
+       << (solution.admissible() ? "admissible" : "not admissible");
+  else
+    os << "no SPP near (t1, t2) = (" << start_t1 << ", " << start_t2 << "): Newton reached residual " << residual
+       << " at (" << t1 << ", " << t2 << ")";
+  return os.str();
 }
 
 namespace {
@@ -416,13 +430,13 @@ void polish_candidates(const System& system, const EquationSet& eq, const search
     if (std::any_of(res.solutions.begin(), res.solutions.end(),
                     [&](const Solution& s) { return same_place(s.t1(), s.t2(), p.t1, p.t2); }))
       continue;
-    Solution s;
-    try {
-      s = build_solution(system, eq, p, opt, with_return_error);
-    } catch (const std::invalid_argument& e) {
-      res.warnings.push_back(std::string("root skipped: ") + e.what());
+    if (!gap_can_close(eq, p.t1, p.a)) {  // u^T W^-1 p0 = 0 exactly: eq. (5.2) has no scale
+      std::ostringstream os;
+      os << "root skipped: at (t1, t2) = (" << p.t1 << ", " << p.t2 << ") the gap cannot close (u^T W^-1 p0 = 0)";
+      res.warnings.push_back(os.str());
       continue;
     }
+    Solution s = build_solution(system, eq, p, opt, with_return_error);
     if (c.uncertified) s.flags.push_back("uncertified_step");
     if (c.near_pole) s.flags.push_back("near_pole_line");
     res.solutions.push_back(std::move(s));

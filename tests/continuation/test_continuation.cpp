@@ -107,7 +107,9 @@ TEST(Continuation, BranchesAgreeWithIndependentSolves) {
           if (d < best) best = d, guess = x;
         }
       ASSERT_LT(best, 1e-2) << "mu " << mu << ": SPP (" << sol.t1() << ", " << sol.t2() << ") on no branch";
-      const Solution again = solution_at(sys, guess(0), guess(1));
+      const SolutionAt at = solution_at(sys, guess(0), guess(1));
+      ASSERT_TRUE(at.found) << at.brief_report();
+      const Solution& again = at.solution;
       EXPECT_NEAR(again.t1(), sol.t1(), 1e-9);
       EXPECT_NEAR(again.t2(), sol.t2(), 1e-9);
       ++checked;
@@ -132,8 +134,9 @@ TEST(Continuation, AdmissibilityBoundariesAreLocated) {
       // Independent Newton at fixed parameter 1e-8 on each side: the margin changes sign across the event.
       auto margin_at = [&](double mu) {
         const System sys = ps.at(mu);
-        const Solution s = solution_at(sys, e.at.t1, e.at.t2);
-        return admissibility_margin(ModalForm(sys), s.orbit);
+        const SolutionAt s = solution_at(sys, e.at.t1, e.at.t2);
+        EXPECT_TRUE(s.found) << s.brief_report();
+        return s.found ? admissibility_margin(ModalForm(sys), s.solution.orbit) : 0.0;
       };
       const double below = margin_at(e.at.mu - 1e-8), above = margin_at(e.at.mu + 1e-8);
       EXPECT_LT(below * above, 0.0) << "k5 = " << e.at.mu << ": " << below << " " << above;
@@ -244,8 +247,9 @@ TEST(Continuation, StabilityChangesAreLocated) {
       EXPECT_NEAR(e.at.spectral_radius, 1.0, 1e-7) << e.at.mu;
       auto radius_at = [&](double mu) {
         const System sys = ps.at(mu);
-        const Solution s = solution_at(sys, e.at.t1, e.at.t2);
-        return floquet(ModalForm(sys), s.orbit).spectral_radius;
+        const SolutionAt s = solution_at(sys, e.at.t1, e.at.t2);
+        EXPECT_TRUE(s.found) << s.brief_report();
+        return s.found ? floquet(ModalForm(sys), s.solution.orbit).spectral_radius : 1.0;
       };
       const double below = radius_at(e.at.mu - 1e-6), above = radius_at(e.at.mu + 1e-6);
       EXPECT_LT((below - 1.0) * (above - 1.0), 0.0) << "k5 = " << e.at.mu << ": " << below << " " << above;

@@ -100,10 +100,35 @@ TEST(Solver, SolutionAtRefinesToTheNearestRoot) {
   const SolveResult r = solve_window(s, 12.0, 12.0);
   ASSERT_FALSE(r.solutions.empty());
   const Solution& ref = r.solutions.front();
-  const Solution near = solution_at(s, ref.t1() * (1 + 1e-5), ref.t2() * (1 - 1e-5));
-  EXPECT_NEAR(near.t1(), ref.t1(), 1e-12);
-  EXPECT_NEAR(near.t2(), ref.t2(), 1e-12);
-  EXPECT_THROW(solution_at(s, -1.0, 1.0), std::invalid_argument);
+  const SolutionAt at = solution_at(s, ref.t1() * (1 + 1e-5), ref.t2() * (1 - 1e-5));
+  ASSERT_TRUE(at.found) << at.brief_report();
+  EXPECT_NEAR(at.solution.t1(), ref.t1(), 1e-12);
+  EXPECT_NEAR(at.solution.t2(), ref.t2(), 1e-12);
+  EXPECT_NE(at.brief_report().find("SPP at"), std::string::npos) << at.brief_report();
+  EXPECT_THROW(solution_at(s, -1.0, 1.0), std::invalid_argument);  // the caller's mistake
+}
+
+TEST(Solver, SolutionAtFarFromAnyRootIsAStatusNotAnException) {
+  // Newton from a point with no root near it is a numerical outcome: not found, with where Newton went.
+  const System s = chain5();
+  const SolveResult r = solve_window(s, 12.0, 12.0);
+  int not_found = 0;
+  for (double t1 : {0.7, 1.9, 3.3, 5.1})
+    for (double t2 : {0.4, 1.3, 2.9}) {
+      const bool near_root = std::any_of(r.solutions.begin(), r.solutions.end(), [&](const Solution& x) {
+        return std::hypot(x.t1() - t1, x.t2() - t2) < 0.05 * (t1 + t2);
+      });
+      SolutionAt at;
+      ASSERT_NO_THROW(at = solution_at(s, t1, t2));
+      if (!near_root) {
+        EXPECT_FALSE(at.found) << at.brief_report();
+      }
+      if (!at.found) {
+        ++not_found;
+        EXPECT_NE(at.brief_report().find("no SPP near"), std::string::npos) << at.brief_report();
+      }
+    }
+  EXPECT_GT(not_found, 0);
 }
 
 TEST(Solver, ResultDoesNotDependOnTheNumberOfThreads) {

@@ -27,9 +27,12 @@ struct Orbit {
 
 /// Builds the orbit from the null vector a of eq's N(t1, t2) (N_T for point symmetry); a's scale is irrelevant:
 /// it is scaled so that w^T x0 = -g0 (eq. 5.2). Point symmetry (paper §6.2): x(-t1) = 0, x(t2) = 0, and the
-/// obstacle moves at obstacle_velocity during contact. Throws std::invalid_argument if the gap cannot be closed
-/// (u^T W^-1 p0 = 0 exactly) or g0 = 0. a: (m), modal; cost O(m^2 + n m).
+/// obstacle moves at obstacle_velocity during contact. Throws std::invalid_argument for g0 = 0 or when the gap
+/// cannot be closed (check gap_can_close first). a: (m), modal; cost O(m^2 + n m).
 Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a);
+/// Whether eq. (5.2) can scale the null vector a (m) at t1 into an orbit with w^T x0 = -g0: false exactly when
+/// u^T W^-1 p0 = 0 (no scale closes the gap; a numerical outcome, checked before make_orbit). Cost O(m).
+bool gap_can_close(const EquationSet& eq, double t1, const Eigen::VectorXd& a);
 
 /// The orbit when its scale is free (g0 = 0, paper §6.1: eq. 5.2 does not fix it): scaled to unit energy, its
 /// sign chosen so that the contact force is >= 0 at eq.force_probe(t2): mid-contact (axial: the only sign that can

@@ -166,13 +166,26 @@ SolveResult solve(const System& system, const SolveOptions& options);
 /// several calls. Throws std::invalid_argument when `modal` is not that of `system` (dofs or gap differ).
 SolveResult solve(const System& system, const ModalForm& modal, const SolveOptions& options);
 
+/// Result of solution_at. Whether Newton reaches a root near the point is a numerical outcome, not a mistake: found
+/// or not, with where Newton ended and its residual.
+struct SolutionAt {
+  bool found = false;
+  Solution solution;            ///< the polished SPP (when found)
+  double t1 = 0.0, t2 = 0.0;    ///< where Newton ended
+  double residual = 0.0;        ///< its residual there
+  double start_t1 = 0.0, start_t2 = 0.0;  ///< the point asked for
+  /// "SPP at (t1, t2) ..." or "no SPP near (t1, t2): Newton reached residual r at (t1', t2')".
+  std::string brief_report() const;
+};
+
 /// The SPP nearest to (t1, t2) (half-durations of flight and contact, in the system's time unit): Newton on the
 /// bordered pole-free system from that point (at most 12 steps, O(m^3) each), then initial conditions and
-/// admissibility. Throws std::invalid_argument if Newton does not converge to a root within 1e-3 (t1 + t2) of the
-/// given point.
-Solution solution_at(const System& system, double t1, double t2, const SolveOptions& options = {});
-Solution solution_at(const System& system, const ModalForm& modal, double t1, double t2,
-                     const SolveOptions& options = {});
+/// admissibility. Not found when Newton does not converge to a root within 1e-3 (t1 + t2) of the given point, or the
+/// root's gap cannot close (eq. 5.2). Throws std::invalid_argument for t1 or t2 not positive and finite, g0 = 0, or
+/// a modal form of another system.
+SolutionAt solution_at(const System& system, double t1, double t2, const SolveOptions& options = {});
+SolutionAt solution_at(const System& system, const ModalForm& modal, double t1, double t2,
+                       const SolveOptions& options = {});
 
 /// Result of nearest_spp.
 struct NearestSpp {
