@@ -300,11 +300,6 @@ Orbit in_modal_basis(const ModalForm& md, const Orbit& o, const char* where) {
        << o.v0.size() << " entries";
     detail::invalid(os.str());
   }
-  if (!(std::isfinite(o.t1) && std::isfinite(o.t2) && o.t1 >= 0.0 && o.t2 >= 0.0)) {
-    std::ostringstream os;
-    os << where << ": expected finite half-durations t1, t2 >= 0, got (" << o.t1 << ", " << o.t2 << ")";
-    detail::invalid(os.str());
-  }
   const bool sizes = o.p0.size() == md.m() && o.p0dot.size() == md.m() && o.a.size() == md.m() &&
                      o.c.size() == md.m();
   if (sizes && basis_mismatch(md, o.p0, o.p0dot, o.x0, o.v0) <= kSameBasisTol) return o;  // this basis: as it is

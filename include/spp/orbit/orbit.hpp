@@ -51,8 +51,8 @@ struct OrbitState {
 /// orbit read from a result file written on another machine) p0, p0dot are rebuilt from x0, v0 by least squares on
 /// the coupled mode shapes and a, c by the flows (O(n m^2)). Every function below that takes an orbit calls it, so a
 /// loaded orbit gives the same trajectory, admissibility and multipliers on any machine.
-/// Throws std::invalid_argument naming `where` when x0, v0 do not have n entries, t1 or t2 is negative or not
-/// finite, or x0, v0 are not a motion of the coupled modes (an orbit of another system).
+/// Throws std::invalid_argument naming `where` when x0, v0 do not have n entries or are not a motion of the coupled
+/// modes (an orbit of another system).
 Orbit in_modal_basis(const ModalForm& modal, const Orbit& orbit, const char* where = "in_modal_basis");
 /// State at time t in [0, T] (t = 0: contact onset; force is 0 in flight). x, v: (n); cost O(m^2 + n m).
 OrbitState orbit_state(const ModalForm& modal, const Orbit& orbit, double t);
