@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "command.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -23,22 +24,22 @@ void check_output(const std::string& out, const std::string& opt, const std::vec
   std::error_code ec;
   for (const std::string& in : inputs)
     if (!in.empty() && same_file(out, in))
-      throw std::invalid_argument(opt + ": \"" + out + "\" is also \"" + in +
+      detail::invalid(opt + ": \"" + out + "\" is also \"" + in +
                                   "\", a file this run reads (or another output): it would be replaced; write the " +
                                   "output to another file");
   for (const NamedOutput& o : outputs)
     if (!o.path.empty() && same_file(out, o.path))
-      throw std::invalid_argument(opt + ": \"" + out + "\" is also the output of " + o.option + " (\"" + o.path +
+      detail::invalid(opt + ": \"" + out + "\" is also the output of " + o.option + " (\"" + o.path +
                                   "\"): two outputs of one run cannot share a file; give each its own");
   // an existing path that is not a regular file (a directory, /dev/null, a pipe) would be replaced by the rename of
   // the atomic write: refused (found by an independent attack: --out /dev/full replaced the device)
   const fs::file_status st = fs::status(out, ec);
   if (fs::exists(st) && !fs::is_regular_file(st))
-    throw std::invalid_argument(opt + ": \"" + out + "\" exists and is not a regular file (a directory or a device): " +
+    detail::invalid(opt + ": \"" + out + "\" exists and is not a regular file (a directory or a device): " +
                                 "write the output to a file");
   const fs::path dir = fs::path(out).parent_path();
   if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw std::invalid_argument(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
+    detail::invalid(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
 }
 
 namespace {
@@ -53,17 +54,20 @@ std::vector<double> parse_list(const std::string& s, const char* opt) {
   std::stringstream ss(s);
   std::string item;
   if (!s.empty() && s.back() == ',')  // getline drops an empty last item
-    throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
+    detail::invalid(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
   while (std::getline(ss, item, ',')) {
+    size_t pos = 0;
+    double x = 0.0;
     try {
-      size_t pos = 0;
-      v.push_back(std::stod(item, &pos));
-      if (pos != item.size()) throw std::invalid_argument("");
-    } catch (const std::exception&) {
-      throw std::invalid_argument(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
+      x = std::stod(item, &pos);
+    } catch (const std::exception&) {  // std::stod's way to say "not a number" or "out of range"
+      pos = 0;
     }
+    if (pos == 0 || pos != item.size())
+      detail::invalid(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
+    v.push_back(x);
   }
-  if (v.empty()) throw std::invalid_argument(std::string(opt) + ": expected at least one number");
+  if (v.empty()) detail::invalid(std::string(opt) + ": expected at least one number");
   return v;
 }
 

@@ -9,6 +9,7 @@
 #include "spp/core/generators.hpp"
 #include "spp/core/parametric.hpp"
 #include "spp/io.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -67,15 +68,15 @@ int run(const GenerateArgs& g) {
     return 0;
   }
   if (g.parameter.empty() || g.range.empty())
-    throw std::invalid_argument("generate: --parameter and --range go together");
+    detail::invalid("generate: --parameter and --range go together");
   const std::vector<double> range = parse_list(g.range, "--range");
-  if (range.size() != 2) throw std::invalid_argument("--range: expected MIN,MAX, got \"" + g.range + "\"");
+  if (range.size() != 2) detail::invalid("--range: expected MIN,MAX, got \"" + g.range + "\"");
   const int n = *g.chain ? g.n : 2;
   bool known = false;
   for (int i = 1; i <= n; ++i)
     known |= g.parameter == "m" + std::to_string(i) || g.parameter == "k" + std::to_string(i);
   if (!known)
-    throw std::invalid_argument("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) + ", got \"" +
+    detail::invalid("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) + ", got \"" +
                                 g.parameter + "\"");
   const ParametricSystem ps =
       parametrize([&](double v) { return make(g, std::make_pair(g.parameter, v)); }, {g.parameter, range[0], range[1]});

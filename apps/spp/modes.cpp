@@ -9,6 +9,7 @@
 #include "spp/io.hpp"
 #include "spp/io/modes_file.hpp"
 #include "spp/modes/nonsmooth_modes.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -26,7 +27,7 @@ std::vector<int> parse_k(const std::string& s) {
     std::ostringstream os;
     os << "--k: expected K or K1..K2 with 1 <= K1 <= K2 <= " << modes::kMaxImpactsPerPeriod << ", got \""
        << s.substr(0, 40) << (s.size() > 40 ? "..." : "") << "\"";
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   };
   int a = 0, b = 0;
   char tail = 0;

@@ -15,6 +15,7 @@
 #include "spp/modal/modal.hpp"
 #include "spp/reduction/craig_bampton.hpp"
 #include "spp/search/solver.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -31,12 +32,12 @@ std::vector<int> parse_modes(const std::string& s) {
   std::vector<int> ms;
   for (double v : parse_list(s, "--modes")) {
     if (v != std::floor(v) || v < 1 || v > 1e6)
-      throw std::invalid_argument("--modes: expected positive whole numbers (e.g. 10,20,40), got \"" + s + "\"");
+      detail::invalid("--modes: expected positive whole numbers (e.g. 10,20,40), got \"" + s + "\"");
     ms.push_back(static_cast<int>(v));
   }
   for (size_t i = 1; i < ms.size(); ++i)
     if (ms[i] <= ms[i - 1])
-      throw std::invalid_argument("--modes: expected increasing numbers of modes, got \"" + s + "\"");
+      detail::invalid("--modes: expected increasing numbers of modes, got \"" + s + "\"");
   return ms;
 }
 
@@ -55,7 +56,7 @@ int run(const ReduceArgs& a) {
   if (!a.window.empty()) {
     window = parse_list(a.window, "--window");
     if (window.size() != 2 || !(window[0] > 0) || !(window[1] > 0))
-      throw std::invalid_argument("--window: expected T1MAX,T2MAX (both positive), got \"" + a.window + "\"");
+      detail::invalid("--window: expected T1MAX,T2MAX (both positive), got \"" + a.window + "\"");
   }
   // outputs: none an input (the model or its Matrix Market files), none another output, directories existing
   const std::vector<std::string> inputs = system_file_inputs(a.model);
@@ -63,7 +64,7 @@ int run(const ReduceArgs& a) {
   for (int m : modes) outputs.push_back({"--out", out_name(a.out, m, several)});
   if (!a.csv.empty()) outputs.push_back({"--csv", a.csv});
   if (!a.spp_csv.empty()) {
-    if (window.empty()) throw std::invalid_argument("--spp-csv: needs --window (the SPPs of the reduced models)");
+    if (window.empty()) detail::invalid("--spp-csv: needs --window (the SPPs of the reduced models)");
     outputs.push_back({"--spp-csv", a.spp_csv});
   }
   for (size_t k = 0; k < outputs.size(); ++k)
@@ -72,7 +73,7 @@ int run(const ReduceArgs& a) {
   const SparseSystem model = load_sparse_system(a.model);
   // the reduced model keeps g0: with g0 = 0 spp solve would refuse it after the reduction's work
   if (model.g0() == 0.0)
-    throw std::invalid_argument(a.model +
+    detail::invalid(a.model +
                                 ": g0 = 0 (obstacle touching the rest position): spp solve refuses such a "
                                 "model (SPPs then exist only for special parameter values, paper §6.1), so it is not "
                                 "reduced; give the gap at rest a non-zero g0");

@@ -19,6 +19,7 @@
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"
 #include "tables.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -61,12 +62,12 @@ constexpr int kStageNotesFrom = 500;
 
 // A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
 int run_zero_gap(const SolveArgs& a) {
-  if (a.box) throw std::invalid_argument("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
+  if (a.box) detail::invalid("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
   const ParametricSystem ps = load_parametric_system(a.system);
   if (ps.g0() != 0.0)
-    throw std::invalid_argument(a.system + ": a parametric system with g0 != 0: give --at VALUE of \"" +
+    detail::invalid(a.system + ": a parametric system with g0 != 0: give --at VALUE of \"" +
                                 ps.parameter().name + "\", or follow its SPPs with spp continue");
-  if (!a.csv.empty()) throw std::invalid_argument("--csv: not available for the g0 = 0 solve (use --json)");
+  if (!a.csv.empty()) detail::invalid("--csv: not available for the g0 = 0 solve (use --json)");
   ContinueOptions co;
   co.t1_max = a.options.t1_max;
   co.t2_max = a.options.t2_max;
@@ -89,9 +90,9 @@ int run_zero_gap(const SolveArgs& a) {
 int run(SolveArgs& a) {
   a.options.symmetry = *symmetry_named(a.symmetry);  // CLI11 checked the name
   const bool maxes = a.t1_max_given->count() > 0 || a.t2_max_given->count() > 0;
-  if (a.box && maxes) throw std::invalid_argument("--box sets the window's upper ends: give it or --t1-max/--t2-max");
+  if (a.box && maxes) detail::invalid("--box sets the window's upper ends: give it or --t1-max/--t2-max");
   if (!a.box && !(a.t1_max_given->count() > 0 && a.t2_max_given->count() > 0))
-    throw std::invalid_argument("--t1-max and --t2-max are required (or --box: the fundamental box)");
+    detail::invalid("--t1-max and --t2-max are required (or --box: the fundamental box)");
   if (!a.box) a.options.validate();                                // with --box, once the box is known (below)
   std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
   check_output(a.json, "--json", inputs);
@@ -100,7 +101,7 @@ int run(SolveArgs& a) {
   const bool parametric = file_declares_parameter(a.system);
   const bool at_given = a.at_given->count() > 0;
   if (!parametric && at_given)
-    throw std::invalid_argument("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
+    detail::invalid("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
   if (parametric && !at_given) return run_zero_gap(a);
   g_interrupted = 0;  // Ctrl-C from here on stops the search at its first report (and then reports what was found)
   std::signal(SIGINT, on_interrupt);
@@ -132,7 +133,7 @@ int run(SolveArgs& a) {
       m << std::setprecision(10) << "--box: the fundamental box t1 <= " << a.options.t1_max
         << ", t2 <= " << a.options.t2_max << " does not reach beyond --t1-min " << a.options.t1_min << " / --t2-min "
         << a.options.t2_min;
-      throw std::invalid_argument(m.str());
+      detail::invalid(m.str());
     }
     a.options.validate();
     if (!a.quiet)

@@ -8,6 +8,7 @@
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -25,29 +26,31 @@ int run(TrajectoryArgs& a) {
   inputs.push_back(a.result);
   check_output(a.csv, "--csv", inputs);
   if (a.system.empty() && a.result.empty())
-    throw std::invalid_argument("trajectory: give SYSTEM.json with --t1 and --t2, or --result and --solution");
+    detail::invalid("trajectory: give SYSTEM.json with --t1 and --t2, or --result and --solution");
   // a result file holds the system it was solved for: SYSTEM.json is then optional, and must be that system
-  const System sys = a.system.empty() ? load_result_system(a.result) : load_system(a.system);
+  std::optional<ResultFile> file;
+  if (!a.result.empty()) file = load_result_file(a.result);
+  const System sys = a.system.empty() ? file->system : load_system(a.system);
   check_trajectory_csv_size(a.samples, sys.n(), "--samples");  // before the search and any sample is computed
-  if (!a.system.empty() && !a.result.empty()) {
-    const System solved = load_result_system(a.result);
+  if (file && !a.system.empty()) {
+    const System& solved = file->system;
     if (solved.n() != sys.n() || !solved.M().isApprox(sys.M(), kSameToRounding) ||
         !solved.K().isApprox(sys.K(), kSameToRounding) || !solved.w().isApprox(sys.w(), kSameToRounding) ||
         std::abs(solved.g0() - sys.g0()) > kSameToRounding * std::abs(sys.g0()))
-      throw std::invalid_argument(a.result + ": was solved for another system than " + a.system + " (omit " + a.system +
+      detail::invalid(a.result + ": was solved for another system than " + a.system + " (omit " + a.system +
                                   ": the result file holds its system)");
   }
   const ModalForm md(sys);  // once, for the search and the samples
   std::optional<Solution> loaded;
   if (!a.result.empty()) {
-    if (a.solution < 0) throw std::invalid_argument("trajectory: --result needs --solution K (0-based)");
-    const std::vector<Solution> sols = load_result(a.result).solutions;
+    if (a.solution < 0) detail::invalid("trajectory: --result needs --solution K (0-based)");
+    const std::vector<Solution>& sols = file->result.solutions;
     if (static_cast<size_t>(a.solution) >= sols.size())
-      throw std::invalid_argument(a.result + ": --solution " + std::to_string(a.solution) +
+      detail::invalid(a.result + ": --solution " + std::to_string(a.solution) +
                                   " out of range, the file has " + std::to_string(sols.size()) + " solutions");
     loaded = sols[static_cast<size_t>(a.solution)];
   } else if (a.t1_given->count() == 0) {
-    throw std::invalid_argument("trajectory: give --t1 and --t2, or --result and --solution");
+    detail::invalid("trajectory: give --t1 and --t2, or --result and --solution");
   }
   SolveOptions o;
   o.compute_return_error = false;
@@ -61,7 +64,7 @@ int run(TrajectoryArgs& a) {
       os << "trajectory: no SPP near (t1, t2) = (" << a.t1 << ", " << a.t2 << "): the window (" << near.t1_lo << ", "
          << near.t1_hi << "] x (" << near.t2_lo << ", " << near.t2_hi << "] holds none (search "
          << to_string(near.search_status) << "); widen it with --radius";
-      throw std::invalid_argument(os.str());
+      detail::invalid(os.str());
     }
     s = near.solution;
     if (near.search_status != SolveStatus::Success)

@@ -18,8 +18,8 @@ struct VerifyArgs {
 
 int run(const VerifyArgs& a) {
   check_output(a.json, "--json", {a.result});
-  const System sys = load_result_system(a.result);
-  const VerifyResult r = verify(sys, load_result(a.result).solutions, a.options);
+  const ResultFile file = load_result_file(a.result);
+  const VerifyResult r = verify(file.system, file.result.solutions, a.options);
   const std::string json_text = a.json.empty() ? "" : verify_json(r);
   std::cout << verify_table(r) << r.brief_report() << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);

@@ -16,6 +16,7 @@
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/simulation/verify.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -60,7 +61,7 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
     if (std::find(known.begin(), known.end(), name) == known.end()) {
       std::string list;
       for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
-      throw std::invalid_argument(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
+      detail::invalid(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
                                   " fields: " + list + ")");
     }
     py::setattr(o, key, value);
@@ -84,7 +85,7 @@ inline std::string fields_repr(const py::object& o, const char* type_name) {
 inline void require_real(const py::object& a, const std::string& what) {
   const py::module_ np = py::module_::import("numpy");
   if (np.attr("iscomplexobj")(a).cast<bool>())
-    throw std::invalid_argument(what + " must be real, got a complex array (dtype " +
+    detail::invalid(what + " must be real, got a complex array (dtype " +
                                 py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
 }
 
@@ -93,7 +94,7 @@ inline spp::Symmetry symmetry_of(const py::object& v) {
   if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
   const std::string name = py::str(v);
   if (const std::optional<spp::Symmetry> s = spp::symmetry_named(name)) return *s;
-  throw std::invalid_argument("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name +
+  detail::invalid("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name +
                               "\"");
 }
 

@@ -7,6 +7,7 @@
 #include "spp/core/parametric.hpp"
 #include "spp/core/system.hpp"
 #include "spp/io.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -24,20 +25,20 @@ void bind_core(py::module_& m) {
                try {
                  arr = np.attr("asarray")(d, "dtype"_a = "float64");
                } catch (const py::error_already_set&) {
-                 throw std::invalid_argument(std::string("System: ") + what + " must be an array of numbers");
+                 detail::invalid(std::string("System: ") + what + " must be an array of numbers");
                }
                return arr;
              };
              const py::object m = dense(M, "M"), k = dense(K, "K"), v = dense(w, "w");
              for (const auto& [arr, what] : {std::make_pair(m, "M"), std::make_pair(k, "K")})
                if (arr.attr("ndim").cast<int>() != 2)
-                 throw std::invalid_argument(std::string("System: ") + what + " must be a square matrix, got shape " +
+                 detail::invalid(std::string("System: ") + what + " must be a square matrix, got shape " +
                                              py::str(arr.attr("shape")).cast<std::string>());
              const py::tuple shape = v.attr("shape").cast<py::tuple>();
              const bool vector_like =
                  shape.size() == 1 || (shape.size() == 2 && (shape[0].cast<long>() == 1 || shape[1].cast<long>() == 1));
              if (!vector_like)
-               throw std::invalid_argument("System: w must be a vector, (n,), (1, n) or (n, 1), got shape " +
+               detail::invalid("System: w must be a vector, (n,), (1, n) or (n, 1), got shape " +
                                            py::str(py::object(shape)).cast<std::string>());
              return spp::System(m.cast<Eigen::MatrixXd>(), k.cast<Eigen::MatrixXd>(),
                                 v.attr("ravel")().cast<Eigen::VectorXd>(), g0, name);
@@ -49,7 +50,7 @@ void bind_core(py::module_& m) {
       .def(py::pickle(  // (multiprocessing, joblib): the stored M, K, unit w and g0 rebuild the same system
           [](const spp::System& s) { return py::make_tuple(s.M(), s.K(), s.w(), s.g0(), s.name()); },
           [](const py::tuple& t) {
-            if (t.size() != 5) throw std::invalid_argument("System pickle: expected (M, K, w, g0, name)");
+            if (t.size() != 5) detail::invalid("System pickle: expected (M, K, w, g0, name)");
             return spp::System(t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(), t[2].cast<Eigen::VectorXd>(),
                                t[3].cast<double>(), t[4].cast<std::string>());
           }))
@@ -91,7 +92,7 @@ void bind_core(py::module_& m) {
                try {
                  return a.cast<decltype(shape)>();
                } catch (const py::cast_error&) {
-                 throw std::invalid_argument(std::string("ParametricSystem: ") + what +
+                 detail::invalid(std::string("ParametricSystem: ") + what +
                                              " must be an array of numbers, got " +
                                              py::str(py::type::of(a)).cast<std::string>());
                }

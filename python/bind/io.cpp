@@ -9,9 +9,9 @@
 namespace spp::python {
 
 py::object result_with_system(const std::string& path) {
-  spp::System system = spp::load_result_system(path);
-  py::object result = py::cast(spp::load_result(path));
-  result.attr("system") = std::move(system);
+  spp::ResultFile file = spp::load_result_file(path);  // read and parsed once
+  py::object result = py::cast(std::move(file.result));
+  result.attr("system") = std::move(file.system);
   return result;
 }
 

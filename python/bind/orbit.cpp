@@ -7,6 +7,7 @@
 #include "common.hpp"
 #include "spp/orbit/solution.hpp"
 #include "spp/search/solver.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -52,7 +53,7 @@ void bind_orbit(py::module_& m) {
       "trajectory",
       [](const spp::System& s, double t1, double t2, int samples) {
         if (samples < 2)
-          throw std::invalid_argument("trajectory: samples must be >= 2, got " + std::to_string(samples));
+          detail::invalid("trajectory: samples must be >= 2, got " + std::to_string(samples));
         const spp::ModalForm md(s);
         spp::SolveOptions o;
         o.compute_return_error = false;

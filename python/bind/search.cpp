@@ -6,6 +6,7 @@
 #include "spp/io.hpp"
 #include "spp/search/root_map.hpp"
 #include "spp/search/solver.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -118,23 +119,24 @@ void bind_search(py::module_& m) {
       .def(py::pickle(
           [](const py::object& self) {
             if (!py::hasattr(self, "system") || !py::isinstance<spp::System>(self.attr("system")))
-              throw std::invalid_argument(
+              detail::invalid(
                   "SolveResult pickle: its attribute system must be the spp.System it was "
                   "solved for (results of solve() have it)");
             const spp::System sys = self.attr("system").cast<spp::System>();
             const spp::SolveResult& r = self.cast<const spp::SolveResult&>();
             for (const spp::Solution& x : r.solutions)
               if (x.orbit.x0.size() != sys.n())
-                throw std::invalid_argument("SolveResult pickle: its system has n = " + std::to_string(sys.n()) +
+                detail::invalid("SolveResult pickle: its system has n = " + std::to_string(sys.n()) +
                                             " dofs, its solutions " + std::to_string(x.orbit.x0.size()));
             return py::make_tuple(spp::result_json(sys, r, -1));
           },
           [](const py::tuple& state) {
-            if (state.size() != 1) throw std::invalid_argument("SolveResult pickle: expected one field");
+            if (state.size() != 1) detail::invalid("SolveResult pickle: expected one field");
             const std::string text = state[0].cast<std::string>();
+            spp::ResultFile file = spp::parse_result_file(text, "pickled SolveResult");
             py::dict attrs;
-            attrs["system"] = spp::parse_result_system(text, "pickled SolveResult");
-            return std::make_pair(spp::parse_result(text, "pickled SolveResult"), attrs);
+            attrs["system"] = std::move(file.system);
+            return std::make_pair(std::move(file.result), attrs);
           }))
       .def_static(
           "from_json", &result_with_system, "path"_a,

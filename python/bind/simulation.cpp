@@ -6,6 +6,7 @@
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/simulation/verify.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -96,7 +97,7 @@ void bind_simulation(py::module_& m) {
         if (restitution) o.restitution = *restitution;
         o.validate();
         if (!(samples_per_unit > 0.0))
-          throw std::invalid_argument("simulate: samples_per_unit must be > 0, got " +
+          detail::invalid("simulate: samples_per_unit must be > 0, got " +
                                       std::to_string(samples_per_unit));
         if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
         py::gil_scoped_release release;

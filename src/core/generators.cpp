@@ -15,7 +15,7 @@ std::vector<double> expand(const std::vector<double>& v, int n, const char* name
   if (v.size() != static_cast<size_t>(n)) {
     std::ostringstream os;
     os << "chain: " << name << " must have 1 or n = " << n << " values, got " << v.size();
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   return v;
 }
@@ -23,11 +23,11 @@ std::vector<double> expand(const std::vector<double>& v, int n, const char* name
 
 System chain(int n, const std::vector<double>& masses, const std::vector<double>& stiffnesses, int contact_dof,
              ContactSide side, double g0) {
-  if (n < 1) throw std::invalid_argument("chain: n must be >= 1, got " + std::to_string(n));
+  if (n < 1) detail::invalid("chain: n must be >= 1, got " + std::to_string(n));
   if (contact_dof < 0 || contact_dof >= n) {
     std::ostringstream os;
     os << "chain: contact dof must be in [1, " << n << "], got " << contact_dof + 1;
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   const auto m = expand(masses, n, "masses"), k = expand(stiffnesses, n, "stiffnesses");
   for (int i = 0; i < n; ++i)
@@ -35,7 +35,7 @@ System chain(int n, const std::vector<double>& masses, const std::vector<double>
       std::ostringstream os;
       os << "chain: masses and stiffnesses must be positive, got m" << i + 1 << " = " << m[i] << ", k" << i + 1 << " = "
          << k[i];
-      throw std::invalid_argument(os.str());
+      detail::invalid(os.str());
     }
   Eigen::MatrixXd M, K;
   detail::naming_allocation("chain: M and K of n = " + std::to_string(n) + " dofs, each " + detail::dense_size(n, n),
@@ -116,7 +116,7 @@ ParametricSystem parametrize(const std::function<System(double)>& make, const Pa
   if (!(p.min < p.max)) {
     std::ostringstream os;
     os << "parameter \"" << p.name << "\": needs min < max, got " << p.min << ", " << p.max;
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   const System a = make(p.min), b = make(p.max), mid = make(0.5 * (p.min + p.max));
   const double span = p.max - p.min;
@@ -130,7 +130,7 @@ ParametricSystem parametrize(const std::function<System(double)>& make, const Pa
                       (K0 + mu * K1 - mid.K()).norm() <= kSameToRounding * scale &&
                       (w0 + mu * w1 - mid.w()).norm() <= kSameToRounding && a.g0() == b.g0() && a.g0() == mid.g0();
   if (!affine)
-    throw std::invalid_argument("parameter \"" + p.name +
+    detail::invalid("parameter \"" + p.name +
                                 "\": the system is not affine in it (M, K and w must be affine, g0 fixed)");
   return ParametricSystem(M0, M1, K0, K1, w0, w1, a.g0(), p, a.name() + " (" + p.name + ")");
 }

@@ -23,6 +23,11 @@ std::string describe(const json& v) {
 
 void check_fields(const json& j, std::initializer_list<const char*> known, const std::string& where,
                   std::initializer_list<const char*> also) {
+  check_fields(j, std::vector<const char*>(known), where, also);
+}
+
+void check_fields(const json& j, const std::vector<const char*>& known, const std::string& where,
+                  std::initializer_list<const char*> also) {
   for (const auto& [k, _] : j.items()) {
     bool ok = false;
     for (const char* f : known) ok = ok || k == f;

@@ -24,6 +24,8 @@ std::string describe(const json& v);
 /// Refuses any field not in `known` (nor in `also`, accepted silently), naming it and listing `known`.
 void check_fields(const json& j, std::initializer_list<const char*> known, const std::string& where,
                   std::initializer_list<const char*> also = {});
+void check_fields(const json& j, const std::vector<const char*>& known, const std::string& where,
+                  std::initializer_list<const char*> also = {});
 /// Parses a JSON file; malformed JSON and a key given twice in one object are refused, naming the file.
 json read_json_file(const std::string& path);
 /// The same from text; `path` names it in errors.

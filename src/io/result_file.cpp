@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
 #include "io/json.hpp"
 
@@ -26,8 +28,36 @@ void check_solution(const Reader& o, double t1, double t2, const Eigen::VectorXd
             std::to_string(x0.size()) + " and " + std::to_string(v0.size()));
 }
 
-// The causes of an uncertified region (SolveResult::uncertified, solver.hpp).
-constexpr const char* kCauses[] = {"step", "corner", "budget", "pairing", "polish", "interrupted"};
+// Every count of a result's "stats" by its key, for f(key, member) on a SolveResult (const or not): the one list
+// that result_json writes, check_result checks and result_from_json reads.
+template <class Result, class F>
+void for_each_count(Result& r, F f) {
+  f("flight_pole_lines", r.stats.flight_pole_lines);
+  f("contact_pole_lines", r.stats.contact_pole_lines);
+  f("rectangles", r.stats.rectangles);
+  f("curve_pieces", r.stats.curve_pieces);
+  f("roots", r.stats.roots);
+  f("evaluations", r.stats.evaluations);
+  f("strip_pairs", r.stats.strip_pairs);
+  f("certified_steps", r.stats.certified_steps);
+  f("heuristic_steps", r.stats.heuristic_steps);
+  f("uncertified_steps", r.stats.uncertified_steps);
+  f("uncertified_corners", r.stats.uncertified_corners);
+  f("unpaired_crossings", r.stats.unpaired_crossings);
+  f("unresolved_pieces", r.stats.unresolved_pieces);
+  f("unpolished_roots", r.stats.unpolished_roots);
+  f("unsearched_cells", r.stats.unsearched_cells);
+  f("pole_line_artifacts", r.stats.pole_line_artifacts);
+  f("decoupled_modes", r.decoupled_modes);
+  f("repeated_frequency_groups", r.repeated_groups);
+}
+
+std::vector<const char*> count_keys() {
+  std::vector<const char*> keys;
+  const SolveResult none;
+  for_each_count(none, [&](const char* key, const auto&) { keys.push_back(key); });
+  return keys;
+}
 
 // What result_to_json writes and nothing else: an unknown field is refused, not ignored (a misspelt field was read as
 // absent), and so is a value that contradicts another (a period other than 2 (t1 + t2), "success" beside uncertified
@@ -52,24 +82,7 @@ void check_result(const json& r, const std::string& where) {
     const std::string at = where + ": field \"stats\"";
     const json& st = r.at("stats");
     if (!st.is_object()) invalid(at + " must be an object of counts, got " + describe(st));
-    const std::initializer_list<const char*> counts = {"flight_pole_lines",
-                                                       "contact_pole_lines",
-                                                       "rectangles",
-                                                       "curve_pieces",
-                                                       "roots",
-                                                       "evaluations",
-                                                       "strip_pairs",
-                                                       "certified_steps",
-                                                       "heuristic_steps",
-                                                       "uncertified_steps",
-                                                       "uncertified_corners",
-                                                       "unpaired_crossings",
-                                                       "unresolved_pieces",
-                                                       "unpolished_roots",
-                                                       "unsearched_cells",
-                                                       "pole_line_artifacts",
-                                                       "decoupled_modes",
-                                                       "repeated_frequency_groups"};
+    const std::vector<const char*> counts = count_keys();
     check_fields(st, counts, at, {"seconds"});
     const Reader sr{st, at};
     for (const char* k : counts)
@@ -88,7 +101,7 @@ void check_result(const json& r, const std::string& where) {
       const std::string cause = u.text("cause");
       bool known = false;
       std::string list;
-      for (const char* c : kCauses) {
+      for (const char* c : kUncertifiedCauses) {
         known = known || cause == c;
         list += std::string(list.empty() ? "" : ", ") + c;
       }
@@ -146,25 +159,10 @@ json result_to_json(const System& s, const SolveResult& r) {
   j["status"] = to_string(r.status);
   j["symmetry"] = to_string(r.symmetry);
   j["warnings"] = r.warnings;
-  j["stats"] = {{"flight_pole_lines", r.stats.flight_pole_lines},
-                {"contact_pole_lines", r.stats.contact_pole_lines},
-                {"rectangles", r.stats.rectangles},
-                {"curve_pieces", r.stats.curve_pieces},
-                {"roots", r.stats.roots},
-                {"evaluations", r.stats.evaluations},
-                {"strip_pairs", r.stats.strip_pairs},
-                {"certified_steps", r.stats.certified_steps},
-                {"heuristic_steps", r.stats.heuristic_steps},
-                {"uncertified_steps", r.stats.uncertified_steps},
-                {"uncertified_corners", r.stats.uncertified_corners},
-                {"unpaired_crossings", r.stats.unpaired_crossings},
-                {"unresolved_pieces", r.stats.unresolved_pieces},
-                {"unpolished_roots", r.stats.unpolished_roots},
-                {"unsearched_cells", r.stats.unsearched_cells},
-                {"pole_line_artifacts", r.stats.pole_line_artifacts},
-                {"decoupled_modes", r.decoupled_modes},
-                {"repeated_frequency_groups", r.repeated_groups},
-                {"seconds", r.stats.seconds}};
+  json stats = json::object();
+  for_each_count(r, [&](const char* key, const auto& count) { stats[key] = count; });
+  stats["seconds"] = r.stats.seconds;
+  j["stats"] = stats;
   json unc = json::array();
   for (const UncertifiedRegion& u : r.uncertified)
     unc.push_back({{"t1_lo", u.t1_lo}, {"t1_hi", u.t1_hi}, {"t2_lo", u.t2_lo}, {"t2_hi", u.t2_hi}, {"cause", u.cause}});
@@ -237,27 +235,12 @@ SolveResult result_from_json(const json& r, const std::string& where) {
   res.t2_min = win.number("t2_min");
   res.t2_max = win.number("t2_max");
   const Reader st{top.at("stats"), where + ": field \"stats\""};
-  SolveStats& s = res.stats;
-  s.flight_pole_lines = static_cast<int>(st.integer("flight_pole_lines"));
-  s.contact_pole_lines = static_cast<int>(st.integer("contact_pole_lines"));
-  s.rectangles = st.integer("rectangles");
-  s.curve_pieces = st.integer("curve_pieces");
-  s.roots = st.integer("roots");
-  s.evaluations = st.integer("evaluations");
-  s.strip_pairs = st.integer("strip_pairs");
-  s.certified_steps = st.integer("certified_steps");
-  s.heuristic_steps = st.integer("heuristic_steps");
-  s.uncertified_steps = st.integer("uncertified_steps");
-  s.uncertified_corners = st.integer("uncertified_corners");
-  s.unpaired_crossings = st.integer("unpaired_crossings");
-  s.unresolved_pieces = st.integer("unresolved_pieces");
-  s.unpolished_roots = st.integer("unpolished_roots");
-  // files written before the field existed have none
-  s.unsearched_cells = st.o.contains("unsearched_cells") ? st.integer("unsearched_cells") : 0;
-  s.pole_line_artifacts = st.integer("pole_line_artifacts");
-  s.seconds = st.number("seconds");
-  res.decoupled_modes = static_cast<int>(st.integer("decoupled_modes"));
-  res.repeated_groups = static_cast<int>(st.integer("repeated_frequency_groups"));
+  for_each_count(res, [&](const char* key, auto& count) {
+    using Count = std::remove_reference_t<decltype(count)>;
+    const bool older = std::string(key) == "unsearched_cells" && !st.o.contains(key);  // before the field existed
+    count = older ? Count{0} : static_cast<Count>(st.integer(key));
+  });
+  res.stats.seconds = st.number("seconds");
   const json& unc = top.at("uncertified");
   if (!unc.is_array()) invalid(where + ": field \"uncertified\" must be a list, got " + describe(unc));
   for (size_t i = 0; i < unc.size(); ++i) {
@@ -351,16 +334,22 @@ std::string result_json(const System& system, const SolveResult& result, int ind
   return io::result_to_json(system, result).dump(indent) + "\n";
 }
 
+ResultFile load_result_file(const std::string& path) {
+  const io::json j = io::read_json_file(path);
+  return {io::result_system(j, path), io::result_from_json(j, path)};
+}
+
+ResultFile parse_result_file(const std::string& text, const std::string& where) {
+  const io::json j = io::parse_json_text(text, where);
+  return {io::result_system(j, where), io::result_from_json(j, where)};
+}
+
 SolveResult load_result(const std::string& path) {
   return io::result_from_json(io::read_json_file(path), path);
 }
 
 SolveResult parse_result(const std::string& text, const std::string& where) {
   return io::result_from_json(io::parse_json_text(text, where), where);
-}
-
-System parse_result_system(const std::string& text, const std::string& where) {
-  return io::result_system(io::parse_json_text(text, where), where);
 }
 
 System load_result_system(const std::string& path) {

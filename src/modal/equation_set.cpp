@@ -5,6 +5,7 @@
 
 #include "modal/equation_sets.hpp"
 #include "spp/detail/dense_products.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -27,7 +28,7 @@ std::unique_ptr<EquationSet> make_equations(const ModalForm& modal, Symmetry sym
     case Symmetry::Axial: return detail::make_axial_equations(modal);
     case Symmetry::Point: return detail::make_point_equations(modal);
   }
-  throw std::invalid_argument("make_equations: expected Symmetry::Axial or Symmetry::Point, got Symmetry(" +
+  detail::invalid("make_equations: expected Symmetry::Axial or Symmetry::Point, got Symmetry(" +
                               std::to_string(static_cast<int>(sym)) + ")");
 }
 

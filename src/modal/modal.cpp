@@ -175,7 +175,7 @@ std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, doubl
     std::ostringstream os;
     os << "window (" << lo << ", " << hi << ") holds " << count << " pole lines (more than " << max_count
        << "): narrow the window";
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   std::vector<double> poles;
   poles.reserve(static_cast<size_t>(count));
@@ -188,7 +188,7 @@ std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, doubl
       std::ostringstream os;
       os << "window end " << hi << " is beyond double resolution of the pole lines of frequency " << f
          << " (pole index " << last << " >= 2^52): move the window closer to 0";
-      throw std::invalid_argument(os.str());
+      detail::invalid(os.str());
     }
     // integer loop counter: a double counter stops advancing past 2^53
     for (auto j = static_cast<long long>(first); j <= static_cast<long long>(last); ++j) {

@@ -82,9 +82,9 @@ bool gap_can_close(const EquationSet& eq, double t1, const Eigen::VectorXd& a) {
 Orbit make_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a_in) {
   const ModalForm& md = eq.modal();
   if (md.g0() == 0.0)
-    throw std::invalid_argument("orbit: g0 = 0, the scale of the initial conditions (eq. 5.2) is undefined");
+    detail::invalid("orbit: g0 = 0, the scale of the initial conditions (eq. 5.2) is undefined");
   const double r = md.u().dot((eq.onset_position(t1, a_in).array() / md.omega().array()).matrix());
-  if (r == 0.0) throw std::invalid_argument("orbit: u^T W^-1 p0 = 0, the gap cannot close (eq. 5.2)");
+  if (r == 0.0) detail::invalid("orbit: u^T W^-1 p0 = 0, the gap cannot close (eq. 5.2)");
   return scaled_orbit(eq, t1, t2, a_in, -md.g0() / (md.beta() * r));  // eq. (5.2): w^T x0 = -g0
 }
 
@@ -113,7 +113,7 @@ Admissibility sample_point_admissibility(const ModalForm& md, const Orbit& orbit
 
 Orbit make_unit_energy_orbit(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a) {
   const Orbit one = scaled_orbit(eq, t1, t2, a, 1.0);
-  if (!(one.energy > 0.0)) throw std::invalid_argument("orbit: zero null vector, no orbit to scale");
+  if (!(one.energy > 0.0)) detail::invalid("orbit: zero null vector, no orbit to scale");
   // The sign that makes the force >= 0 at mid-contact (axial) or at t2 / 2 (point: zero at t2).
   const double sign = state_in_basis(eq.modal(), one, eq.force_probe(t2)).force >= 0.0 ? 1.0 : -1.0;
   return scaled_orbit(eq, t1, t2, a, sign / std::sqrt(one.energy));

@@ -40,7 +40,7 @@ void SolveOptions::validate() const {
     if (!(std::isfinite(v) && v > 0.0)) {
       std::ostringstream os;
       os << "options: " << name << " must be positive and finite, got " << v;
-      throw std::invalid_argument(os.str());
+      detail::invalid(os.str());
     }
   };
   positive_finite(t1_max, "t1_max");
@@ -49,7 +49,7 @@ void SolveOptions::validate() const {
     if (!(std::isfinite(v) && v >= 0.0 && v < hi)) {
       std::ostringstream os;
       os << "options: " << name << " must be >= 0 and < " << hiname << " = " << hi << " (0 = automatic), got " << v;
-      throw std::invalid_argument(os.str());
+      detail::invalid(os.str());
     }
   };
   lower(t1_min, t1_max, "t1_min", "t1_max");
@@ -58,7 +58,7 @@ void SolveOptions::validate() const {
     if (!(v > lo && v < hi)) {
       std::ostringstream os;
       os << "options: " << name << " must be in (" << lo << ", " << hi << "), got " << v;
-      throw std::invalid_argument(os.str());
+      detail::invalid(os.str());
     }
   };
   in_open(pole_margin, 0.0, 0.1, "pole_margin");
@@ -66,8 +66,8 @@ void SolveOptions::validate() const {
   in_open(min_step, 0.0, 1e-3, "min_step");
   in_open(admissibility_tol, 0.0, 1e-2, "admissibility_tol");
   if (threads < 0)
-    throw std::invalid_argument("options: threads must be >= 0 (0 = all), got " + std::to_string(threads));
-  if (max_cells < 1) throw std::invalid_argument("options: max_cells must be >= 1, got " + std::to_string(max_cells));
+    detail::invalid("options: threads must be >= 0 (0 = all), got " + std::to_string(threads));
+  if (max_cells < 1) detail::invalid("options: max_cells must be >= 1, got " + std::to_string(max_cells));
 }
 
 std::string SolveResult::brief_report() const {
@@ -97,7 +97,7 @@ void require_positive_guess(const char* who, double t1, double t2) {
   if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
     std::ostringstream os;
     os << who << ": t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
 }
 
@@ -114,7 +114,7 @@ void require_modal_of(const System& system, const ModalForm& modal, const char* 
 // g0 = 0 is refused by every entry point with the same message.
 void require_nonzero_gap(const System& system) {
   if (system.g0() == 0.0)
-    throw std::invalid_argument(
+    detail::invalid(
         "system: g0 = 0 (obstacle touching the rest position): SPPs then exist only for special parameter "
         "values (paper §6.1) and need one more unknown: declare a parameter in the system file (\"parameter\": "
         "{\"name\", \"min\", \"max\"}, M/K/w affine in it) and run spp solve without --at, or "
@@ -353,7 +353,7 @@ search::WindowPlan plan_search(const ModalForm& md, const SolveOptions& options)
     os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
        << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
        << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   return search::plan_window(md, options);
 }
@@ -573,7 +573,7 @@ NearestSpp nearest_spp(const System& system, const ModalForm& modal, double t1, 
   if (!(radius > 0 && radius < 1)) {
     std::ostringstream os;
     os << "nearest_spp: radius must be in (0, 1), got " << radius;
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   SolveOptions o = options;
   o.t1_min = t1 * (1 - radius);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "search/tolerances.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::search {
 
@@ -63,7 +64,7 @@ void check_window_size(const ModalForm& md, const SolveOptions& opt, const std::
     os << where << ": the window (" << opt.t1_min << ", " << opt.t1_max << "] x (" << opt.t2_min << ", " << opt.t2_max
        << "] holds about " << c1 * c2 << " cells (" << c1 - 1 << " x " << c2 - 1
        << " pole lines), more than max_cells = " << opt.max_cells << ": " << remedy;
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
 }
 

@@ -1,6 +1,9 @@
 #pragma once
-// One way to refuse a caller's mistake: std::invalid_argument, its message naming what is wrong and where
-// ("<where>: <field> must be <rule>, got <value>"). Numerical outcomes are statuses, never these.
+// The one way to refuse a caller's mistake (style note, "Errors"): std::invalid_argument, its message naming where,
+// what was expected and what was got ("<where>: <field> must be <rule>, got <value>", or "<where>: expected X, got
+// Y"). Library, command line and Python binding all throw through these two (tests/style checks that none throws
+// std::invalid_argument by hand); never echo unbounded input in the message. Numerical outcomes are statuses, never
+// these.
 
 #include <sstream>
 #include <stdexcept>

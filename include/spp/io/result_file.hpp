@@ -18,13 +18,19 @@ namespace spp {
 
 /// The result file's text. indent < 0: one line.
 std::string result_json(const System& system, const SolveResult& result, int indent = 2);
-/// The SolveResult that result_json wrote, every field (tested: write, read, compare). Throws std::invalid_argument
-/// naming the file and the field it cannot read.
-SolveResult load_result(const std::string& path);
+/// A result file as written: the system it was solved for and the SolveResult.
+struct ResultFile {
+  System system;
+  SolveResult result;
+};
+/// The system and the SolveResult that result_json wrote, every field (tested: write, read, compare), the file read
+/// and parsed once. Throws std::invalid_argument naming the file and the field it cannot read.
+ResultFile load_result_file(const std::string& path);
 /// The same from the file's text (`where` names it in errors): what Python's pickling reads back.
+ResultFile parse_result_file(const std::string& text, const std::string& where);
+/// Parts of the above, for a caller that needs one.
+SolveResult load_result(const std::string& path);
 SolveResult parse_result(const std::string& text, const std::string& where);
-System parse_result_system(const std::string& text, const std::string& where);
-/// The system embedded in a result file.
 System load_result_system(const std::string& path);
 
 }  // namespace spp

@@ -15,6 +15,7 @@
 // step_certificate); solve() in src/search/solver.cpp calls them in order.
 
 #include <Eigen/Dense>
+#include <array>
 #include <functional>
 #include <string>
 #include <utility>
@@ -117,10 +118,14 @@ struct SolveStats {
   double seconds = 0.0;
 };
 
+/// The causes of an UncertifiedRegion (the result file's reader accepts these and no other).
+inline constexpr std::array<const char*, 6> kUncertifiedCauses = {"step",    "corner", "budget",
+                                                                  "pairing", "polish", "interrupted"};
+
 /// A part of the window that could not be certified, and why.
 struct UncertifiedRegion {
   double t1_lo = 0, t1_hi = 0, t2_lo = 0, t2_hi = 0;
-  std::string cause;  ///< "step", "corner", "budget", "pairing", "polish", "interrupted"
+  std::string cause;  ///< one of kUncertifiedCauses
 };
 
 struct SolveResult {
