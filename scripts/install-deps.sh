@@ -6,7 +6,8 @@ PACKAGES=(g++ cmake ninja-build pkg-config
           libgtest-dev googletest libbenchmark-dev
           python3 python3-dev python3-pip python3-venv pybind11-dev python3-numpy python3-pytest
           python3-matplotlib python3-pil python3-pandas python3-siconos
-          python3-nbclient python3-nbformat python3-ipykernel python3-tqdm)
+          python3-nbclient python3-nbformat python3-ipykernel python3-tqdm
+          openmpi-bin libopenmpi-dev python3-mpi4py)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,7 +1,8 @@
 #pragma once
 // The spp command line: one file per subcommand (solve.cpp, continue.cpp, ...), each registering its options on the
 // application and returning how to run it. Exit codes: 0 success, 1 invalid input or failed run (message on stderr),
-// 3 verify: a simulation disagrees with the solver's admissibility.
+// 3 verify: a simulation disagrees with the solver's admissibility,
+// 4 sweep: at least one item failed.
 
 #include <CLI/CLI.hpp>
 #include <functional>
@@ -29,6 +30,8 @@ std::vector<Subcommand> add_figures(CLI::App& app);
 Subcommand add_generate(CLI::App& app);
 /// reduce: a large sparse model to a small system file (Craig-Bampton).
 Subcommand add_reduce(CLI::App& app);
+/// sweep: one solve per parameter value or system file, resumable; on MPI spread over the ranks (parallel.hpp).
+Subcommand add_sweep(CLI::App& app);
 
 /// An output of a run and the option that names it, e.g. {"--json", "r.json"}.
 struct NamedOutput {

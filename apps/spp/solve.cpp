@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "command.hpp"
+#include "parallel.hpp"
 #include "spp/continuation/continuation.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
@@ -62,7 +63,10 @@ constexpr int kStageNotesFrom = 500;
 
 // A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
 int run_zero_gap(const SolveArgs& a) {
-  if (a.box) detail::invalid("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
+  if (ranks() > 1)
+    throw std::invalid_argument("the g0 = 0 solve (continuation in the parameter) does not run on several MPI ranks: "
+                                "run it with one rank, or build/spp");
+  if (a.box) throw std::invalid_argument("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
   const ParametricSystem ps = load_parametric_system(a.system);
   if (ps.g0() != 0.0)
     detail::invalid(a.system + ": a parametric system with g0 != 0: give --at VALUE of \"" +
@@ -104,12 +108,14 @@ int run(SolveArgs& a) {
     detail::invalid("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
   if (parametric && !at_given) return run_zero_gap(a);
   g_interrupted = 0;  // Ctrl-C from here on stops the search at its first report (and then reports what was found)
-  std::signal(SIGINT, on_interrupt);
+  // (on several MPI ranks there is no such report: mpirun forwards Ctrl-C, and it ends the run)
+  if (ranks() == 1) std::signal(SIGINT, on_interrupt);
+  const bool root = is_root();  // prints and writes (rank 0 on MPI)
   std::optional<ParametricSystem> ps;
   if (parametric) {
     ps = load_parametric_system(a.system);
     const Parameter& par = ps->parameter();
-    if (a.at < par.min || a.at > par.max)  // allowed (the system is affine in it), but likely a slip
+    if (root && (a.at < par.min || a.at > par.max))  // allowed (the system is affine in it), but likely a slip
       std::cerr << "note: --at " << a.at << " lies outside the range [" << par.min << ", " << par.max << "] that "
                 << a.system << " declares for " << par.name << "\n";
   }
@@ -120,7 +126,7 @@ int run(SolveArgs& a) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   };
   const System sys = parametric ? ps->at(a.at) : load_system(a.system);
-  const bool stages = !a.quiet && sys.n() >= kStageNotesFrom;
+  const bool stages = root && !a.quiet && sys.n() >= kStageNotesFrom;
   if (stages)
     std::cerr << "spp: " << sys.n() << " dofs read and checked in " << std::setprecision(3) << elapsed()
               << " s; computing the modal form (O(n^3): two eigenproblems of size n)\n";
@@ -136,11 +142,12 @@ int run(SolveArgs& a) {
       detail::invalid(m.str());
     }
     a.options.validate();
-    if (!a.quiet)
+    if (root && !a.quiet)
       std::cout << "fundamental box: t1 <= pi / omega_1 = " << a.options.t1_max
                 << ", t2 <= pi / d_1 = " << a.options.t2_max << "\n";
   }
   if (a.dry_run) {  // the work, before any: pole lines, cells, a rough time; nothing written
+    if (!root) return 0;
     const WindowEstimate e = estimate_window(sys, modal, a.options);
     std::cout << std::setprecision(6) << "window (" << e.t1_min << ", " << e.t1_max << "] x (" << e.t2_min << ", "
               << e.t2_max << "]: " << e.flight_pole_lines << " flight and " << e.contact_pole_lines
@@ -154,8 +161,9 @@ int run(SolveArgs& a) {
   }
   bool shown = false;
   a.options.progress = cli_progress(a.quiet, shown);
-  const SolveResult res = solve(sys, modal, a.options);
+  const SolveResult res = solve_window(sys, modal, a.options);
   std::signal(SIGINT, SIG_DFL);
+  if (!root) return 0;  // rank 0 holds the merged result
   if (shown) std::fputs("\n", stderr);
   // prepare every output before writing any
   const std::string json_text = a.json.empty() ? "" : result_json(sys, res);

@@ -17,6 +17,7 @@
 #include "search/evaluator.hpp"
 #include "search/pole_pairing.hpp"
 #include "search/polish.hpp"
+#include "search/search_steps.hpp"
 #include "search/tolerances.hpp"
 #include "search/window_plan.hpp"
 #include "spp/detail/dense_products.hpp"
@@ -205,74 +206,108 @@ std::string SolutionAt::brief_report() const {
   return os.str();
 }
 
+namespace search {
+
+StripOut trace_strip(const EquationSet& eq, const WindowPlan& plan, size_t j, const std::atomic<bool>* stop,
+                     TraceCounters* counters) {
+  const SolveOptions& opt = plan.options;
+  const AxisPlan &a1 = plan.t1, &a2 = plan.t2;
+  const size_t I = a1.cells();
+  StripOut out;
+  out.left.resize(I);
+  out.top.resize(I);
+  out.right.resize(I);
+  out.bottom.resize(I);
+  DenseEvaluator evaluator(eq);
+  CellTracer tracer(eq, opt, out.stats, evaluator, stop);
+  for (size_t i = 0; i < I; ++i) {
+    if (stop && *stop) {  // stopped: the rest of the strip is listed as not searched
+      out.stats.unsearched_cells += static_cast<long>(I - i);
+      out.uncertified.push_back({a1.bp[i], a1.bp[I], a2.bp[j], a2.bp[j + 1], "interrupted"});
+      break;
+    }
+    const size_t found_before = tracer.candidates().size();
+    const Cell cell{a1.bp[i] + a1.margin[i],
+                    a1.bp[i + 1] - a1.margin[i + 1],
+                    a2.bp[j] + a2.margin[j],
+                    a2.bp[j + 1] - a2.margin[j + 1],
+                    a1.pole[i],
+                    a1.pole[i + 1],
+                    a2.pole[j],
+                    a2.pole[j + 1]};
+    if (counters) ++counters->cells_done;
+    if (!(cell.a1 < cell.b1 && cell.A < cell.B)) continue;
+    // curves leave through the left edge (pole line i) into the right edge of cell i - 1, and through the top edge
+    // (pole line j + 1) into the bottom edge of strip j + 1
+    if (!tracer.trace_cell(cell, i, out.left[i], out.top[i], out.right[i], out.bottom[i])) {
+      const bool cut = stop && stop->load();  // stopped inside the cell: its pieces ended early, not searched
+      if (cut) ++out.stats.unsearched_cells;
+      out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, cut ? "interrupted" : "step"});
+    }
+    if (counters) counters->candidates_found += static_cast<long>(tracer.candidates().size() - found_before);
+  }
+  out.candidates = std::move(tracer.candidates());
+  out.stats.evaluations += evaluator.evaluations();  // plus those of the step certificates
+  return out;
+}
+
+TracedWindow merge_strips(const WindowPlan& plan, std::vector<StripOut>& strips, SolveResult& res) {
+  const size_t I = plan.t1.cells(), J = plan.t2.cells();
+  if (strips.size() != J)
+    throw std::invalid_argument("merge_strips: expected " + std::to_string(J) + " strip outputs, got " +
+                                std::to_string(strips.size()));
+  TracedWindow tw;
+  tw.hits.v_from.assign(I + 1, std::vector<std::vector<EdgeHit>>(J));
+  tw.hits.v_to = tw.hits.v_from;
+  tw.hits.h_from.assign(J + 1, std::vector<std::vector<EdgeHit>>(I));
+  tw.hits.h_to = tw.hits.h_from;
+  for (size_t j = 0; j < J; ++j) {
+    StripOut& out = strips[j];
+    if (out.left.size() != I || out.top.size() != I || out.right.size() != I || out.bottom.size() != I)
+      throw std::invalid_argument("merge_strips: strip " + std::to_string(j) + " holds hits of " +
+                                  std::to_string(out.left.size()) + " cells, expected " + std::to_string(I));
+    for (size_t i = 0; i < I; ++i) {
+      tw.hits.v_from[i][j] = std::move(out.left[i]);
+      tw.hits.h_from[j + 1][i] = std::move(out.top[i]);
+      tw.hits.v_to[i + 1][j] = std::move(out.right[i]);
+      tw.hits.h_to[j][i] = std::move(out.bottom[i]);
+    }
+    const SolveStats& s = out.stats;
+    res.stats.rectangles += s.rectangles;
+    res.stats.curve_pieces += s.curve_pieces;
+    res.stats.evaluations += s.evaluations;
+    res.stats.certified_steps += s.certified_steps;
+    res.stats.heuristic_steps += s.heuristic_steps;
+    res.stats.uncertified_steps += s.uncertified_steps;
+    res.stats.uncertified_corners += s.uncertified_corners;
+    res.stats.unresolved_pieces += s.unresolved_pieces;
+    res.stats.unsearched_cells += s.unsearched_cells;
+    for (auto& c : out.candidates) tw.candidates.push_back(std::move(c));
+    for (auto& u : out.uncertified) res.uncertified.push_back(std::move(u));
+  }
+  return tw;
+}
+
+}  // namespace search
+
 namespace {
 
-// Steps 2-3, over all cells: strips between t2 breakpoints are independent, so workers take whole strips, each with
-// its own evaluator (own cache and counters) and tracer; the merge is in strip order, so the result does not depend
-// on the number of threads.
-struct TracedWindow {
-  std::vector<Candidate> candidates;
-  search::PoleHits hits;
-};
-
-TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, SolveResult& res) {
+// Steps 2-3, over all cells: strips between t2 breakpoints are independent, so workers take whole strips
+// (search::trace_strip); the merge is in strip order, so the result does not depend on the number of threads.
+search::TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, SolveResult& res) {
   const SolveOptions& opt = plan.options;
-  const search::AxisPlan &a1 = plan.t1, &a2 = plan.t2;
-  const size_t I = a1.cells(), J = a2.cells();
-  TracedWindow tw;
-  tw.hits.v_from.assign(I + 1, std::vector<std::vector<search::EdgeHit>>(J));
-  tw.hits.v_to = tw.hits.v_from;
-  tw.hits.h_from.assign(J + 1, std::vector<std::vector<search::EdgeHit>>(I));
-  tw.hits.h_to = tw.hits.h_from;
-  struct StripOut {
-    std::vector<Candidate> candidates;
-    std::vector<UncertifiedRegion> uncertified;
-    SolveStats stats;
-  };
-  std::vector<StripOut> strips(J);
+  const size_t I = plan.t1.cells(), J = plan.t2.cells();
+  std::vector<search::StripOut> strips(J);
   std::atomic<size_t> next_strip{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
   // progress (SolveOptions::progress): counted by the workers, reported by the calling thread, which may stop them
-  std::atomic<long> cells_done{0}, candidates_found{0};
+  search::TraceCounters counters;
   std::atomic<bool> stop{false};
   std::atomic<size_t> workers_done{0};
   auto worker = [&]() {
     try {
-      for (size_t j = next_strip++; j < J; j = next_strip++) {
-        StripOut& out = strips[j];
-        search::DenseEvaluator evaluator(eq);
-        search::CellTracer tracer(eq, opt, out.stats, evaluator, &stop);
-        for (size_t i = 0; i < I; ++i) {
-          if (stop) {  // stopped: the rest of the strip is listed as not searched
-            out.stats.unsearched_cells += static_cast<long>(I - i);
-            out.uncertified.push_back({a1.bp[i], a1.bp[I], a2.bp[j], a2.bp[j + 1], "interrupted"});
-            break;
-          }
-          const size_t found_before = tracer.candidates().size();
-          const search::Cell cell{a1.bp[i] + a1.margin[i],
-                                  a1.bp[i + 1] - a1.margin[i + 1],
-                                  a2.bp[j] + a2.margin[j],
-                                  a2.bp[j + 1] - a2.margin[j + 1],
-                                  a1.pole[i],
-                                  a1.pole[i + 1],
-                                  a2.pole[j],
-                                  a2.pole[j + 1]};
-          ++cells_done;
-          if (!(cell.a1 < cell.b1 && cell.A < cell.B)) continue;
-          // curves leave through the left edge (pole line i) into the right edge of cell i - 1, and through the
-          // top edge (pole line j + 1) into the bottom edge of strip j + 1
-          if (!tracer.trace_cell(cell, i, tw.hits.v_from[i][j], tw.hits.h_from[j + 1][i], tw.hits.v_to[i + 1][j],
-                                 tw.hits.h_to[j][i])) {
-            const bool cut = stop.load();  // stopped inside the cell: its pieces ended early, counted as not searched
-            if (cut) ++out.stats.unsearched_cells;
-            out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, cut ? "interrupted" : "step"});
-          }
-          candidates_found += static_cast<long>(tracer.candidates().size() - found_before);
-        }
-        out.candidates = std::move(tracer.candidates());
-        out.stats.evaluations += evaluator.evaluations();  // plus those of the step certificates
-      }
+      for (size_t j = next_strip++; j < J; j = next_strip++) strips[j] = search::trace_strip(eq, plan, j, &stop, &counters);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failure_mutex);
       failure = std::current_exception();
@@ -291,7 +326,7 @@ TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, 
     for (size_t t = 0; t < nthreads; ++t) pool.emplace_back(worker);
     const auto t0 = std::chrono::steady_clock::now();
     auto report = [&] {
-      const SolveProgress p{cells_done.load(), static_cast<long>(I * J), candidates_found.load(),
+      const SolveProgress p{counters.cells_done.load(), static_cast<long>(I * J), counters.candidates_found.load(),
                             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
       return opt.progress(p);
     };
@@ -313,21 +348,7 @@ TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan& plan, 
   }
   for (auto& th : pool) th.join();
   if (failure) std::rethrow_exception(failure);
-  for (StripOut& out : strips) {
-    const SolveStats& s = out.stats;
-    res.stats.rectangles += s.rectangles;
-    res.stats.curve_pieces += s.curve_pieces;
-    res.stats.evaluations += s.evaluations;
-    res.stats.certified_steps += s.certified_steps;
-    res.stats.heuristic_steps += s.heuristic_steps;
-    res.stats.uncertified_steps += s.uncertified_steps;
-    res.stats.uncertified_corners += s.uncertified_corners;
-    res.stats.unresolved_pieces += s.unresolved_pieces;
-    res.stats.unsearched_cells += s.unsearched_cells;
-    for (auto& c : out.candidates) tw.candidates.push_back(std::move(c));
-    for (auto& u : out.uncertified) res.uncertified.push_back(std::move(u));
-  }
-  return tw;
+  return search::merge_strips(plan, strips, res);
 }
 
 }  // namespace
@@ -344,19 +365,6 @@ std::string SolveProgress::line() const {
 }
 
 namespace {
-
-// Step 1 of solve(): the window outside the axis bands, planned (throws for a window inside a band, or too large).
-search::WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {
-  const auto [band1, band2] = axis_band(md);
-  if (options.t1_max <= band1 || options.t2_max <= band2) {
-    std::ostringstream os;
-    os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
-       << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
-       << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
-    detail::invalid(os.str());
-  }
-  return search::plan_window(md, options);
-}
 
 // True when (t1, t2) lies within kOnPoleLine (relative) of a flight or contact pole line.
 bool on_pole_line(const ModalForm& md, double t1, double t2) {
@@ -483,6 +491,54 @@ void finalize(const SolveOptions& options, SolveResult& res) {
 
 }  // namespace
 
+namespace search {
+
+WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {
+  const auto [band1, band2] = axis_band(md);
+  if (options.t1_max <= band1 || options.t2_max <= band2) {
+    std::ostringstream os;
+    os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
+       << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
+       << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
+    throw std::invalid_argument(os.str());
+  }
+  return plan_window(md, options);
+}
+
+void check_solve_inputs(const System& system, const ModalForm& md, const char* where) {
+  require_nonzero_gap(system);
+  require_modal_of(system, md, where);
+}
+
+SolveResult start_result(const ModalForm& md, const WindowPlan& plan, Symmetry symmetry) {
+  SolveResult res;
+  res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
+  res.repeated_groups = md.repeated_groups();
+  res.symmetry = symmetry;
+  const auto [band1, band2] = axis_band(md);
+  res.t1_min = std::max(plan.options.t1_min, band1);
+  res.t1_max = plan.options.t1_max;
+  res.t2_min = std::max(plan.options.t2_min, band2);
+  res.t2_max = plan.options.t2_max;
+  res.stats.flight_pole_lines = plan.t1.poles();
+  res.stats.contact_pole_lines = plan.t2.poles();
+  return res;
+}
+
+void finish_search(const System& system, const EquationSet& eq, const WindowPlan& plan, TracedWindow& traced,
+                   const SolveOptions& options, SolveResult& res) {
+  // 4. pair the curves across the thin strips around pole lines (a stopped search has no hits from the cells it
+  // skipped: its strips are left unpaired, and the status says that the search was stopped)
+  if (res.stats.unsearched_cells == 0)
+    pair_across_pole_lines(traced.hits, plan.t1, plan.t2, res.stats, res.uncertified, traced.candidates);
+  // 5. polish into roots, keep those of the window
+  polish_candidates(system, eq, plan, traced.candidates, options.compute_return_error, res);
+  // 6. finalize
+  finalize(options, res);
+}
+
+}  // namespace search
+
 SolveResult solve(const System& system, const SolveOptions& options) {
   options.validate();
   require_nonzero_gap(system);
@@ -496,31 +552,14 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   require_nonzero_gap(system);
   require_modal_of(system, md, "solve");
   const auto t0 = std::chrono::steady_clock::now();
-  SolveResult res;
-  res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
-  res.repeated_groups = md.repeated_groups();
-  res.symmetry = options.symmetry;
   const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
-
   // 1. plan the window: search region, pole lines, cells (refused if too many) before any evaluation
-  const auto [band1, band2] = axis_band(md);
-  const search::WindowPlan plan = plan_search(md, options);
-  res.t1_min = std::max(plan.options.t1_min, band1);
-  res.t1_max = plan.options.t1_max;
-  res.t2_min = std::max(plan.options.t2_min, band2);
-  res.t2_max = plan.options.t2_max;
-  res.stats.flight_pole_lines = plan.t1.poles();
-  res.stats.contact_pole_lines = plan.t2.poles();
+  const search::WindowPlan plan = search::plan_search(md, options);
+  SolveResult res = search::start_result(md, plan, options.symmetry);
   // 2-3. count at the corners and trace the pieces, cell by cell
-  TracedWindow traced = trace_cells(*eq, plan, res);
-  // 4. pair the curves across the thin strips around pole lines (a stopped search has no hits from the cells it
-  // skipped: its strips are left unpaired, and the status says that the search was stopped)
-  if (res.stats.unsearched_cells == 0)
-    search::pair_across_pole_lines(traced.hits, plan.t1, plan.t2, res.stats, res.uncertified, traced.candidates);
-  // 5. polish into roots, keep those of the window
-  polish_candidates(system, *eq, plan, traced.candidates, options.compute_return_error, res);
-  // 6. finalize
-  finalize(options, res);
+  search::TracedWindow traced = trace_cells(*eq, plan, res);
+  // 4-6. pair, polish, finalize
+  search::finish_search(system, *eq, plan, traced, options, res);
   res.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
@@ -530,7 +569,7 @@ WindowEstimate estimate_window(const System& system, const ModalForm& md, const 
   require_nonzero_gap(system);
   require_modal_of(system, md, "estimate_window");
   const auto [band1, band2] = axis_band(md);
-  const search::WindowPlan plan = plan_search(md, options);
+  const search::WindowPlan plan = search::plan_search(md, options);
   WindowEstimate e;
   e.t1_min = std::max(plan.options.t1_min, band1);
   e.t1_max = plan.options.t1_max;

@@ -2,15 +2,21 @@
 // and no output file; the happy paths write loadable JSON and CSV.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <random>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -875,3 +881,286 @@ TEST(Cli, ModesRejectsBadInput) {
   const CliRun missing = run("modes " + kChain + " --energy-max 1");
   EXPECT_EQ(missing.code, 1) << missing.out;
 }
+
+// ---- spp sweep, and spp-mpi (solve and sweep over MPI ranks) ----
+
+namespace {
+
+// The executable `exe` with args, stdout + stderr.
+CliRun run_exe(const std::string& exe, const std::string& args, const std::string& launcher = "") {
+  const std::string cmd = launcher + exe + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+// A result file without its time: two runs of one window give the same.
+nlohmann::json untimed(const fs::path& p) {
+  nlohmann::json j = read_json(p);
+  j["stats"].erase("seconds");
+  return j;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = dir() / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// A 3-mass chain with its second spring k2 in [1, 10] as parameter, g0 = 1.
+std::string parametric_chain() {
+  const fs::path sys = dir() / "chain3_k2.json";
+  const CliRun g = run("generate chain --n 3 --g0 1 --parameter k2 --range 1,10 --out " + sys.string());
+  EXPECT_EQ(g.code, 0) << g.out;
+  return sys.string();
+}
+
+const char* kSweepWindow = " --t1-max 6 --t2-max 6 ";
+
+}  // namespace
+
+TEST(Cli, SweepOfTwentyValuesGivesTheTableOfTwentySolves) {
+  const std::string sys = parametric_chain();
+  const fs::path out = fresh_dir("sweep20");
+  const CliRun s = run("sweep " + sys + " --parameter k2 --values 1:5.75:0.25 --out-dir " + out.string() +
+                       kSweepWindow + "--quiet");
+  ASSERT_EQ(s.code, 0) << s.out;
+  EXPECT_NE(s.out.find("20 values, 20 done (0 resumed from their files), 0 failed"), std::string::npos) << s.out;
+  const nlohmann::json table = read_json(out / "sweep.json");
+  ASSERT_EQ(table.at("items").size(), 20u);
+  size_t spps = 0;
+  for (size_t i = 0; i < 20; ++i) {
+    const double k2 = 1.0 + 0.25 * static_cast<double>(i);
+    const nlohmann::json& item = table.at("items")[i];
+    EXPECT_EQ(item.at("value").get<double>(), k2);
+    EXPECT_EQ(item.at("outcome"), "solved");
+    const fs::path single = out / ("solve_" + std::to_string(i) + ".json");
+    std::ostringstream at;
+    at << std::setprecision(17) << k2;
+    const CliRun one = run("solve " + sys + " --at " + at.str() + kSweepWindow + "--quiet --json " + single.string());
+    ASSERT_EQ(one.code, 0) << one.out;
+    EXPECT_EQ(untimed(item.at("result_file").get<std::string>()), untimed(single)) << "k2 = " << k2;
+    const nlohmann::json& sols = read_json(single).at("solutions");
+    ASSERT_EQ(item.at("spps").size(), sols.size()) << "k2 = " << k2;
+    for (size_t k = 0; k < sols.size(); ++k)
+      for (const char* key : {"t1", "t2", "period", "admissible", "min_gap", "min_force", "energy"})
+        EXPECT_EQ(item.at("spps")[k].at(key), sols[k].at(key)) << key << ", k2 = " << k2;
+    spps += sols.size();
+  }
+  EXPECT_GT(spps, 20u);
+  // the CSV: a header and one line per SPP, its value first
+  const std::string csv = slurp(out / "sweep.csv");
+  EXPECT_EQ(csv.rfind("index,k2,system_file,result_file,solve_status,t1,t2,period,admissible", 0), 0u);
+  EXPECT_EQ(static_cast<size_t>(std::count(csv.begin(), csv.end(), '\n')), spps + 1);
+}
+
+TEST(Cli, KilledSweepResumesWithoutSolvingFinishedValuesAgain) {
+  // spp sweep killed (SIGKILL) as soon as its first result file is there, then run again: the values whose file was
+  // there are read, not solved again (outcome "resumed", file untouched), the others solved; the table is that of
+  // a sweep run at once.
+  const std::string sys = parametric_chain();
+  const fs::path out = fresh_dir("killed"), once = fresh_dir("at_once");
+  const std::string args = "sweep " + sys + " --parameter k2 --values 1:5.75:0.25" + kSweepWindow + "--quiet";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    const std::string out_dir = out.string();
+    execl(SPP_CLI, SPP_CLI, "sweep", sys.c_str(), "--parameter", "k2", "--values", "1:5.75:0.25", "--t1-max", "6",
+          "--t2-max", "6", "--quiet", "--out-dir", out_dir.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  auto written = [&] {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::directory_iterator(out)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("k2_", 0) == 0) files[name] = slurp(e.path());
+    }
+    return files;
+  };
+  int status = 0;
+  bool exited = false;
+  while (written().empty()) {
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    usleep(1000);
+  }
+  if (!exited) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+  }
+  const auto before = written();
+  std::map<std::string, fs::file_time_type> times;
+  for (const auto& [name, text] : before) times[name] = fs::last_write_time(out / name);
+  ASSERT_FALSE(before.empty());
+  std::cout << "killed after " << before.size() << " of 20 values\n";
+  const CliRun again = run(args + " --out-dir " + out.string());
+  ASSERT_EQ(again.code, 0) << again.out;
+  const nlohmann::json table = read_json(out / "sweep.json");
+  size_t resumed = 0;
+  for (const auto& item : table.at("items")) {
+    const std::string name = fs::path(item.at("result_file").get<std::string>()).filename().string();
+    if (before.count(name)) {
+      EXPECT_EQ(item.at("outcome"), "resumed") << name;
+      EXPECT_EQ(slurp(out / name), before.at(name)) << name << " written again";
+      EXPECT_EQ(fs::last_write_time(out / name), times.at(name)) << name << " written again";
+      ++resumed;
+    } else {
+      EXPECT_EQ(item.at("outcome"), "solved") << name;
+    }
+  }
+  EXPECT_EQ(resumed, before.size());
+  ASSERT_EQ(run(args + " --out-dir " + once.string()).code, 0);
+  const nlohmann::json whole = read_json(once / "sweep.json");
+  ASSERT_EQ(whole.at("items").size(), table.at("items").size());
+  for (size_t i = 0; i < whole.at("items").size(); ++i)
+    EXPECT_EQ(whole.at("items")[i].at("spps"), table.at("items")[i].at("spps")) << i;
+}
+
+TEST(Cli, SweepRefusesBadInputAndWritesNoTable) {
+  const std::string sys = parametric_chain();
+  const fs::path out = fresh_dir("sweep_bad");
+  auto refused = [&](const std::string& args, const std::string& message) {
+    const CliRun r = run("sweep " + args + kSweepWindow);
+    EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
+    EXPECT_TRUE(fs::is_empty(out)) << args << ": wrote something";
+  };
+  refused(sys + " --parameter k3 --values 1,2 --out-dir " + out.string(), "declares the parameter \"k2\"");
+  refused(sys + " --parameter k2 --values 5:1:1 --out-dir " + out.string(), "--values: expected start:stop:step");
+  refused(sys + " --parameter k2 --values 1:5:0 --out-dir " + out.string(), "--values: expected start:stop:step");
+  refused(sys + " --parameter k2 --values 1,x --out-dir " + out.string(), "--values: expected comma-separated");
+  refused(sys + " --values 1,2 --out-dir " + out.string(), "--parameter and --values go together");
+  refused(sys + " --parameter k2 --values 1,2 --out-dir " + (out / "missing").string(), "does not exist");
+  refused(kChain + " --parameter k2 --values 1,2 --out-dir " + out.string(), "declares no parameter");
+  refused(sys + " --parameter k2 --values 1,2 --out-dir " + out.string() + " --csv " + sys, "a file this run reads");
+}
+
+TEST(Cli, SweepWithAFailingValueExits4AndWritesTheOthers) {
+  const std::string sys = parametric_chain();
+  const fs::path out = fresh_dir("sweep_failing");
+  // k2 = -0.9: K is not positive definite
+  const CliRun r = run("sweep " + sys + " --parameter k2 --values 1,-0.9,2 --out-dir " + out.string() + kSweepWindow);
+  EXPECT_EQ(r.code, 4) << r.out;
+  EXPECT_NE(r.out.find("[1] k2 = -0.9"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("failed"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(out / "k2_0000.json"));
+  EXPECT_FALSE(fs::exists(out / "k2_0001.json"));
+  EXPECT_TRUE(fs::exists(out / "k2_0002.json"));
+  const nlohmann::json table = read_json(out / "sweep.json");
+  EXPECT_EQ(table.at("items")[1].at("outcome"), "failed");
+  EXPECT_EQ(table.at("items")[2].at("outcome"), "solved");
+}
+
+#ifdef SPP_MPI_CLI
+namespace {
+const std::string kMpirun = std::string(SPP_MPIEXEC) + " -n 2 --oversubscribe --allow-run-as-root ";
+CliRun run_mpi(const std::string& args) {
+  return run_exe(SPP_MPI_CLI, args, kMpirun);
+}
+size_t occurrences(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+// A random 4-dof system (fixed seed): M diagonal in [1, 2], K diagonally dominant, w a random direction, g0 = 1.
+std::string random_system() {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 4;
+  double K[4][4], w[4];
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) K[i][j] = K[j][i] = i == j ? 0.0 : u(rng);
+  for (int i = 0; i < n; ++i) {
+    double sum = 0;
+    for (int j = 0; j < n; ++j) sum += i == j ? 0 : std::abs(K[i][j]);
+    K[i][i] = sum + 1.0 + 2.0 * (u(rng) + 1.0);
+    w[i] = u(rng);
+  }
+  std::ostringstream os;
+  os << std::setprecision(17) << "{\"M\": [";
+  for (int i = 0; i < n; ++i) {
+    os << (i ? "," : "") << "[";
+    for (int j = 0; j < n; ++j) os << (j ? "," : "") << (i == j ? 1.5 + 0.5 * u(rng) : 0.0);
+    os << "]";
+  }
+  os << "], \"K\": [";
+  for (int i = 0; i < n; ++i) {
+    os << (i ? "," : "") << "[";
+    for (int j = 0; j < n; ++j) os << (j ? "," : "") << K[i][j];
+    os << "]";
+  }
+  os << "], \"w\": [" << w[0] << "," << w[1] << "," << w[2] << "," << w[3] << "], \"g0\": 1}";
+  return write("random4.json", os.str());
+}
+}  // namespace
+
+TEST(CliMpi, SolveOnTwoRanksWritesTheSerialResult) {
+  // the paper's examples and a random system: the same result file (but the time) and CSV as one process; one rank
+  // prints
+  for (const auto& [sys, window] : std::vector<std::pair<std::string, std::string>>{
+           {kChain, "--t1-max 12 --t2-max 12"},
+           {std::string(SPP_SOURCE_DIR) + "/examples/rod4.json", "--t1-max 12 --t2-max 12"},
+           {random_system(), "--t1-max 8 --t2-max 8"}}) {
+    const fs::path d = fresh_dir("mpi_solve");
+    const CliRun serial =
+        run("solve " + sys + " " + window + " --json " + (d / "s.json").string() + " --csv " + (d / "s.csv").string());
+    ASSERT_EQ(serial.code, 0) << serial.out;
+    const CliRun spread = run_mpi("solve " + sys + " " + window + " --json " + (d / "m.json").string() + " --csv " +
+                                  (d / "m.csv").string());
+    ASSERT_EQ(spread.code, 0) << spread.out;
+    EXPECT_EQ(occurrences(spread.out, "spp: success"), 1u) << spread.out;
+    EXPECT_EQ(untimed(d / "m.json"), untimed(d / "s.json")) << sys;
+    EXPECT_EQ(slurp(d / "m.csv"), slurp(d / "s.csv")) << sys;
+    EXPECT_GT(read_json(d / "s.json").at("solutions").size(), 0u) << sys;
+  }
+}
+
+TEST(CliMpi, SweepOnTwoRanksGivesTheSerialTableAndResumes) {
+  const std::string sys = parametric_chain();
+  const fs::path a = fresh_dir("mpi_sweep"), b = fresh_dir("serial_sweep");
+  const std::string args = "sweep " + sys + " --parameter k2 --values 1:5.75:0.25" + kSweepWindow + "--out-dir ";
+  const CliRun spread = run_mpi(args + a.string());
+  ASSERT_EQ(spread.code, 0) << spread.out;
+  ASSERT_EQ(run(args + b.string()).code, 0);
+  const nlohmann::json ta = read_json(a / "sweep.json"), tb = read_json(b / "sweep.json");
+  ASSERT_EQ(ta.at("items").size(), 20u);
+  for (size_t i = 0; i < 20; ++i) {
+    EXPECT_EQ(ta.at("items")[i].at("spps"), tb.at("items")[i].at("spps")) << i;
+    EXPECT_EQ(ta.at("items")[i].at("outcome"), "solved");
+    EXPECT_EQ(untimed(ta.at("items")[i].at("result_file").get<std::string>()),
+              untimed(tb.at("items")[i].at("result_file").get<std::string>()));
+  }
+  // run again on two ranks: every value resumed from its file
+  const CliRun again = run_mpi(args + a.string());
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("20 done (20 resumed from their files)"), std::string::npos) << again.out;
+}
+
+TEST(CliMpi, BadInputOnTwoRanksIsOneMessageAndExitCode1) {
+  const CliRun missing = run_mpi("solve " + (dir() / "missing.json").string() + " --t1-max 5 --t2-max 5");
+  EXPECT_EQ(missing.code, 1) << missing.out;
+  EXPECT_EQ(occurrences(missing.out, "spp: error:"), 1u) << missing.out;
+  const CliRun other = run_mpi("continue " + kChain + " --t1-max 3 --t2-max 1");
+  EXPECT_EQ(other.code, 1) << other.out;
+  EXPECT_NE(other.out.find("does not run on several MPI ranks"), std::string::npos) << other.out;
+}
+#endif

@@ -1,0 +1,44 @@
+#pragma once
+// The processes of one run of the command line: this process alone (build/spp, parallel_serial.cpp), or the ranks of
+// MPI_COMM_WORLD (build/spp-mpi under mpirun, parallel_mpi.cpp: solve and sweep spread their work over the ranks;
+// rank 0 prints and writes the files).
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "spp/distributed/sweep.hpp"
+#include "spp/modal/modal.hpp"
+#include "spp/search/solver.hpp"
+
+namespace spp::cli {
+
+/// Starts and ends the run's parallel runtime (MPI_Init_thread / MPI_Finalize in spp-mpi; nothing in spp).
+class Runtime {
+ public:
+  Runtime(int& argc, char**& argv);
+  ~Runtime();
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+};
+
+/// Processes of the run (1 in spp).
+int ranks();
+/// This process's rank (0 in spp).
+int rank();
+/// This process prints the results and writes the output files (rank 0).
+bool is_root();
+/// Subcommands that spread their work over the ranks (the others refuse to run on more than one rank).
+bool distributed(const std::string& subcommand);
+/// Ends the run after an error on this process (message already printed): with more than one rank, every rank ends
+/// (MPI_Abort with `code`), otherwise returns `code`.
+int end_on_error(int code);
+
+/// solve() on this process, or over the ranks (solve_mpi: the result on rank 0, NotRun elsewhere; progress only on
+/// one rank).
+SolveResult solve_window(const System& system, const ModalForm& modal, const SolveOptions& options);
+/// run_sweep() on this process (on_done after each item), or over the ranks (run_sweep_mpi: outcomes on rank 0).
+std::vector<SweepItemOutcome> sweep_items(const Sweep& sweep, const SolveOptions& options,
+                                          const std::function<void(size_t, const SweepItemOutcome&)>& on_done);
+
+}  // namespace spp::cli

@@ -1,0 +1,144 @@
+// spp sweep: one solve per parameter value (a parametric system file) or per system file; one result file each in
+// --out-dir, then the table of every SPP with its value. A stopped sweep run again resumes from the files written.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "command.hpp"
+#include "parallel.hpp"
+#include "spp/distributed/sweep.hpp"
+#include "spp/io/files.hpp"
+
+namespace spp::cli {
+
+namespace {
+
+// Most values one sweep takes (each is a solve and a file).
+constexpr double kMaxSweepValues = 1e6;
+
+struct SweepArgs {
+  std::vector<std::string> systems;
+  std::string parameter, values, out_dir, csv, json, symmetry = "axial";
+  SolveOptions options;
+  bool quiet = false;
+};
+
+// "start:stop:step" (stop included when a whole number of steps reaches it, to rounding) or "1,2.5,3".
+std::vector<double> parse_values(const std::string& text) {
+  if (text.find(':') == std::string::npos) return parse_list(text, "--values");
+  const std::string bad = "--values: expected start:stop:step (step > 0, stop >= start) or comma-separated numbers, got \"" +
+                          (text.size() > 80 ? text.substr(0, 80) + "..." : text) + "\"";
+  double v[3];
+  std::stringstream ss(text);
+  std::string item;
+  int k = 0;
+  while (std::getline(ss, item, ':')) {
+    if (k == 3) throw std::invalid_argument(bad);
+    try {
+      size_t pos = 0;
+      v[k] = std::stod(item, &pos);
+      if (pos != item.size()) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw std::invalid_argument(bad);
+    }
+    ++k;
+  }
+  const double start = v[0], stop = v[1], step = v[2];
+  if (k != 3 || !std::isfinite(start) || !std::isfinite(stop) || !(step > 0) || !std::isfinite(step) ||
+      stop < start)
+    throw std::invalid_argument(bad);
+  const double count = std::floor((stop - start) / step * (1 + 1e-12) + 1e-9) + 1;
+  if (count > kMaxSweepValues)
+    throw std::invalid_argument("--values: " + text + " gives " + std::to_string(count) + " values, more than " +
+                                std::to_string(static_cast<long>(kMaxSweepValues)));
+  std::vector<double> values;
+  for (long i = 0; i < static_cast<long>(count); ++i) values.push_back(start + static_cast<double>(i) * step);
+  return values;
+}
+
+std::string item_name(const Sweep& sweep, size_t i) {
+  const SweepItem& item = sweep.items()[i];
+  std::ostringstream os;
+  os << "[" << i << "] ";
+  if (sweep.parameter().empty())
+    os << item.system_file;
+  else
+    os << sweep.parameter() << " = " << std::setprecision(17) << item.value;
+  return os.str();
+}
+
+int run(SweepArgs& a) {
+  a.options.symmetry = *symmetry_named(a.symmetry);
+  a.options.validate();
+  const bool by_value = !a.parameter.empty();
+  if (by_value != !a.values.empty())
+    throw std::invalid_argument("--parameter and --values go together (a sweep over the values of a parametric "
+                                "system's parameter); without them, give system files");
+  if (by_value && a.systems.size() != 1)
+    throw std::invalid_argument("--parameter: give one parametric system file, got " +
+                                std::to_string(a.systems.size()) + " files");
+  const std::string csv = a.csv.empty() ? a.out_dir + "/sweep.csv" : a.csv;
+  const std::string json = a.json.empty() ? a.out_dir + "/sweep.json" : a.json;
+  const Sweep sweep = by_value ? Sweep::over_values(a.systems.front(), a.parameter, parse_values(a.values), a.out_dir)
+                               : Sweep::over_files(a.systems, a.out_dir);
+  std::vector<std::string> inputs = a.systems;
+  std::vector<NamedOutput> outputs;
+  for (const SweepItem& item : sweep.items()) outputs.push_back({"the result of " + item_name(sweep, item.index),
+                                                                 item.result_file});
+  check_output(csv, "--csv", inputs, outputs);
+  inputs.push_back(csv);
+  check_output(json, "--json", inputs, outputs);
+  const bool root = is_root();
+  auto on_done = [&](size_t i, const SweepItemOutcome& o) {
+    if (root && !a.quiet)
+      std::cerr << "  " << item_name(sweep, i) << ": " << to_string(o.status) << " (" << i + 1 << " / "
+                << sweep.items().size() << ")\n";
+  };
+  const std::vector<SweepItemOutcome> outcomes = sweep_items(sweep, a.options, on_done);
+  if (!root) return 0;  // rank 0 holds every outcome and writes the table
+  const SweepTable table = sweep_table(sweep, outcomes);
+  const std::string csv_text = sweep_table_csv(table), json_text = sweep_table_json(table);
+  write_file_atomic(csv, csv_text);
+  write_file_atomic(json, json_text);
+  for (size_t i = 0; i < outcomes.size(); ++i)
+    if (outcomes[i].status == SweepItemStatus::Failed)
+      std::cerr << "sweep: " << item_name(sweep, i) << " failed: " << outcomes[i].message << "\n";
+  std::cout << table.brief_report() << "; table: " << csv << ", " << json << "\n";
+  return table.failed() > 0 ? 4 : 0;
+}
+
+}  // namespace
+
+Subcommand add_sweep(CLI::App& app) {
+  auto a = std::make_shared<SweepArgs>();
+  auto* s = app.add_subcommand(
+      "sweep",
+      "one solve per parameter value (--parameter, --values) or per system file, one result file each in --out-dir, "
+      "and the table of every SPP with its value; run again, it resumes from the result files already written; on "
+      "MPI (mpirun -n P spp-mpi sweep) the items are spread over the ranks");
+  SolveOptions& o = a->options;
+  s->add_option("systems", a->systems, "system JSON files (one parametric file with --parameter)")->required();
+  s->add_option("--parameter", a->parameter, "the parameter swept: the name the parametric system file declares");
+  s->add_option("--values", a->values, "the parameter's values: start:stop:step (stop included) or 1,2.5,3");
+  s->add_option("--out-dir", a->out_dir, "directory of the result files (one per item) and the table")->required();
+  s->add_option("--csv", a->csv, "the table as CSV (default <out-dir>/sweep.csv)");
+  s->add_option("--json", a->json, "the table as JSON (default <out-dir>/sweep.json)");
+  s->add_option("--t1-max", o.t1_max, "largest flight half-duration t1 (required)")->required();
+  s->add_option("--t2-max", o.t2_max, "largest contact half-duration t2 (required)")->required();
+  s->add_option("--t1-min", o.t1_min, "smallest t1 (default: 1e-4 pi / (2 omega_max))");
+  s->add_option("--t2-min", o.t2_min, "smallest t2 (default: 1e-4 pi / (2 d_max))");
+  s->add_option("--threads", o.threads,
+                "worker threads of each solve (on MPI: per rank; default 0: all hardware threads, divided by the "
+                "ranks on the node)");
+  s->add_option("--max-cells", o.max_cells, "refuse windows holding more cells than this (default 1e7)");
+  s->add_flag("--certify-steps,!--no-certify-steps", o.certify_steps, "as spp solve (default: certify)");
+  s->add_flag("--admissible-only", o.admissible_only, "keep only admissible SPPs");
+  s->add_option("--symmetry", a->symmetry, "axial (default) or point, as spp solve")
+      ->check(CLI::IsMember({"axial", "point"}));
+  s->add_flag("--quiet", a->quiet, "no line per item");
+  return {s, [a] { return run(*a); }};
+}
+
+}  // namespace spp::cli

@@ -1,0 +1,269 @@
+#include "spp/distributed/sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/json.hpp"
+#include "io/text.hpp"
+#include "spp/io/files.hpp"
+#include "spp/io/result_file.hpp"
+#include "spp/io/system_file.hpp"
+#include "spp/modal/modal.hpp"
+
+namespace spp {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A result file read back for resuming holds the item's system when M, K, w and g0 agree to this (relative): the file
+// embeds the system after normalising w, and reading normalises it again (a unit norm may round to 1 - 1 ulp).
+constexpr double kSameSystem = 1e-13;
+
+void require_out_dir(const std::string& out_dir) {
+  std::error_code ec;
+  if (out_dir.empty() || !fs::is_directory(out_dir, ec))
+    throw std::invalid_argument("sweep: the output directory \"" + io::shorten(out_dir, 200) +
+                                "\" does not exist (create it first)");
+}
+
+// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break (a file name may).
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string numbered(size_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%04zu", index);
+  return buf;
+}
+
+bool close_matrix(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  const double scale = std::max(1.0, a.cwiseAbs().maxCoeff());
+  return (a - b).cwiseAbs().maxCoeff() <= kSameSystem * scale;
+}
+
+bool same_system(const System& a, const System& b) {
+  return a.n() == b.n() && close_matrix(a.M(), b.M()) && close_matrix(a.K(), b.K()) && close_matrix(a.w(), b.w()) &&
+         std::abs(a.g0() - b.g0()) <= kSameSystem * std::max(1.0, std::abs(a.g0()));
+}
+
+// Why the result read back is not this item's (empty: it is): system, symmetry, window.
+std::string mismatch(const System& sys, const SolveOptions& opt, const System& stored, const SolveResult& res) {
+  if (!same_system(sys, stored)) return "another system";
+  if (res.symmetry != opt.symmetry) return std::string("symmetry ") + to_string(res.symmetry);
+  // the window as solve() reports it: lower ends filled in (0 = automatic) and raised to the axis bands
+  const ModalForm md(sys);
+  const auto [auto1, auto2] = default_lower_ends(md, opt.t1_max, opt.t2_max);
+  const auto [band1, band2] = axis_band(md);
+  const double lo1 = std::max(opt.t1_min == 0.0 ? auto1 : opt.t1_min, band1);
+  const double lo2 = std::max(opt.t2_min == 0.0 ? auto2 : opt.t2_min, band2);
+  if (res.t1_max != opt.t1_max || res.t2_max != opt.t2_max || res.t1_min != lo1 || res.t2_min != lo2) {
+    std::ostringstream os;
+    os << "the window (" << res.t1_min << ", " << res.t1_max << "] x (" << res.t2_min << ", " << res.t2_max
+       << "], not (" << lo1 << ", " << opt.t1_max << "] x (" << lo2 << ", " << opt.t2_max << "]";
+    return os.str();
+  }
+  return "";
+}
+
+}  // namespace
+
+const char* to_string(SweepItemStatus s) {
+  switch (s) {
+    case SweepItemStatus::NotRun: return "not_run";
+    case SweepItemStatus::Solved: return "solved";
+    case SweepItemStatus::Resumed: return "resumed";
+    case SweepItemStatus::Failed: return "failed";
+  }
+  return "unknown";
+}
+
+Sweep Sweep::over_values(const std::string& parametric_file, const std::string& parameter,
+                         const std::vector<double>& values, const std::string& out_dir) {
+  require_out_dir(out_dir);
+  if (values.empty()) throw std::invalid_argument("sweep: no parameter value given");
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw std::invalid_argument("sweep: parameter value " + std::to_string(i) + " is not finite (" +
+                                  io::num(values[i]) + ")");
+  if (!file_declares_parameter(parametric_file))
+    throw std::invalid_argument("sweep: " + io::shorten(parametric_file, 200) +
+                                " declares no parameter (no field \"parameter\"): a sweep over values needs a "
+                                "parametric system file; sweep over system files instead");
+  Sweep s;
+  s.parametric_.push_back(load_parametric_system(parametric_file));
+  const std::string& declared = s.parametric_.front().parameter().name;
+  if (parameter != declared)
+    throw std::invalid_argument("sweep: --parameter \"" + io::shorten(parameter, 80) + "\", but " +
+                                io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
+  s.parameter_ = parameter;
+  for (size_t i = 0; i < values.size(); ++i)
+    s.items_.push_back({i, values[i], parametric_file,
+                        (fs::path(out_dir) / (parameter + "_" + numbered(i) + ".json")).string()});
+  return s;
+}
+
+Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string& out_dir) {
+  require_out_dir(out_dir);
+  if (files.empty()) throw std::invalid_argument("sweep: no system file given");
+  Sweep s;
+  for (size_t i = 0; i < files.size(); ++i)
+    s.items_.push_back({i, std::numeric_limits<double>::quiet_NaN(), files[i],
+                        (fs::path(out_dir) / (numbered(i) + "_" + fs::path(files[i]).stem().string() + ".json"))
+                            .string()});
+  return s;
+}
+
+System Sweep::system(size_t i) const {
+  if (i >= items_.size())
+    throw std::invalid_argument("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
+  if (parametric_.empty()) return load_system(items_[i].system_file);
+  try {
+    return parametric_.front().at(items_[i].value);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(parameter_ + " = " + io::num(items_[i].value) + ": " + e.what());
+  }
+}
+
+SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions& options) {
+  options.validate();
+  if (i >= sweep.items().size())
+    throw std::invalid_argument("sweep: item " + std::to_string(i) + " of " + std::to_string(sweep.items().size()));
+  const SweepItem& item = sweep.items()[i];
+  SweepItemOutcome out;
+  try {
+    const System sys = sweep.system(i);
+    std::error_code ec;
+    if (fs::exists(item.result_file, ec)) {  // an earlier run wrote it (atomically: it is whole)
+      const std::string text = read_file(item.result_file);
+      const SolveResult stored = parse_result(text, item.result_file);
+      const std::string why = mismatch(sys, options, parse_result_system(text, item.result_file), stored);
+      if (!why.empty())
+        throw std::invalid_argument(item.result_file + " is already there and holds " + why +
+                                    ": not replaced (remove it, or give another output directory)");
+      out.status = SweepItemStatus::Resumed;
+      return out;
+    }
+    SolveOptions o = options;
+    o.progress = nullptr;
+    const SolveResult res = solve(sys, o);
+    write_file_atomic(item.result_file, result_json(sys, res));
+    out.status = SweepItemStatus::Solved;
+  } catch (const std::exception& e) {  // an item's failure is its own: reported, never fatal to the others
+    out.status = SweepItemStatus::Failed;
+    out.message = e.what();
+  }
+  return out;
+}
+
+std::vector<SweepItemOutcome> run_sweep(const Sweep& sweep, const SolveOptions& options,
+                                        const std::function<void(size_t, const SweepItemOutcome&)>& on_done) {
+  options.validate();
+  std::vector<SweepItemOutcome> outcomes;
+  for (size_t i = 0; i < sweep.items().size(); ++i) {
+    outcomes.push_back(run_sweep_item(sweep, i, options));
+    if (on_done) on_done(i, outcomes.back());
+  }
+  return outcomes;
+}
+
+long SweepTable::failed() const {
+  return static_cast<long>(std::count_if(outcomes.begin(), outcomes.end(), [](const SweepItemOutcome& o) {
+    return o.status == SweepItemStatus::Failed;
+  }));
+}
+
+std::string SweepTable::brief_report() const {
+  const auto count = [&](SweepItemStatus s) {
+    return std::count_if(outcomes.begin(), outcomes.end(), [s](const SweepItemOutcome& o) { return o.status == s; });
+  };
+  const long adm = std::count_if(rows.begin(), rows.end(), [](const SweepRow& r) { return r.admissible; });
+  std::ostringstream os;
+  os << "sweep over " << (parameter.empty() ? std::string("system files") : parameter) << ": " << items.size()
+     << (parameter.empty() ? " files, " : " values, ") << count(SweepItemStatus::Solved) + count(SweepItemStatus::Resumed)
+     << " done (" << count(SweepItemStatus::Resumed) << " resumed from their files), " << failed() << " failed, "
+     << rows.size() << " SPPs (" << adm << " admissible)";
+  return os.str();
+}
+
+SweepTable sweep_table(const Sweep& sweep, const std::vector<SweepItemOutcome>& outcomes) {
+  if (outcomes.size() != sweep.items().size())
+    throw std::invalid_argument("sweep_table: " + std::to_string(outcomes.size()) + " outcomes for " +
+                                std::to_string(sweep.items().size()) + " items");
+  SweepTable t;
+  t.parameter = sweep.parameter();
+  t.items = sweep.items();
+  t.outcomes = outcomes;
+  for (size_t i = 0; i < t.items.size(); ++i) {
+    const SweepItemStatus st = outcomes[i].status;
+    if (st != SweepItemStatus::Solved && st != SweepItemStatus::Resumed) {
+      t.solve_status.push_back(SolveStatus::NotRun);
+      t.spps.push_back(0);
+      continue;
+    }
+    const SolveResult res = load_result(t.items[i].result_file);
+    t.solve_status.push_back(res.status);
+    t.spps.push_back(static_cast<long>(res.solutions.size()));
+    for (const Solution& s : res.solutions)
+      t.rows.push_back({i, t.items[i].value, s.t1(), s.t2(), s.period(), s.energy(), s.min_gap(), s.min_force(),
+                        s.admissible()});
+  }
+  return t;
+}
+
+std::string sweep_table_csv(const SweepTable& t) {
+  std::ostringstream os;
+  os << "index," << (t.parameter.empty() ? std::string("value") : t.parameter)
+     << ",system_file,result_file,solve_status,t1,t2,period,admissible,min_gap,min_force,energy\n";
+  for (const SweepRow& r : t.rows) {
+    const SweepItem& item = t.items[r.index];
+    os << r.index << "," << (std::isnan(r.value) ? std::string() : io::num(r.value)) << ","
+       << csv_field(item.system_file) << "," << csv_field(item.result_file) << ","
+       << to_string(t.solve_status[r.index]) << "," << io::num(r.t1) << "," << io::num(r.t2) << ","
+       << io::num(r.period) << "," << (r.admissible ? 1 : 0) << "," << io::num(r.min_gap) << ","
+       << io::num(r.min_force) << "," << io::num(r.energy) << "\n";
+  }
+  return os.str();
+}
+
+std::string sweep_table_json(const SweepTable& t, int indent) {
+  io::json j;
+  j["parameter"] = t.parameter.empty() ? io::json(nullptr) : io::json(t.parameter);
+  io::json items = io::json::array();
+  for (size_t i = 0; i < t.items.size(); ++i) {
+    const SweepItem& item = t.items[i];
+    io::json e;
+    e["index"] = i;
+    e["value"] = std::isnan(item.value) ? io::json(nullptr) : io::json(item.value);
+    e["system_file"] = item.system_file;
+    e["result_file"] = item.result_file;
+    e["outcome"] = to_string(t.outcomes[i].status);
+    e["message"] = t.outcomes[i].message;
+    e["solve_status"] = to_string(t.solve_status[i]);
+    io::json spps = io::json::array();
+    for (const SweepRow& r : t.rows)
+      if (r.index == i)
+        spps.push_back({{"t1", r.t1},
+                        {"t2", r.t2},
+                        {"period", r.period},
+                        {"admissible", r.admissible},
+                        {"min_gap", r.min_gap},
+                        {"min_force", r.min_force},
+                        {"energy", r.energy}});
+    e["spps"] = std::move(spps);
+    items.push_back(std::move(e));
+  }
+  j["items"] = std::move(items);
+  return j.dump(indent);
+}
+
+}  // namespace spp

@@ -1,0 +1,65 @@
+#pragma once
+// The steps of solve() (solver.hpp) as separate calls, for callers that run the window's work units themselves
+// (spp/distributed/window_work.hpp: the t2-strips on other processes): plan, trace one strip, merge the strips in
+// strip order, then pair, polish and finalize. solve() is these calls in order, with threads over the strips.
+
+#include <atomic>
+#include <vector>
+
+#include "search/cell_trace.hpp"
+#include "search/pole_pairing.hpp"
+#include "search/window_plan.hpp"
+#include "spp/core/system.hpp"
+#include "spp/modal/equation_set.hpp"
+#include "spp/search/solver.hpp"
+
+namespace spp::search {
+
+/// Throws std::invalid_argument as solve() does for g0 = 0 or a modal form that is not the system's (`where` names
+/// the caller).
+void check_solve_inputs(const System& system, const ModalForm& md, const char* where);
+
+/// Step 1: the window outside the axis bands, planned (throws for a window inside a band, or too large).
+WindowPlan plan_search(const ModalForm& md, const SolveOptions& options);
+
+/// A result before the search: the window searched, pole lines, decoupled modes, symmetry.
+SolveResult start_result(const ModalForm& md, const WindowPlan& plan, Symmetry symmetry);
+
+/// What tracing the cells of one t2-strip j gives: its candidates, uncertified cells, counts, and the hits of its
+/// cells' curves on pole lines (index i = the cell's column): left[i] exits of cell (i, j) through its left edge,
+/// top[i] through its top edge, right[i] entries through its right edge, bottom[i] through its bottom edge.
+/// A strip is traced with its own evaluator (own cache and counters): its output depends on nothing else, so it is the
+/// same whichever thread or process traces it.
+struct StripOut {
+  std::vector<Candidate> candidates;
+  std::vector<UncertifiedRegion> uncertified;
+  SolveStats stats;
+  std::vector<std::vector<EdgeHit>> left, top, right, bottom;
+};
+
+/// Counters a running trace updates for SolveOptions::progress (shared by the threads).
+struct TraceCounters {
+  std::atomic<long> cells_done{0}, candidates_found{0};
+};
+
+/// Traces strip j (0 <= j < plan.t2.cells()). stop: raised by another thread to end the trace early (the rest of the
+/// strip is then counted as not searched); nullptr: never stopped. counters: nullptr for none.
+StripOut trace_strip(const EquationSet& eq, const WindowPlan& plan, size_t j, const std::atomic<bool>* stop = nullptr,
+                     TraceCounters* counters = nullptr);
+
+/// The candidates and pole-line hits of the whole window.
+struct TracedWindow {
+  std::vector<Candidate> candidates;
+  PoleHits hits;
+};
+
+/// Merges every strip's output (strips[j] of strip j, moved from) in strip order into res's counts and uncertified
+/// list: the result does not depend on who traced which strip, or when.
+TracedWindow merge_strips(const WindowPlan& plan, std::vector<StripOut>& strips, SolveResult& res);
+
+/// Steps 4-6: pair across pole lines (unless cells were left unsearched), polish the candidates into roots of the
+/// window, sort, filter and set the status. res.stats.seconds is left to the caller.
+void finish_search(const System& system, const EquationSet& eq, const WindowPlan& plan, TracedWindow& traced,
+                   const SolveOptions& options, SolveResult& res);
+
+}  // namespace spp::search
