@@ -1,7 +1,7 @@
 // spp sweep: one solve per parameter value (a parametric system file) or per system file; one result file each in
 // --out-dir, then the table of every SPP with its value. A stopped sweep run again resumes from the files written.
+#include <charconv>
 #include <cmath>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -58,6 +58,13 @@ std::vector<double> parse_values(const std::string& text) {
   return values;
 }
 
+// The shortest text that reads back to v (-0.9, not -0.90000000000000002).
+std::string shortest(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 std::string item_name(const Sweep& sweep, size_t i) {
   const SweepItem& item = sweep.items()[i];
   std::ostringstream os;
@@ -65,7 +72,7 @@ std::string item_name(const Sweep& sweep, size_t i) {
   if (sweep.parameter().empty())
     os << item.system_file;
   else
-    os << sweep.parameter() << " = " << std::setprecision(17) << item.value;
+    os << sweep.parameter() << " = " << shortest(item.value);
   return os.str();
 }
 

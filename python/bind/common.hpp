@@ -113,5 +113,6 @@ void bind_simulation(py::module_& m);
 void bind_continuation(py::module_& m);
 void bind_io(py::module_& m);
 void bind_modes(py::module_& m);
+void bind_distributed(py::module_& m);
 
 }  // namespace spp::python

@@ -15,4 +15,5 @@ PYBIND11_MODULE(_spp, m) {
   spp::python::bind_continuation(m);
   spp::python::bind_io(m);
   spp::python::bind_modes(m);
+  spp::python::bind_distributed(m);
 }

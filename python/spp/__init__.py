@@ -16,6 +16,7 @@ from ._spp import ModeEvent, ModeFamily, ModePoint, ModesResult, modes  # k-IPP 
 from ._spp import monodromy  # linearised one-period map under an impact law (docs/stability.md)
 from . import _spp
 from ._progress import Bar as _Bar
+from ._sweep import sweep  # one solve per parameter value or system file: mpi4py or a process pool
 
 
 def solve(system, options=None, progress=None, **fields):
@@ -40,4 +41,4 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "BranchPoint", "ContinuationResult", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
            "ContinuationStatus", "BranchEventKind", "monodromy", "modes", "ModesResult", "ModeFamily",
-           "ModePoint", "ModeEvent", "__version__"]
+           "ModePoint", "ModeEvent", "sweep", "__version__"]

@@ -1,6 +1,7 @@
 #include "spp/distributed/sweep.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -37,6 +38,13 @@ std::string csv_field(const std::string& s) {
   std::string q = "\"";
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
+}
+
+// The shortest text that reads back to v (-0.9, not -0.90000000000000002): how a value is named in messages.
+std::string shortest(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string numbered(size_t index) {
@@ -130,7 +138,7 @@ System Sweep::system(size_t i) const {
   try {
     return parametric_.front().at(items_[i].value);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(parameter_ + " = " + io::num(items_[i].value) + ": " + e.what());
+    throw std::invalid_argument(parameter_ + " = " + shortest(items_[i].value) + ": " + e.what());
   }
 }
 
