@@ -210,12 +210,12 @@ SolveResult solve_mpi(const System& system, const ModalForm& modal, const SolveO
   const detail::SingleThreadedBlas single_threaded_blas;
   const WindowWork work(system, modal, options);
   const size_t n = work.units();
-  // The costliest units first (largest-first keeps the tail short). Every strip holds the same cells, so this is the
-  // strips in order; their cost differs by the curves they hold, which only tracing finds (README: the cost model).
+  // The costliest units first (largest-first keeps the tail short: the last unit handed out is a cheap one), by
+  // WindowWork::unit_cost; ties in strip order.
   std::vector<size_t> order(n);
   for (size_t j = 0; j < n; ++j) order[j] = j;
   std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return work.unit_cells(a) > work.unit_cells(b); });
+                   [&](size_t a, size_t b) { return work.unit_cost(a) > work.unit_cost(b); });
   const int threads = std::min<int>(threads_per_rank(comm, options.threads), static_cast<int>(std::max<size_t>(1, n)));
   const std::vector<std::string> outputs =
       distribute_units(comm, n, order, threads, [&](size_t j) { return work.trace_unit(j); });

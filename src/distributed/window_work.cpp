@@ -169,6 +169,11 @@ long WindowWork::unit_cells(size_t j) const {
   return static_cast<long>(impl_->plan.t1.cells());
 }
 
+double WindowWork::unit_cost(size_t j) const {
+  const auto& bp = impl_->plan.t2.bp;
+  return static_cast<double>(unit_cells(j)) * (bp[j + 1] - bp[j]);
+}
+
 std::string WindowWork::trace_unit(size_t j) const {
   (void)unit_cells(j);
   const search::WindowPlan& plan = impl_->plan;

@@ -131,6 +131,22 @@ TEST(WindowWork, RefusesOutputsOfAnotherUnitOrWindowOrCutShort) {
   EXPECT_THROW((void)w.trace_unit(w.units()), std::invalid_argument);
 }
 
+TEST(WindowWork, UnitCostsAreTheStripsCellsTimesTheirWidths) {
+  // the strips tile the searched t2-range: their widths add up to it (the window (0, 12], from the axis band's half
+  // to a hair beyond 12)
+  const System s = test::chain5();
+  const ModalForm md(s);
+  const WindowWork w(s, md, window(12.0, 12.0));
+  double span = 0.0;
+  for (size_t j = 0; j < w.units(); ++j) {
+    EXPECT_GT(w.unit_cost(j), 0.0);
+    span += w.unit_cost(j) / static_cast<double>(w.unit_cells(j));
+  }
+  EXPECT_GT(span, 11.9);
+  EXPECT_LT(span, 12.1);
+  EXPECT_THROW((void)w.unit_cost(w.units()), std::invalid_argument);
+}
+
 TEST(WindowWork, RefusesWhatSolveRefuses) {
   const System s = test::chain5();
   const ModalForm md(s);
