@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     if (spp::cli::is_root()) {
       std::cerr << "spp: error: " << what << "\n";
     } else {
-      if (input_error) std::this_thread::sleep_for(std::chrono::seconds(2));
+      if (input_error) std::this_thread::sleep_for(std::chrono::seconds(5));
       std::cerr << "spp (rank " << spp::cli::rank() << "): error: " << what << "\n";
     }
     return spp::cli::end_on_error(1);
