@@ -6,9 +6,9 @@
 
 #include <chrono>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 #include <thread>
-#include <new>
 
 #include "command.hpp"
 #include "parallel.hpp"
@@ -84,9 +84,10 @@ int main(int argc, char** argv) {
   } catch (const spp::detail::OutOfMemory& e) {  // names what was too large and its size
     return error(bounded(e.what()), false);
   } catch (const std::bad_alloc&) {
-    return error("out of memory: the system or the window needs more memory than this machine gives "
-                 "(a smaller window, or --max-cells, bounds the work)",
-                 false);
+    return error(
+        "out of memory: the system or the window needs more memory than this machine gives "
+        "(a smaller window, or --max-cells, bounds the work)",
+        false);
   } catch (const std::invalid_argument& e) {
     return error(bounded(e.what()), true);
   } catch (const std::exception& e) {

@@ -1,5 +1,7 @@
 // spp sweep: one solve per parameter value (a parametric system file) or per system file; one result file each in
 // --out-dir, then the table of every SPP with its value. A stopped sweep run again resumes from the files written.
+#include "spp/distributed/sweep.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -8,7 +10,6 @@
 
 #include "command.hpp"
 #include "parallel.hpp"
-#include "spp/distributed/sweep.hpp"
 #include "spp/io/files.hpp"
 
 namespace spp::cli {
@@ -28,8 +29,9 @@ struct SweepArgs {
 // "start:stop:step" (stop included when a whole number of steps reaches it, to rounding) or "1,2.5,3".
 std::vector<double> parse_values(const std::string& text) {
   if (text.find(':') == std::string::npos) return parse_list(text, "--values");
-  const std::string bad = "--values: expected start:stop:step (step > 0, stop >= start) or comma-separated numbers, got \"" +
-                          (text.size() > 80 ? text.substr(0, 80) + "..." : text) + "\"";
+  const std::string bad =
+      "--values: expected start:stop:step (step > 0, stop >= start) or comma-separated numbers, got \"" +
+      (text.size() > 80 ? text.substr(0, 80) + "..." : text) + "\"";
   double v[3];
   std::stringstream ss(text);
   std::string item;
@@ -46,8 +48,7 @@ std::vector<double> parse_values(const std::string& text) {
     ++k;
   }
   const double start = v[0], stop = v[1], step = v[2];
-  if (k != 3 || !std::isfinite(start) || !std::isfinite(stop) || !(step > 0) || !std::isfinite(step) ||
-      stop < start)
+  if (k != 3 || !std::isfinite(start) || !std::isfinite(stop) || !(step > 0) || !std::isfinite(step) || stop < start)
     throw std::invalid_argument(bad);
   const double count = std::floor((stop - start) / step * (1 + 1e-12) + 1e-9) + 1;
   if (count > kMaxSweepValues)
@@ -81,8 +82,9 @@ int run(SweepArgs& a) {
   a.options.validate();
   const bool by_value = !a.parameter.empty();
   if (by_value != !a.values.empty())
-    throw std::invalid_argument("--parameter and --values go together (a sweep over the values of a parametric "
-                                "system's parameter); without them, give system files");
+    throw std::invalid_argument(
+        "--parameter and --values go together (a sweep over the values of a parametric "
+        "system's parameter); without them, give system files");
   if (by_value && a.systems.size() != 1)
     throw std::invalid_argument("--parameter: give one parametric system file, got " +
                                 std::to_string(a.systems.size()) + " files");
@@ -92,8 +94,8 @@ int run(SweepArgs& a) {
                                : Sweep::over_files(a.systems, a.out_dir);
   std::vector<std::string> inputs = a.systems;
   std::vector<NamedOutput> outputs;
-  for (const SweepItem& item : sweep.items()) outputs.push_back({"the result of " + item_name(sweep, item.index),
-                                                                 item.result_file});
+  for (const SweepItem& item : sweep.items())
+    outputs.push_back({"the result of " + item_name(sweep, item.index), item.result_file});
   check_output(csv, "--csv", inputs, outputs);
   inputs.push_back(csv);
   check_output(json, "--json", inputs, outputs);

@@ -1,9 +1,9 @@
 // Sweeps (spp/distributed/sweep.hpp) for python/spp/sweep.py, which spreads the items over mpi4py ranks or a process
 // pool: each item is run from plain, picklable arguments (the files, the parameter and its values, the output
 // directory, the SolveOptions fields), the sweep's plan rebuilt where it runs (reading the system file, O(its size)).
-#include "common.hpp"
 #include <memory>
 
+#include "common.hpp"
 #include "spp/detail/dense_products.hpp"
 #include "spp/distributed/sweep.hpp"
 #include "spp/io/files.hpp"
@@ -15,8 +15,9 @@ namespace {
 Sweep plan(const std::vector<std::string>& systems, const py::object& parameter, const py::object& values,
            const std::string& out_dir) {
   if (parameter.is_none() != values.is_none())
-    throw std::invalid_argument("sweep: parameter and values go together (a sweep over a parametric system's "
-                                "parameter); without them, give system files");
+    throw std::invalid_argument(
+        "sweep: parameter and values go together (a sweep over a parametric system's "
+        "parameter); without them, give system files");
   if (parameter.is_none()) return Sweep::over_files(systems, out_dir);
   if (systems.size() != 1)
     throw std::invalid_argument("sweep: a sweep over values takes one parametric system file, got " +
@@ -26,8 +27,8 @@ Sweep plan(const std::vector<std::string>& systems, const py::object& parameter,
 }
 
 SweepItemStatus status_named(const std::string& name) {
-  for (SweepItemStatus s : {SweepItemStatus::NotRun, SweepItemStatus::Solved, SweepItemStatus::Resumed,
-                            SweepItemStatus::Failed})
+  for (SweepItemStatus s :
+       {SweepItemStatus::NotRun, SweepItemStatus::Solved, SweepItemStatus::Resumed, SweepItemStatus::Failed})
     if (name == to_string(s)) return s;
   throw std::invalid_argument("sweep: unknown item outcome \"" + name + "\"");
 }
@@ -80,8 +81,8 @@ void bind_distributed(py::module_& m) {
   m.def(
       "_sweep_table",
       [](const std::vector<std::string>& systems, const py::object& parameter, const py::object& values,
-         const std::string& out_dir, const std::vector<std::string>& outcomes,
-         const std::vector<std::string>& messages, const std::string& csv, const std::string& json) {
+         const std::string& out_dir, const std::vector<std::string>& outcomes, const std::vector<std::string>& messages,
+         const std::string& csv, const std::string& json) {
         const Sweep s = plan(systems, parameter, values, out_dir);
         if (outcomes.size() != messages.size())
           throw std::invalid_argument("sweep: as many messages as outcomes expected");

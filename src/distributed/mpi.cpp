@@ -55,8 +55,9 @@ void check_thread_level(int threads) {
   int level = MPI_THREAD_SINGLE;
   MPI_Query_thread(&level);
   if (level < MPI_THREAD_FUNNELED)
-    throw std::invalid_argument("spp on MPI: MPI was initialised with MPI_THREAD_SINGLE; initialise it with "
-                                "MPI_Init_thread and at least MPI_THREAD_FUNNELED (spp-mpi does)");
+    throw std::invalid_argument(
+        "spp on MPI: MPI was initialised with MPI_THREAD_SINGLE; initialise it with "
+        "MPI_Init_thread and at least MPI_THREAD_FUNNELED (spp-mpi does)");
   if (threads > 1 && level < MPI_THREAD_SERIALIZED)
     throw std::invalid_argument("spp on MPI: " + std::to_string(threads) +
                                 " threads per rank need MPI_THREAD_SERIALIZED, MPI gave only MPI_THREAD_FUNNELED: "

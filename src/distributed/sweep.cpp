@@ -115,8 +115,8 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
                                 io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
   s.parameter_ = parameter;
   for (size_t i = 0; i < values.size(); ++i)
-    s.items_.push_back({i, values[i], parametric_file,
-                        (fs::path(out_dir) / (parameter + "_" + numbered(i) + ".json")).string()});
+    s.items_.push_back(
+        {i, values[i], parametric_file, (fs::path(out_dir) / (parameter + "_" + numbered(i) + ".json")).string()});
   return s;
 }
 
@@ -125,9 +125,9 @@ Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string
   if (files.empty()) throw std::invalid_argument("sweep: no system file given");
   Sweep s;
   for (size_t i = 0; i < files.size(); ++i)
-    s.items_.push_back({i, std::numeric_limits<double>::quiet_NaN(), files[i],
-                        (fs::path(out_dir) / (numbered(i) + "_" + fs::path(files[i]).stem().string() + ".json"))
-                            .string()});
+    s.items_.push_back(
+        {i, std::numeric_limits<double>::quiet_NaN(), files[i],
+         (fs::path(out_dir) / (numbered(i) + "_" + fs::path(files[i]).stem().string() + ".json")).string()});
   return s;
 }
 
@@ -185,9 +185,8 @@ std::vector<SweepItemOutcome> run_sweep(const Sweep& sweep, const SolveOptions& 
 }
 
 long SweepTable::failed() const {
-  return static_cast<long>(std::count_if(outcomes.begin(), outcomes.end(), [](const SweepItemOutcome& o) {
-    return o.status == SweepItemStatus::Failed;
-  }));
+  return static_cast<long>(std::count_if(
+      outcomes.begin(), outcomes.end(), [](const SweepItemOutcome& o) { return o.status == SweepItemStatus::Failed; }));
 }
 
 std::string SweepTable::brief_report() const {
@@ -197,9 +196,9 @@ std::string SweepTable::brief_report() const {
   const long adm = std::count_if(rows.begin(), rows.end(), [](const SweepRow& r) { return r.admissible; });
   std::ostringstream os;
   os << "sweep over " << (parameter.empty() ? std::string("system files") : parameter) << ": " << items.size()
-     << (parameter.empty() ? " files, " : " values, ") << count(SweepItemStatus::Solved) + count(SweepItemStatus::Resumed)
-     << " done (" << count(SweepItemStatus::Resumed) << " resumed from their files), " << failed() << " failed, "
-     << rows.size() << " SPPs (" << adm << " admissible)";
+     << (parameter.empty() ? " files, " : " values, ")
+     << count(SweepItemStatus::Solved) + count(SweepItemStatus::Resumed) << " done (" << count(SweepItemStatus::Resumed)
+     << " resumed from their files), " << failed() << " failed, " << rows.size() << " SPPs (" << adm << " admissible)";
   return os.str();
 }
 
@@ -222,8 +221,8 @@ SweepTable sweep_table(const Sweep& sweep, const std::vector<SweepItemOutcome>& 
     t.solve_status.push_back(res.status);
     t.spps.push_back(static_cast<long>(res.solutions.size()));
     for (const Solution& s : res.solutions)
-      t.rows.push_back({i, t.items[i].value, s.t1(), s.t2(), s.period(), s.energy(), s.min_gap(), s.min_force(),
-                        s.admissible()});
+      t.rows.push_back(
+          {i, t.items[i].value, s.t1(), s.t2(), s.period(), s.energy(), s.min_gap(), s.min_force(), s.admissible()});
   }
   return t;
 }
@@ -235,10 +234,9 @@ std::string sweep_table_csv(const SweepTable& t) {
   for (const SweepRow& r : t.rows) {
     const SweepItem& item = t.items[r.index];
     os << r.index << "," << (std::isnan(r.value) ? std::string() : io::num(r.value)) << ","
-       << csv_field(item.system_file) << "," << csv_field(item.result_file) << ","
-       << to_string(t.solve_status[r.index]) << "," << io::num(r.t1) << "," << io::num(r.t2) << ","
-       << io::num(r.period) << "," << (r.admissible ? 1 : 0) << "," << io::num(r.min_gap) << ","
-       << io::num(r.min_force) << "," << io::num(r.energy) << "\n";
+       << csv_field(item.system_file) << "," << csv_field(item.result_file) << "," << to_string(t.solve_status[r.index])
+       << "," << io::num(r.t1) << "," << io::num(r.t2) << "," << io::num(r.period) << "," << (r.admissible ? 1 : 0)
+       << "," << io::num(r.min_gap) << "," << io::num(r.min_force) << "," << io::num(r.energy) << "\n";
   }
   return os.str();
 }

@@ -164,8 +164,8 @@ size_t WindowWork::units() const {
 
 long WindowWork::unit_cells(size_t j) const {
   if (j >= units())
-    throw std::invalid_argument("WindowWork: unit " + std::to_string(j) + " of a window of " +
-                                std::to_string(units()) + " units");
+    throw std::invalid_argument("WindowWork: unit " + std::to_string(j) + " of a window of " + std::to_string(units()) +
+                                " units");
   return static_cast<long>(impl_->plan.t1.cells());
 }
 
@@ -218,8 +218,8 @@ SolveResult WindowWork::finish(const std::vector<std::string>& outputs) const {
     if (r.pod<std::uint64_t>() != kMagic) r.fail("no strip header");
     const long long unit = r.i64(), cells = r.i64(), units = r.i64();
     const double lo = r.f64(), hi = r.f64();
-    if (unit != static_cast<long long>(j) || cells != static_cast<long long>(I) ||
-        units != static_cast<long long>(J) || lo != plan.t2.bp[j] || hi != plan.t2.bp[j + 1])
+    if (unit != static_cast<long long>(j) || cells != static_cast<long long>(I) || units != static_cast<long long>(J) ||
+        lo != plan.t2.bp[j] || hi != plan.t2.bp[j + 1])
       r.fail("unit " + std::to_string(unit) + " of a window of " + std::to_string(units) + " units");
     search::StripOut& out = strips[j];
     out.stats = read_stats(r);

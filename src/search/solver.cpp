@@ -307,7 +307,8 @@ search::TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan
   std::atomic<size_t> workers_done{0};
   auto worker = [&]() {
     try {
-      for (size_t j = next_strip++; j < J; j = next_strip++) strips[j] = search::trace_strip(eq, plan, j, &stop, &counters);
+      for (size_t j = next_strip++; j < J; j = next_strip++)
+        strips[j] = search::trace_strip(eq, plan, j, &stop, &counters);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failure_mutex);
       failure = std::current_exception();

@@ -132,9 +132,8 @@ TEST(MpiSolve, EveryUnitIsDoneOnceAndTheOutputsComeInUnitOrder) {
   const size_t n = 57;
   std::vector<size_t> order(n);
   for (size_t j = 0; j < n; ++j) order[j] = (j * 13) % n;  // any permutation
-  const auto out = distribute_units(MPI_COMM_WORLD, n, order, 2, [](size_t j) {
-    return std::to_string(j) + "@" + std::to_string(rank());
-  });
+  const auto out = distribute_units(MPI_COMM_WORLD, n, order, 2,
+                                    [](size_t j) { return std::to_string(j) + "@" + std::to_string(rank()); });
   if (rank() != 0) {
     EXPECT_TRUE(out.empty());
     return;
@@ -197,8 +196,9 @@ TEST(MpiSweep, ResumesFromTheFilesWrittenAndReportsAFailingValue) {
   if (rank() != 0) return;
   ASSERT_EQ(outcomes.size(), values.size());
   for (size_t i = 0; i < values.size(); ++i) {
-    const SweepItemStatus expected =
-        i == 7 ? SweepItemStatus::Failed : done.count(i) ? SweepItemStatus::Resumed : SweepItemStatus::Solved;
+    const SweepItemStatus expected = i == 7          ? SweepItemStatus::Failed
+                                     : done.count(i) ? SweepItemStatus::Resumed
+                                                     : SweepItemStatus::Solved;
     EXPECT_EQ(outcomes[i].status, expected) << i << ": " << outcomes[i].message;
   }
   EXPECT_NE(outcomes[7].message.find("k2 = -0.9"), std::string::npos) << outcomes[7].message;

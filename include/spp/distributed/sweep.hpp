@@ -89,12 +89,12 @@ struct SweepRow {
 
 /// The merged table, read from the result files of the items that did not fail.
 struct SweepTable {
-  std::string parameter;                    ///< empty for a sweep over files
-  std::vector<SweepItem> items;             ///< every item
-  std::vector<SweepItemOutcome> outcomes;   ///< outcome of each item
-  std::vector<SolveStatus> solve_status;    ///< status of each item's solve (NotRun when it failed)
-  std::vector<long> spps;                   ///< SPPs of each item (0 when it failed)
-  std::vector<SweepRow> rows;               ///< every SPP, items in order, each item's SPPs by period
+  std::string parameter;                   ///< empty for a sweep over files
+  std::vector<SweepItem> items;            ///< every item
+  std::vector<SweepItemOutcome> outcomes;  ///< outcome of each item
+  std::vector<SolveStatus> solve_status;   ///< status of each item's solve (NotRun when it failed)
+  std::vector<long> spps;                  ///< SPPs of each item (0 when it failed)
+  std::vector<SweepRow> rows;              ///< every SPP, items in order, each item's SPPs by period
   long failed() const;
   /// "sweep over k2: 20 values, 20 solved (0 resumed), 0 failed, 37 SPPs (21 admissible)".
   std::string brief_report() const;

@@ -20,8 +20,9 @@ namespace spp {
 
 class WindowWork {
  public:
-  /// Plans the window as solve() does (the system is copied; `modal` must outlive this object); throws std::invalid_argument as solve() does (options, g0 = 0, a modal form
-  /// not of the system, a window beyond max_cells). options.threads and options.progress are not used.
+  /// Plans the window as solve() does (the system is copied; `modal` must outlive this object); throws
+  /// std::invalid_argument as solve() does (options, g0 = 0, a modal form not of the system, a window beyond
+  /// max_cells). options.threads and options.progress are not used.
   WindowWork(const System& system, const ModalForm& modal, const SolveOptions& options);
   ~WindowWork();
   WindowWork(const WindowWork&) = delete;
