@@ -1,7 +1,6 @@
 #include "spp/distributed/sweep.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -38,13 +37,6 @@ std::string csv_field(const std::string& s) {
   std::string q = "\"";
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
-}
-
-// The shortest text that reads back to v (-0.9, not -0.90000000000000002): how a value is named in messages.
-std::string shortest(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
 }
 
 std::string numbered(size_t index) {
@@ -135,11 +127,7 @@ System Sweep::system(size_t i) const {
   if (i >= items_.size())
     throw std::invalid_argument("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
   if (parametric_.empty()) return load_system(items_[i].system_file);
-  try {
-    return parametric_.front().at(items_[i].value);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(parameter_ + " = " + shortest(items_[i].value) + ": " + e.what());
-  }
+  return parametric_.front().at(items_[i].value);  // its message names the parameter and the value
 }
 
 SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions& options) {
