@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,8 @@ struct NamedOutput {
 void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs,
                   const std::vector<NamedOutput>& outputs = {});
 /// "1,2.5,3" -> {1, 2.5, 3}; anything else is refused naming the option.
+/// The whole of `item` read as one number (std::stod), or nullopt ("1.5xyz", "", out of range).
+std::optional<double> parse_number(const std::string& item);
 std::vector<double> parse_list(const std::string& s, const char* opt);
 
 }  // namespace spp::cli

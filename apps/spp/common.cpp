@@ -49,6 +49,18 @@ std::string quoted(const std::string& s) {
 }
 }  // namespace
 
+std::optional<double> parse_number(const std::string& item) {
+  size_t pos = 0;
+  double x = 0.0;
+  try {
+    x = std::stod(item, &pos);
+  } catch (const std::exception&) {  // std::stod's way to say "not a number" or "out of range"
+    return std::nullopt;
+  }
+  if (pos == 0 || pos != item.size()) return std::nullopt;  // "1.5xyz" is not 1.5
+  return x;
+}
+
 std::vector<double> parse_list(const std::string& s, const char* opt) {
   std::vector<double> v;
   std::stringstream ss(s);
@@ -56,16 +68,9 @@ std::vector<double> parse_list(const std::string& s, const char* opt) {
   if (!s.empty() && s.back() == ',')  // getline drops an empty last item
     detail::invalid(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
   while (std::getline(ss, item, ',')) {
-    size_t pos = 0;
-    double x = 0.0;
-    try {
-      x = std::stod(item, &pos);
-    } catch (const std::exception&) {  // std::stod's way to say "not a number" or "out of range"
-      pos = 0;
-    }
-    if (pos == 0 || pos != item.size())
-      detail::invalid(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
-    v.push_back(x);
+    const std::optional<double> x = parse_number(item);
+    if (!x) detail::invalid(std::string(opt) + ": expected comma-separated numbers, got \"" + quoted(s) + "\"");
+    v.push_back(*x);
   }
   if (v.empty()) detail::invalid(std::string(opt) + ": expected at least one number");
   return v;

@@ -14,6 +14,7 @@
 #include "parallel.hpp"
 #include "spp/detail/dense_products.hpp"
 #include "spp/detail/out_of_memory.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace {
 // Every message printed, at most 4000 characters: the last guard against echoing unbounded input (a message quotes
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
     for (const spp::cli::Subcommand& c : commands)
       if (c.app->parsed()) {
         if (spp::cli::ranks() > 1 && !spp::cli::distributed(c.app->get_name()))
-          throw std::invalid_argument("spp " + c.app->get_name() +
+          detail::invalid("spp " + c.app->get_name() +
                                       " does not run on several MPI ranks (only solve and sweep do): run it with "
                                       "build/spp, or with one rank");
         return c.run();

@@ -64,10 +64,10 @@ constexpr int kStageNotesFrom = 500;
 // A parametric system with g0 = 0: its SPPs are gap closures along the parameter (continuation finds them).
 int run_zero_gap(const SolveArgs& a) {
   if (ranks() > 1)
-    throw std::invalid_argument(
+    detail::invalid(
         "the g0 = 0 solve (continuation in the parameter) does not run on several MPI ranks: "
         "run it with one rank, or build/spp");
-  if (a.box) throw std::invalid_argument("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
+  if (a.box) detail::invalid("--box: not available for the g0 = 0 solve (give --t1-max and --t2-max)");
   const ParametricSystem ps = load_parametric_system(a.system);
   if (ps.g0() != 0.0)
     detail::invalid(a.system + ": a parametric system with g0 != 0: give --at VALUE of \"" +

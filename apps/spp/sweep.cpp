@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "parallel.hpp"
 #include "spp/io/files.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -37,22 +38,18 @@ std::vector<double> parse_values(const std::string& text) {
   std::string item;
   int k = 0;
   while (std::getline(ss, item, ':')) {
-    if (k == 3) throw std::invalid_argument(bad);
-    try {
-      size_t pos = 0;
-      v[k] = std::stod(item, &pos);
-      if (pos != item.size()) throw std::invalid_argument("");
-    } catch (const std::exception&) {
-      throw std::invalid_argument(bad);
-    }
+    if (k == 3) detail::invalid(bad);
+    const std::optional<double> x = parse_number(item);
+    if (!x) detail::invalid(bad);
+    v[k] = *x;
     ++k;
   }
   const double start = v[0], stop = v[1], step = v[2];
   if (k != 3 || !std::isfinite(start) || !std::isfinite(stop) || !(step > 0) || !std::isfinite(step) || stop < start)
-    throw std::invalid_argument(bad);
+    detail::invalid(bad);
   const double count = std::floor((stop - start) / step * (1 + 1e-12) + 1e-9) + 1;
   if (count > kMaxSweepValues)
-    throw std::invalid_argument("--values: " + text + " gives " + std::to_string(count) + " values, more than " +
+    detail::invalid("--values: " + text + " gives " + std::to_string(count) + " values, more than " +
                                 std::to_string(static_cast<long>(kMaxSweepValues)));
   std::vector<double> values;
   for (long i = 0; i < static_cast<long>(count); ++i) values.push_back(start + static_cast<double>(i) * step);
@@ -82,11 +79,11 @@ int run(SweepArgs& a) {
   a.options.validate();
   const bool by_value = !a.parameter.empty();
   if (by_value != !a.values.empty())
-    throw std::invalid_argument(
+    detail::invalid(
         "--parameter and --values go together (a sweep over the values of a parametric "
         "system's parameter); without them, give system files");
   if (by_value && a.systems.size() != 1)
-    throw std::invalid_argument("--parameter: give one parametric system file, got " +
+    detail::invalid("--parameter: give one parametric system file, got " +
                                 std::to_string(a.systems.size()) + " files");
   const std::string csv = a.csv.empty() ? a.out_dir + "/sweep.csv" : a.csv;
   const std::string json = a.json.empty() ? a.out_dir + "/sweep.json" : a.json;

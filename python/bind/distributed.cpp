@@ -7,6 +7,7 @@
 #include "spp/detail/dense_products.hpp"
 #include "spp/distributed/sweep.hpp"
 #include "spp/io/files.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -15,12 +16,12 @@ namespace {
 Sweep plan(const std::vector<std::string>& systems, const py::object& parameter, const py::object& values,
            const std::string& out_dir) {
   if (parameter.is_none() != values.is_none())
-    throw std::invalid_argument(
+    detail::invalid(
         "sweep: parameter and values go together (a sweep over a parametric system's "
         "parameter); without them, give system files");
   if (parameter.is_none()) return Sweep::over_files(systems, out_dir);
   if (systems.size() != 1)
-    throw std::invalid_argument("sweep: a sweep over values takes one parametric system file, got " +
+    detail::invalid("sweep: a sweep over values takes one parametric system file, got " +
                                 std::to_string(systems.size()));
   return Sweep::over_values(systems.front(), parameter.cast<std::string>(), values.cast<std::vector<double>>(),
                             out_dir);
@@ -30,7 +31,7 @@ SweepItemStatus status_named(const std::string& name) {
   for (SweepItemStatus s :
        {SweepItemStatus::NotRun, SweepItemStatus::Solved, SweepItemStatus::Resumed, SweepItemStatus::Failed})
     if (name == to_string(s)) return s;
-  throw std::invalid_argument("sweep: unknown item outcome \"" + name + "\"");
+  detail::invalid("sweep: unknown item outcome \"" + name + "\"");
 }
 
 }  // namespace
@@ -85,7 +86,7 @@ void bind_distributed(py::module_& m) {
          const std::string& csv, const std::string& json) {
         const Sweep s = plan(systems, parameter, values, out_dir);
         if (outcomes.size() != messages.size())
-          throw std::invalid_argument("sweep: as many messages as outcomes expected");
+          detail::invalid("sweep: as many messages as outcomes expected");
         std::vector<SweepItemOutcome> o;
         for (size_t i = 0; i < outcomes.size(); ++i) o.push_back({status_named(outcomes[i]), messages[i]});
         const SweepTable t = sweep_table(s, o);

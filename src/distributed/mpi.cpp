@@ -13,6 +13,7 @@
 #include "spp/detail/dense_products.hpp"
 #include "spp/distributed/window_work.hpp"
 #include "spp/modal/modal.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -55,11 +56,11 @@ void check_thread_level(int threads) {
   int level = MPI_THREAD_SINGLE;
   MPI_Query_thread(&level);
   if (level < MPI_THREAD_FUNNELED)
-    throw std::invalid_argument(
+    detail::invalid(
         "spp on MPI: MPI was initialised with MPI_THREAD_SINGLE; initialise it with "
         "MPI_Init_thread and at least MPI_THREAD_FUNNELED (spp-mpi does)");
   if (threads > 1 && level < MPI_THREAD_SERIALIZED)
-    throw std::invalid_argument("spp on MPI: " + std::to_string(threads) +
+    detail::invalid("spp on MPI: " + std::to_string(threads) +
                                 " threads per rank need MPI_THREAD_SERIALIZED, MPI gave only MPI_THREAD_FUNNELED: "
                                 "use one thread per rank (--threads 1) and more ranks");
 }
@@ -95,10 +96,10 @@ std::vector<std::string> distribute_units(MPI_Comm comm, size_t units, const std
     std::vector<char> seen(units, 0);
     bool ok = order.size() == units;
     for (size_t j : order) ok = ok && j < units && !seen[j]++;
-    if (!ok) throw std::invalid_argument("distribute_units: the order is not a permutation of the units");
+    if (!ok) detail::invalid("distribute_units: the order is not a permutation of the units");
   }
   if (threads < 1 || threads > kMaxThreadsPerRank)
-    throw std::invalid_argument("distribute_units: threads per rank must be in [1, " +
+    detail::invalid("distribute_units: threads per rank must be in [1, " +
                                 std::to_string(kMaxThreadsPerRank) + "], got " + std::to_string(threads));
   check_thread_level(threads);
   const int rank = rank_of(comm), size = size_of(comm);

@@ -13,6 +13,7 @@
 #include "spp/io/result_file.hpp"
 #include "spp/io/system_file.hpp"
 #include "spp/modal/modal.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -27,7 +28,7 @@ constexpr double kSameSystem = 1e-13;
 void require_out_dir(const std::string& out_dir) {
   std::error_code ec;
   if (out_dir.empty() || !fs::is_directory(out_dir, ec))
-    throw std::invalid_argument("sweep: the output directory \"" + io::shorten(out_dir, 200) +
+    detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
                                 "\" does not exist (create it first)");
 }
 
@@ -90,20 +91,20 @@ const char* to_string(SweepItemStatus s) {
 Sweep Sweep::over_values(const std::string& parametric_file, const std::string& parameter,
                          const std::vector<double>& values, const std::string& out_dir) {
   require_out_dir(out_dir);
-  if (values.empty()) throw std::invalid_argument("sweep: no parameter value given");
+  if (values.empty()) detail::invalid("sweep: no parameter value given");
   for (size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
-      throw std::invalid_argument("sweep: parameter value " + std::to_string(i) + " is not finite (" +
+      detail::invalid("sweep: parameter value " + std::to_string(i) + " is not finite (" +
                                   io::num(values[i]) + ")");
   if (!file_declares_parameter(parametric_file))
-    throw std::invalid_argument("sweep: " + io::shorten(parametric_file, 200) +
+    detail::invalid("sweep: " + io::shorten(parametric_file, 200) +
                                 " declares no parameter (no field \"parameter\"): a sweep over values needs a "
                                 "parametric system file; sweep over system files instead");
   Sweep s;
   s.parametric_.push_back(load_parametric_system(parametric_file));
   const std::string& declared = s.parametric_.front().parameter().name;
   if (parameter != declared)
-    throw std::invalid_argument("sweep: --parameter \"" + io::shorten(parameter, 80) + "\", but " +
+    detail::invalid("sweep: --parameter \"" + io::shorten(parameter, 80) + "\", but " +
                                 io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
   s.parameter_ = parameter;
   for (size_t i = 0; i < values.size(); ++i)
@@ -114,7 +115,7 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
 
 Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string& out_dir) {
   require_out_dir(out_dir);
-  if (files.empty()) throw std::invalid_argument("sweep: no system file given");
+  if (files.empty()) detail::invalid("sweep: no system file given");
   Sweep s;
   for (size_t i = 0; i < files.size(); ++i)
     s.items_.push_back(
@@ -125,7 +126,7 @@ Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string
 
 System Sweep::system(size_t i) const {
   if (i >= items_.size())
-    throw std::invalid_argument("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
+    detail::invalid("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
   if (parametric_.empty()) return load_system(items_[i].system_file);
   return parametric_.front().at(items_[i].value);  // its message names the parameter and the value
 }
@@ -133,7 +134,7 @@ System Sweep::system(size_t i) const {
 SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions& options) {
   options.validate();
   if (i >= sweep.items().size())
-    throw std::invalid_argument("sweep: item " + std::to_string(i) + " of " + std::to_string(sweep.items().size()));
+    detail::invalid("sweep: item " + std::to_string(i) + " of " + std::to_string(sweep.items().size()));
   const SweepItem& item = sweep.items()[i];
   SweepItemOutcome out;
   try {
@@ -144,7 +145,7 @@ SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions
       const SolveResult stored = parse_result(text, item.result_file);
       const std::string why = mismatch(sys, options, parse_result_system(text, item.result_file), stored);
       if (!why.empty())
-        throw std::invalid_argument(item.result_file + " is already there and holds " + why +
+        detail::invalid(item.result_file + " is already there and holds " + why +
                                     ": not replaced (remove it, or give another output directory)");
       out.status = SweepItemStatus::Resumed;
       return out;
@@ -192,7 +193,7 @@ std::string SweepTable::brief_report() const {
 
 SweepTable sweep_table(const Sweep& sweep, const std::vector<SweepItemOutcome>& outcomes) {
   if (outcomes.size() != sweep.items().size())
-    throw std::invalid_argument("sweep_table: " + std::to_string(outcomes.size()) + " outcomes for " +
+    detail::invalid("sweep_table: " + std::to_string(outcomes.size()) + " outcomes for " +
                                 std::to_string(sweep.items().size()) + " items");
   SweepTable t;
   t.parameter = sweep.parameter();

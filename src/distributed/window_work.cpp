@@ -7,6 +7,7 @@
 
 #include "search/search_steps.hpp"
 #include "spp/modal/equation_set.hpp"
+#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -78,7 +79,7 @@ class Reader {
     if (pos_ != bytes_.size()) fail("bytes left after the end");
   }
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::invalid_argument("WindowWork::finish: the output of unit " + std::to_string(unit_) +
+    detail::invalid("WindowWork::finish: the output of unit " + std::to_string(unit_) +
                                 " is not one trace_unit wrote for this window (" + what + ")");
   }
 
@@ -164,7 +165,7 @@ size_t WindowWork::units() const {
 
 long WindowWork::unit_cells(size_t j) const {
   if (j >= units())
-    throw std::invalid_argument("WindowWork: unit " + std::to_string(j) + " of a window of " + std::to_string(units()) +
+    detail::invalid("WindowWork: unit " + std::to_string(j) + " of a window of " + std::to_string(units()) +
                                 " units");
   return static_cast<long>(impl_->plan.t1.cells());
 }
@@ -210,7 +211,7 @@ SolveResult WindowWork::finish(const std::vector<std::string>& outputs) const {
   const search::WindowPlan& plan = impl_->plan;
   const size_t I = plan.t1.cells(), J = plan.t2.cells();
   if (outputs.size() != J)
-    throw std::invalid_argument("WindowWork::finish: expected the outputs of " + std::to_string(J) + " units, got " +
+    detail::invalid("WindowWork::finish: expected the outputs of " + std::to_string(J) + " units, got " +
                                 std::to_string(outputs.size()));
   std::vector<search::StripOut> strips(J);
   for (size_t j = 0; j < J; ++j) {

@@ -254,7 +254,7 @@ StripOut trace_strip(const EquationSet& eq, const WindowPlan& plan, size_t j, co
 TracedWindow merge_strips(const WindowPlan& plan, std::vector<StripOut>& strips, SolveResult& res) {
   const size_t I = plan.t1.cells(), J = plan.t2.cells();
   if (strips.size() != J)
-    throw std::invalid_argument("merge_strips: expected " + std::to_string(J) + " strip outputs, got " +
+    detail::invalid("merge_strips: expected " + std::to_string(J) + " strip outputs, got " +
                                 std::to_string(strips.size()));
   TracedWindow tw;
   tw.hits.v_from.assign(I + 1, std::vector<std::vector<EdgeHit>>(J));
@@ -264,7 +264,7 @@ TracedWindow merge_strips(const WindowPlan& plan, std::vector<StripOut>& strips,
   for (size_t j = 0; j < J; ++j) {
     StripOut& out = strips[j];
     if (out.left.size() != I || out.top.size() != I || out.right.size() != I || out.bottom.size() != I)
-      throw std::invalid_argument("merge_strips: strip " + std::to_string(j) + " holds hits of " +
+      detail::invalid("merge_strips: strip " + std::to_string(j) + " holds hits of " +
                                   std::to_string(out.left.size()) + " cells, expected " + std::to_string(I));
     for (size_t i = 0; i < I; ++i) {
       tw.hits.v_from[i][j] = std::move(out.left[i]);
@@ -501,7 +501,7 @@ WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {
     os << "options: the window (" << options.t1_min << ", " << options.t1_max << "] x (" << options.t2_min << ", "
        << options.t2_max << "] lies inside the band next to an axis where roots are not resolvable (t1 <= " << band1
        << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
-    throw std::invalid_argument(os.str());
+    detail::invalid(os.str());
   }
   return plan_window(md, options);
 }
