@@ -25,17 +25,22 @@ double weighted_norm(const Eigen::VectorXd& weights, const Eigen::VectorXd& v) {
 
 const detail::SymmetricEigen& EigenCache::at(const BorderedForm& bf, double t1, double t2, bool& computed) {
   const std::vector<int> key = bf.key();
-  for (Entry& e : entries_)
+  for (int i = 0; i < 3; ++i) {
+    Entry& e = entries_[i];
     if (e.used && e.t1 == t1 && e.t2 == t2 && e.key == key) {
       computed = false;
+      last_ = i;
       return e.es;
     }
+  }
+  last_ = next_;
   Entry& e = entries_[next_];
   next_ = (next_ + 1) % 3;
   e.t1 = t1;
   e.t2 = t2;
   e.key = key;
   e.es = detail::symmetric_eigen(bf.matrix(t1, t2));
+  e.products.ready = false;
   e.used = true;
   computed = true;
   return e.es;
@@ -82,8 +87,19 @@ SpectralBounds spectral_bounds(const BorderedForm& bf, const StepEnd& x, double 
   }
   if (!(gap > 0) || !std::isfinite(gap)) return sb;
   const Mat& G = bf.Gx();
-  const Mat Hp = detail::congruence(U, inv);
-  const Mat HpG = detail::product(Hp, false, G, false), GHpG = detail::product(G, true, HpG, false);
+  // The three m^3 products depend on the point and the bordered modes only: kept in the cache beside the eigenpairs
+  // (a step refused is retried from the same start, and a step's end is the next step's start).
+  SpectralProducts own_products;
+  SpectralProducts& products = cache ? cache->last_products() : own_products;
+  if (!products.ready) {
+    products.Hp = detail::congruence(U, inv);
+    products.HpG = detail::product(products.Hp, false, G, false);
+    products.GHpG = detail::product(G, true, products.HpG, false);
+    products.ready = true;
+  }
+  const Mat& Hp = products.Hp;
+  const Mat& HpG = products.HpG;
+  const Mat& GHpG = products.GHpG;
   const Mat aHp = Hp.cwiseAbs(), aHpG = HpG.cwiseAbs(), aGHpG = GHpG.cwiseAbs();
   const PhaseBounds F = phase_bounds(bf.flight(), lo1, hi1);
   const PhaseBounds C = phase_bounds(bf.contact(), lo2, hi2);
@@ -293,8 +309,11 @@ AlongCurve::FirstOrder AlongCurve::first_order(const Vec& a, const Vec& ya, doub
 }
 
 double AlongCurve::k2(double kappa, const Mat& Hp, const Mat& HpG) const {
-  const Mat HpE = -Hp * F_.increment.asDiagonal() + detail::product(HpG * C_.increment.asDiagonal(), false, G_, true);
-  return HpE.norm() + (Hp * weight_F().asDiagonal()).norm() + (HpG * weight_C(kappa).asDiagonal()).norm();
+  if (box_norm_ < 0.0) {
+    const Mat HpE = -Hp * F_.increment.asDiagonal() + detail::product(HpG * C_.increment.asDiagonal(), false, G_, true);
+    box_norm_ = HpE.norm();
+  }
+  return box_norm_ + (Hp * weight_F().asDiagonal()).norm() + (HpG * weight_C(kappa).asDiagonal()).norm();
 }
 
 double AlongCurve::bilinear(const Vec& v, const Vec& yv, const Vec& b, const Vec& yb, double kappa) const {

@@ -79,20 +79,32 @@ struct StepBox {
   double lo1, hi1, lo2, hi2;
 };
 
+/// The m^3 products spectral_bounds forms from the eigenpairs at one point: the pseudo-inverse Hp = U diag(1 / lam_j,
+/// j != k) U^T and its products with the contact basis, Hp Gx and Gx^T Hp Gx. They depend only on the point and on the
+/// bordered modes (which fix Gx), not on the step, so they are kept beside the eigenpairs (`ready` once formed).
+struct SpectralProducts {
+  Eigen::MatrixXd Hp, HpG, GHpG;
+  bool ready = false;
+};
+
 /// Full eigenpairs of bordered forms at the last few points: a step's start is the previous step's end, and a step
 /// the bounds refuse is retried, shorter, from the same start. Keyed by the point and the bordered modes.
 class EigenCache {
  public:
   /// The eigenpairs of bf at (t1, t2); `computed` is set when they were not cached (one evaluation).
   const detail::SymmetricEigen& at(const BorderedForm& bf, double t1, double t2, bool& computed);
+  /// The products kept beside the eigenpairs the last call of at() returned (formed by the caller when not ready).
+  SpectralProducts& last_products() { return entries_[last_].products; }
 
  private:
   struct Entry {
     double t1 = 0, t2 = 0;
     std::vector<int> key;
     detail::SymmetricEigen es;
+    SpectralProducts products;
     bool used = false;
   };
+  int last_ = 0;
   Entry entries_[3];
   int next_ = 0;
 };
@@ -200,7 +212,8 @@ class AlongCurve {
   /// |Gx^T Hp Gx| entrywise). E(s) = H(s) - H_x.
   FirstOrder first_order(const Vec& a, const Vec& ya, double kappa, const Mat& Hp, const Mat& HpG, const Mat& aHp,
                          const Mat& aHpG, const Mat& aGHpG) const;
-  /// sup over the step of |Hp E(s)| (Frobenius).
+  /// sup over the step of |Hp E(s)| (Frobenius). Its first term, |Hp E_box|, does not depend on kappa: formed (an m^3
+  /// product) on the first call only, for the Hp, HpG of that call (one AlongCurve serves one end's eigenpairs).
   double k2(double kappa, const Mat& Hp, const Mat& HpG) const;
   /// sup over the step of |v^T E(s) b|.
   double bilinear(const Vec& v, const Vec& yv, const Vec& b, const Vec& yb, double kappa) const;
@@ -213,6 +226,7 @@ class AlongCurve {
   const PhaseBounds &F_, &C_;
   double h_, w1_, w2_;
   Vec iFx_, iCx_, rhoF_, rhoC_;
+  mutable double box_norm_ = -1.0;  // |Hp E_box|_F once formed (k2)
 };
 
 }  // namespace spp::search
