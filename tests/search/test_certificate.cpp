@@ -334,6 +334,56 @@ TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
   }
 }
 
+TEST(SpectralBounds, ProductsKeptInTheCacheGiveTheSameBoundsAsFreshOnes) {
+  // The EigenCache keeps the pseudo-inverse products beside the eigenpairs they come from: a step refused and retried
+  // shorter from the same start, or from a start that was the previous step's end, must get bit for bit the bounds a
+  // fresh computation gives (chain5 and a stiff 5-dof, both symmetries), with no new evaluation.
+  const std::vector<std::string> files = {std::string(SPP_SOURCE_DIR) + "/examples/chain5.json",
+                                          std::string(SPP_SOURCE_DIR) + "/tests/data/stiff5_spread1e5.json"};
+  std::mt19937 rng(12);
+  int compared = 0;
+  for (const Symmetry sym : {Symmetry::Axial, Symmetry::Point})
+    for (const std::string& f : files) {
+      const ModalForm md(load_system(f));
+      const auto eq = make_equations(md, sym);
+      const Eigen::VectorXd zhat = md.z().normalized();
+      const double T1 = 8.0 * M_PI / (2.0 * md.omega().minCoeff()), T2 = 8.0 * M_PI / (2.0 * md.d().tail(1)(0));
+      const std::vector<double> p1 = md.flight_poles(0.0, T1), p2 = md.contact_poles(0.0, T2);
+      search::EigenCache cache;
+      for (int trial = 0; trial < 400; ++trial) {
+        RandomStep st;
+        if (!random_step(*eq, T1, T2, p1, p2, -5.0, rng, st)) continue;
+        const auto& [c1, d1, c2, d2, k, sa, h, pa, pb_] = st;
+        const double lo1 = std::min(pa.t1, pb_.t1), hi1 = std::max(pa.t1, pb_.t1);
+        const double lo2 = std::min(pa.t2, pb_.t2), hi2 = std::max(pa.t2, pb_.t2);
+        const search::BorderedForm bf(*eq, lo1, hi1, lo2, hi2);
+        if (!bf.valid()) continue;
+        search::StepEnd x;
+        x.s = sa;
+        x.t1 = pa.t1;
+        x.t2 = pa.t2;
+        x.b = &pa.b;
+        x.g = (sym == Symmetry::Axial ? zhat : eq->onset_direction(pa.t2)).dot(pa.b);
+        for (const double part : {1.0, 0.5, 0.25}) {  // the step, then retried shorter from the same start
+          const search::SpectralBounds fresh = search::spectral_bounds(bf, x, sa, sa + part * h, lo1, hi1, lo2, hi2);
+          const search::SpectralBounds kept =
+              search::spectral_bounds(bf, x, sa, sa + part * h, lo1, hi1, lo2, hi2, &cache);
+          EXPECT_EQ(kept.evaluations, part == 1.0 ? 1 : 0);
+          ASSERT_EQ(fresh.valid, kept.valid) << f;
+          if (!fresh.valid) continue;
+          ++compared;
+          EXPECT_EQ(fresh.g_lo, kept.g_lo);
+          EXPECT_EQ(fresh.g_hi, kept.g_hi);
+          EXPECT_EQ(fresh.dg_lo, kept.dg_lo);
+          EXPECT_EQ(fresh.dg_hi, kept.dg_hi);
+          EXPECT_EQ(fresh.g_err, kept.g_err);
+          EXPECT_EQ(fresh.g_x, kept.g_x);
+        }
+      }
+    }
+  EXPECT_GE(compared, 100);
+}
+
 TEST(AlongCurve, BoundsTheSampledPerturbationOfTheNullVectorAlongTheCurve) {
   // Property: on random steps of random curves (the paper's chain and stiff 5- and 7-dof systems), E(s) = B(s) - B_x
   // sampled on the true curve satisfies the signed bounds: |Hp E b_x| and |Gx^T Hp E b_x| componentwise, |Hp E| and
