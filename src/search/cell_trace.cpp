@@ -283,6 +283,11 @@ class CellTracer::Impl {
     double ref_h = h;
     bool prove = opt_.certify_steps;
     int fallbacks = 0;  // steps of this piece the proofs left to the midpoint check
+    // Once a piece is unproved (a fallback outside the axis bands), the proofs only decide how much of it is proved,
+    // not the window's status: after the f-th fallback they skip 2^(f-1) - 1 midpoint steps and then get at most
+    // kRetryTries shortenings. (Next to clustered pole lines of the 300-dof chain a piece otherwise alternated 40
+    // failed proofs and one midpoint step at the minimum length, up to kFallbacks times: ~15 minutes per piece.)
+    long skip_proofs = 0;
     // Root watch: certified steps that shrink while |g| falls (both 4x, kApproach times) approach a root that the
     // bounds only let a step cross late: one step of 3 |g / g'| is tried on the proofs; where they fail and half the
     // piece's step budget is spent, the midpoint check takes it (counted as not proved); the proofs resume after it.
@@ -323,7 +328,7 @@ class CellTracer::Impl {
         root_g = std::abs(cur.g);
         root_h = h;
       }
-      if (prove && !in_band) {
+      if (prove && !in_band && skip_proofs == 0) {
         TracePoint p =
             last ? point(out, &cur.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &cur.b);
         auto box_free = [&] {  // the step's box, widened by the ends' distance to the true curve, inside the cell
@@ -409,9 +414,15 @@ class CellTracer::Impl {
         // Shorten, towards the length the curvature bound says it could prove (at most 50x at once); after
         // kCertifyTries failures in a row or at the minimum step, the step goes to the midpoint check below.
         const bool bounded = cert.gap > 0 && cert.curvature > 0;  // the bound was computed (not cut short)
-        if (!(crossing_try && budget < proof_budget / 2) && ++halvings <= kCertifyTries && step > hmin_) {
+        const int tries = fallbacks > 0 ? kRetryTries : kCertifyTries;
+        if (!(crossing_try && budget < proof_budget / 2) && ++halvings <= tries && step > hmin_) {
           const bool crossing = (cur.g > 0) != (p.g > 0);  // only the curvature bound proves a crossing step
           h = std::max(hmin_, bounded && crossing ? std::clamp(cert.safe_length, 0.02 * step, 0.5 * step) : 0.5 * step);
+          // From a start whose null vector its own bounds leave undetermined (next to a pole line, where H's error
+          // bound exceeds the gap), only the far end's spectral bounds can prove a step, and halving rarely helps (the
+          // 300-dof chain: 13-30 failed halvings down to the minimum step per piece, each a certificate and a 1-D
+          // root): after kUndeterminedTries, one try at the minimum step, the most favourable length, decides.
+          if (undetermined(cur) && halvings > kUndeterminedTries) h = hmin_;
           continue;
         }
       }
@@ -425,7 +436,9 @@ class CellTracer::Impl {
       // next step aims at 0.6 max_turn, assuming the turn grows linearly with the step
       const double factor = turn > 0 ? 0.6 * opt_.max_turn / turn : 4.0;
       if (turn > opt_.max_turn) {
-        if (step > hmin_) {
+        // (From an undetermined start outside the axis bands, b is noise at any step length: shrinking to the
+        // minimum step only delays the same outcome.)
+        if (step > hmin_ && !(undetermined(cur) && !in_band)) {
           h = std::max(hmin_, step * std::clamp(factor, 0.1, 0.5));
           continue;
         }
@@ -449,7 +462,12 @@ class CellTracer::Impl {
         ++st_.uncertified_steps;
         certified = false;
         // The piece is unproved already: after kFallbacks such steps the proofs stop trying on it.
-        if (++fallbacks >= kFallbacks) prove = false;
+        if (skip_proofs > 0)
+          --skip_proofs;
+        else if (++fallbacks >= kFallbacks)
+          prove = false;
+        else
+          skip_proofs = (1L << std::min(fallbacks - 1, kMaxBackoff)) - 1;
       }
       halvings = 0;
       if (examine(r, k, cur, mid, 0)) {
@@ -579,6 +597,14 @@ class CellTracer::Impl {
   Pair root_between(const Rect& r, int k, const TracePoint& A, const TracePoint& B, double s) {
     return diagonal_root(r, s, A.t1 + (B.t1 - A.t1) * (s - A.s) / (B.s - A.s), k);
   }
+  // The null vector at p is far from determined by p's own bounds: the error bound of its neighbouring eigenvalues at
+  // the true curve point (eigenvalue error plus offset) exceeds their gap kUndetermined times, so Davis-Kahan bounds no
+  // angle and no nearby step length changes that (next to a pole line, where H's normwise error grows like 1 /
+  // distance: 1e6-1e9 times the gap on the 300-dof chain). Only with certify_steps (the neighbours are not computed
+  // otherwise: never undetermined then).
+  static bool undetermined(const TracePoint& p) {
+    return !(kUndetermined * std::min(p.lam_above, -p.lam_below) > p.eig_error + p.offset_norm);
+  }
   // Angle (rad) between two unit null vectors, orientation ignored.
   static double turn_between(const Vec& x, const Vec& y) { return std::acos(std::min(1.0, std::abs(x.dot(y)))); }
 
@@ -680,7 +706,15 @@ class CellTracer::Impl {
   int examine_budget_ = kPieceBudget;
   EigenCache eigen_cache_;                  // full eigenpairs of the certificate at the last trace points
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
+  // failed proofs in a row from an undetermined start before one try at the minimum step (the 300-dof chain's pieces
+  // that were proved from such a start took at most 4; a start next to a contact pole line of chain5 took more than 7)
+  static constexpr int kUndeterminedTries = 10;
+  // error bound over gap beyond which a start's null vector counts as undetermined (at ~1, ordinary starts next to
+  // avoided crossings, proved after a few halvings, would count: the chain5 window took 165 more evaluations)
+  static constexpr double kUndetermined = 1e6;
   static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
+  static constexpr int kRetryTries = 4;     // failed proofs in a row (each at most halving) once a piece is unproved
+  static constexpr int kMaxBackoff = 20;    // midpoint steps skipped before the proofs retry: at most 2^20 - 1
   static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped
   static constexpr int kRetraceDepth = 4;   // nested retraces at most
   static constexpr int kApproach = 3;       // 4x falls of |g| and of the step towards a root before one step crosses it
