@@ -712,12 +712,12 @@ class CellTracer::Impl {
   // error bound over gap beyond which a start's null vector counts as undetermined (at ~1, ordinary starts next to
   // avoided crossings, proved after a few halvings, would count: the chain5 window took 165 more evaluations)
   static constexpr double kUndetermined = 1e6;
-  static constexpr int kFallbacks = 64;     // midpoint-check steps in a piece before its proofs stop trying
-  static constexpr int kRetryTries = 4;     // failed proofs in a row (each at most halving) once a piece is unproved
-  static constexpr int kMaxBackoff = 20;    // midpoint steps skipped before the proofs retry: at most 2^20 - 1
-  static constexpr int kRetraceParts = 8;   // parts of a step traced again where g jumped
-  static constexpr int kRetraceDepth = 4;   // nested retraces at most
-  static constexpr int kApproach = 3;       // 4x falls of |g| and of the step towards a root before one step crosses it
+  static constexpr int kFallbacks = 64;    // midpoint-check steps in a piece before its proofs stop trying
+  static constexpr int kRetryTries = 4;    // failed proofs in a row (each at most halving) once a piece is unproved
+  static constexpr int kMaxBackoff = 20;   // midpoint steps skipped before the proofs retry: at most 2^20 - 1
+  static constexpr int kRetraceParts = 8;  // parts of a step traced again where g jumped
+  static constexpr int kRetraceDepth = 4;  // nested retraces at most
+  static constexpr int kApproach = 3;      // 4x falls of |g| and of the step towards a root before one step crosses it
   // 1-D root iterations at most: from kNewtonSteps on every other one bisects, ~94 halvings, more than a bracket of
   // doubles can take before reaching kSegmentRootXtol
   static constexpr int kSegmentRootIterations = 200;
