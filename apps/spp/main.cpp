@@ -13,8 +13,8 @@
 #include "command.hpp"
 #include "parallel.hpp"
 #include "spp/detail/dense_products.hpp"
-#include "spp/detail/out_of_memory.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/detail/out_of_memory.hpp"
 
 namespace {
 // Every message printed, at most 4000 characters: the last guard against echoing unbounded input (a message quotes
@@ -77,9 +77,9 @@ int main(int argc, char** argv) {
     for (const spp::cli::Subcommand& c : commands)
       if (c.app->parsed()) {
         if (spp::cli::ranks() > 1 && !spp::cli::distributed(c.app->get_name()))
-          detail::invalid("spp " + c.app->get_name() +
-                                      " does not run on several MPI ranks (only solve and sweep do): run it with "
-                                      "build/spp, or with one rank");
+          spp::detail::invalid("spp " + c.app->get_name() +
+                               " does not run on several MPI ranks (only solve and sweep do): run it with "
+                               "build/spp, or with one rank");
         return c.run();
       }
   } catch (const spp::detail::OutOfMemory& e) {  // names what was too large and its size

@@ -9,11 +9,11 @@
 
 #include "io/json.hpp"
 #include "io/text.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/io/files.hpp"
 #include "spp/io/result_file.hpp"
 #include "spp/io/system_file.hpp"
 #include "spp/modal/modal.hpp"
-#include "spp/detail/invalid.hpp"
 
 namespace spp {
 
@@ -29,7 +29,7 @@ void require_out_dir(const std::string& out_dir) {
   std::error_code ec;
   if (out_dir.empty() || !fs::is_directory(out_dir, ec))
     detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
-                                "\" does not exist (create it first)");
+                    "\" does not exist (create it first)");
 }
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break (a file name may).
@@ -94,18 +94,17 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
   if (values.empty()) detail::invalid("sweep: no parameter value given");
   for (size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
-      detail::invalid("sweep: parameter value " + std::to_string(i) + " is not finite (" +
-                                  io::num(values[i]) + ")");
+      detail::invalid("sweep: parameter value " + std::to_string(i) + " is not finite (" + io::num(values[i]) + ")");
   if (!file_declares_parameter(parametric_file))
     detail::invalid("sweep: " + io::shorten(parametric_file, 200) +
-                                " declares no parameter (no field \"parameter\"): a sweep over values needs a "
-                                "parametric system file; sweep over system files instead");
+                    " declares no parameter (no field \"parameter\"): a sweep over values needs a "
+                    "parametric system file; sweep over system files instead");
   Sweep s;
   s.parametric_.push_back(load_parametric_system(parametric_file));
   const std::string& declared = s.parametric_.front().parameter().name;
   if (parameter != declared)
     detail::invalid("sweep: --parameter \"" + io::shorten(parameter, 80) + "\", but " +
-                                io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
+                    io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
   s.parameter_ = parameter;
   for (size_t i = 0; i < values.size(); ++i)
     s.items_.push_back(
@@ -125,8 +124,7 @@ Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string
 }
 
 System Sweep::system(size_t i) const {
-  if (i >= items_.size())
-    detail::invalid("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
+  if (i >= items_.size()) detail::invalid("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
   if (parametric_.empty()) return load_system(items_[i].system_file);
   return parametric_.front().at(items_[i].value);  // its message names the parameter and the value
 }
@@ -142,11 +140,11 @@ SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions
     std::error_code ec;
     if (fs::exists(item.result_file, ec)) {  // an earlier run wrote it (atomically: it is whole)
       const std::string text = read_file(item.result_file);
-      const SolveResult stored = parse_result(text, item.result_file);
-      const std::string why = mismatch(sys, options, parse_result_system(text, item.result_file), stored);
+      const ResultFile stored = parse_result_file(text, item.result_file);
+      const std::string why = mismatch(sys, options, stored.system, stored.result);
       if (!why.empty())
         detail::invalid(item.result_file + " is already there and holds " + why +
-                                    ": not replaced (remove it, or give another output directory)");
+                        ": not replaced (remove it, or give another output directory)");
       out.status = SweepItemStatus::Resumed;
       return out;
     }
@@ -194,7 +192,7 @@ std::string SweepTable::brief_report() const {
 SweepTable sweep_table(const Sweep& sweep, const std::vector<SweepItemOutcome>& outcomes) {
   if (outcomes.size() != sweep.items().size())
     detail::invalid("sweep_table: " + std::to_string(outcomes.size()) + " outcomes for " +
-                                std::to_string(sweep.items().size()) + " items");
+                    std::to_string(sweep.items().size()) + " items");
   SweepTable t;
   t.parameter = sweep.parameter();
   t.items = sweep.items();
