@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "command.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -20,6 +20,32 @@ struct TrajectoryArgs {
   int samples = 1001, solution = -1;
   CLI::Option* t1_given = nullptr;
 };
+
+// The SPP at the (t1, t2) of solution K of a result file, polished again (its verdicts recomputed, not read), refused
+// unless it is the file's solution: x0, v0 and the admissibility verdict the same (a file edited by hand, or whose
+// x0 belongs to another orbit, would otherwise be drawn as an SPP it is not).
+Solution file_solution(const System& sys, const ModalForm& md, const Solution& stored, const SolveOptions& o,
+                       const std::string& file, int k) {
+  constexpr double kSameSpp = 1e-8;  // relative: polishing again moves a root by ~1e-13; an edit moves it by O(1)
+  const std::string which = file + ": solution " + std::to_string(k);
+  const SolutionAt at = solution_at(sys, md, stored.t1(), stored.t2(), o);
+  if (!at.found) detail::invalid(which + " is no SPP of its system: " + at.brief_report());
+  const Solution& s = at.solution;
+  const double wmin = md.m() > 0 ? md.omega().minCoeff() : 1.0;  // v / wmin: a length, like x
+  const double scale = s.x0().norm() + s.v0().norm() / wmin + std::abs(sys.g0());
+  const double moved = (s.x0() - stored.x0()).norm() + (s.v0() - stored.v0()).norm() / wmin;
+  if (!(moved <= kSameSpp * scale)) {
+    std::ostringstream os;
+    os.precision(3);
+    os << which << " is no SPP of its system: its x0, v0 differ from those of the SPP at its (t1, t2) = ("
+       << stored.t1() << ", " << stored.t2() << ") by " << moved / scale << " (relative)";
+    detail::invalid(os.str());
+  }
+  if (s.admissible() != stored.admissible())
+    detail::invalid(which + " says " + (stored.admissible() ? "admissible" : "not admissible") +
+                    ", but the SPP at its (t1, t2) is " + (s.admissible() ? "admissible" : "not admissible"));
+  return s;
+}
 
 int run(TrajectoryArgs& a) {
   std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
@@ -33,12 +59,9 @@ int run(TrajectoryArgs& a) {
   const System sys = a.system.empty() ? file->system : load_system(a.system);
   check_trajectory_csv_size(a.samples, sys.n(), "--samples");  // before the search and any sample is computed
   if (file && !a.system.empty()) {
-    const System& solved = file->system;
-    if (solved.n() != sys.n() || !solved.M().isApprox(sys.M(), kSameToRounding) ||
-        !solved.K().isApprox(sys.K(), kSameToRounding) || !solved.w().isApprox(sys.w(), kSameToRounding) ||
-        std::abs(solved.g0() - sys.g0()) > kSameToRounding * std::abs(sys.g0()))
+    if (!same_system(file->system, sys))
       detail::invalid(a.result + ": was solved for another system than " + a.system + " (omit " + a.system +
-                                  ": the result file holds its system)");
+                      ": the result file holds its system)");
   }
   const ModalForm md(sys);  // once, for the search and the samples
   std::optional<Solution> loaded;
@@ -46,8 +69,8 @@ int run(TrajectoryArgs& a) {
     if (a.solution < 0) detail::invalid("trajectory: --result needs --solution K (0-based)");
     const std::vector<Solution>& sols = file->result.solutions;
     if (static_cast<size_t>(a.solution) >= sols.size())
-      detail::invalid(a.result + ": --solution " + std::to_string(a.solution) +
-                                  " out of range, the file has " + std::to_string(sols.size()) + " solutions");
+      detail::invalid(a.result + ": --solution " + std::to_string(a.solution) + " out of range, the file has " +
+                      std::to_string(sols.size()) + " solutions");
     loaded = sols[static_cast<size_t>(a.solution)];
   } else if (a.t1_given->count() == 0) {
     detail::invalid("trajectory: give --t1 and --t2, or --result and --solution");
@@ -55,8 +78,9 @@ int run(TrajectoryArgs& a) {
   SolveOptions o;
   o.compute_return_error = false;
   Solution s;
-  if (loaded) {
-    s = *loaded;  // an SPP of a result file, as it was solved (its orbit rebuilt in this modal basis if need be)
+  if (loaded) {  // an SPP of a result file: polished again where it is, and checked to be the file's solution
+    o.symmetry = file->result.symmetry;
+    s = file_solution(sys, md, *loaded, o, a.result, a.solution);
   } else {  // a guess (e.g. read off the root map): the complete solver around it, then the nearest SPP
     const NearestSpp near = nearest_spp(sys, md, a.t1, a.t2, a.radius, o);
     if (!near.found) {

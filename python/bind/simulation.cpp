@@ -3,10 +3,10 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/simulation/verify.hpp"
-#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -97,8 +97,7 @@ void bind_simulation(py::module_& m) {
         if (restitution) o.restitution = *restitution;
         o.validate();
         if (!(samples_per_unit > 0.0))
-          detail::invalid("simulate: samples_per_unit must be > 0, got " +
-                                      std::to_string(samples_per_unit));
+          detail::invalid("simulate: samples_per_unit must be > 0, got " + std::to_string(samples_per_unit));
         if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
         py::gil_scoped_release release;
         return spp::simulate(s, x0, v0, o);
@@ -150,15 +149,25 @@ void bind_simulation(py::module_& m) {
       .def("__repr__", [](const py::object& o) { return fields_repr(o, "VerifyOptions"); });
   m.def(
       "verify",
-      [](const spp::System& s, const spp::SolveResult& r, const py::object& options, const py::kwargs& fields) {
+      [](const spp::System& s, const py::object& result, const py::object& options, const py::kwargs& fields) {
         const spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
         o.validate();
+        if (!py::isinstance<spp::SolveResult>(result))
+          detail::invalid("verify: result must be a SolveResult (of solve() or load_result()), got " +
+                          std::string(py::str(py::type::of(result).attr("__name__"))));
+        const spp::SolveResult& r = result.cast<const spp::SolveResult&>();
+        // a result knows the system it was solved for (solve(), load_result()): verifying it against another one
+        // would blame the solver for the caller's mix-up
+        if (py::hasattr(result, "system") && py::isinstance<spp::System>(result.attr("system")) &&
+            !spp::same_system(result.attr("system").cast<const spp::System&>(), s))
+          detail::invalid("verify: the result was solved for another system than the one given (result.system)");
         py::gil_scoped_release release;
         return spp::verify(s, r.solutions, o);
       },
       "system"_a, "result"_a, "options"_a = py::none(),
       "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "
-      "or with a VerifyOptions and any field also as a keyword. Raises ValueError.");
+      "or with a VerifyOptions and any field also as a keyword. Raises ValueError (also for a result solved for "
+      "another system than `system`).");
 }
 
 }  // namespace spp::python

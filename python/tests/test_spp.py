@@ -69,6 +69,18 @@ def test_verify_agrees_with_the_solver():
     assert (v.returned, v.left) == (7, 57)
 
 
+def test_verify_refuses_a_result_of_another_system():
+    # verify(system, result) with a system other than the one the result was solved for reported "7 disagree with
+    # the solver's admissibility", blaming the solver (found by an independent review): now a ValueError
+    s = chain5()
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    other = spp.System(s.M, 1.3 * s.K, s.w, s.g0)
+    with pytest.raises(ValueError, match="another system"):
+        spp.verify(other, r)
+    with pytest.raises(ValueError, match="must be a SolveResult"):
+        spp.verify(s, r.solutions)
+
+
 def test_generators():
     assert spp.chain(5).n == 5
     assert spp.rod_with_slip().n == 4

@@ -157,4 +157,18 @@ Eigen::MatrixXd System::contact_stiffness() const {
   return K_ - w_ * (Minv_w.transpose() * K_) / wMw;
 }
 
+namespace {
+bool same_to_rounding(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  const double scale = std::max(1.0, a.size() > 0 ? a.cwiseAbs().maxCoeff() : 0.0);
+  return a.size() == 0 || (a - b).cwiseAbs().maxCoeff() <= kSameToRounding * scale;
+}
+}  // namespace
+
+bool same_system(const System& a, const System& b) {
+  return a.n() == b.n() && same_to_rounding(a.M(), b.M()) && same_to_rounding(a.K(), b.K()) &&
+         same_to_rounding(a.w(), b.w()) &&
+         std::abs(a.g0() - b.g0()) <= kSameToRounding * std::max(1.0, std::abs(a.g0()));
+}
+
 }  // namespace spp

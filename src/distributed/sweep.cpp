@@ -21,10 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A result file read back for resuming holds the item's system when M, K, w and g0 agree to this (relative): the file
-// embeds the system after normalising w, and reading normalises it again (a unit norm may round to 1 - 1 ulp).
-constexpr double kSameSystem = 1e-13;
-
 void require_out_dir(const std::string& out_dir) {
   std::error_code ec;
   if (out_dir.empty() || !fs::is_directory(out_dir, ec))
@@ -44,17 +40,6 @@ std::string numbered(size_t index) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%04zu", index);
   return buf;
-}
-
-bool close_matrix(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-  const double scale = std::max(1.0, a.cwiseAbs().maxCoeff());
-  return (a - b).cwiseAbs().maxCoeff() <= kSameSystem * scale;
-}
-
-bool same_system(const System& a, const System& b) {
-  return a.n() == b.n() && close_matrix(a.M(), b.M()) && close_matrix(a.K(), b.K()) && close_matrix(a.w(), b.w()) &&
-         std::abs(a.g0() - b.g0()) <= kSameSystem * std::max(1.0, std::abs(a.g0()));
 }
 
 // Why the result read back is not this item's (empty: it is): system, symmetry, window.

@@ -1,9 +1,9 @@
 // The command-line tool: every validation rule gives a non-zero exit code, a message naming what is wrong,
 // and no output file; the happy paths write loadable JSON and CSV.
-#include <gtest/gtest.h>
-#include <sys/stat.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,8 +15,8 @@
 #include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <random>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -544,6 +544,30 @@ TEST(Cli, TrajectoryFromAResultNeedsNoSystemFile) {
   EXPECT_FALSE(fs::exists(c));
 }
 
+TEST(Cli, TrajectoryRefusesAResultSolutionThatIsNoSpp) {
+  // spp trajectory --result drew whatever x0, v0 a result file held, with exit 0 and the file's "admissible" (found
+  // by an independent review: an edited x0, another solution's x0, a flipped verdict). Each solution is now polished
+  // again at its (t1, t2) and must be that SPP.
+  const fs::path res = dir() / "c5_edited.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);
+  std::ifstream in(res);
+  const nlohmann::json good = nlohmann::json::parse(in);
+  ASSERT_FALSE(good["solutions"][1]["admissible"].get<bool>() == good["solutions"][0]["admissible"].get<bool>());
+  for (int edit = 0; edit < 3; ++edit) {
+    nlohmann::json j = good;
+    if (edit == 0) j["solutions"][1]["x0"][0] = j["solutions"][1]["x0"][0].get<double>() + 0.1;
+    if (edit == 1)
+      j["solutions"][1]["x0"] = j["solutions"][10]["x0"], j["solutions"][1]["v0"] = j["solutions"][10]["v0"];
+    if (edit == 2) j["solutions"][1]["admissible"] = !j["solutions"][1]["admissible"].get<bool>();
+    const fs::path bad = dir() / ("c5_edited_" + std::to_string(edit) + ".json"), csv = dir() / "edited.csv";
+    std::ofstream(bad) << j.dump();
+    const CliRun r = run("trajectory --result " + bad.string() + " --solution 1 --csv " + csv.string());
+    EXPECT_EQ(r.code, 1) << edit << ": " << r.out;
+    EXPECT_NE(r.out.find("solution 1"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(csv)) << edit;
+  }
+}
+
 TEST(Cli, OutputEqualToAMatrixMarketInputIsRefused) {
   // An output named like a Matrix Market file the system reads was written over it (only the JSON file was
   // compared): the .mtx must be left as it was, with exit 1.
@@ -861,13 +885,13 @@ TEST(Cli, ModesWritesTheIssueLayout) {
 TEST(Cli, ModesRejectsBadInput) {
   const fs::path js = dir() / "modes_bad.json";
   fs::remove(js);
-  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
-           {"--k 0 --energy-max 1", "--k"},
-           {"--k 3..1 --energy-max 1", "--k"},
-           {"--k 1..x --energy-max 1", "--k"},
-           {"--k 1..99 --energy-max 1", "--k"},
-           {"--k 1 --energy-max -1", "energy_max"},
-           {"--k 1 --energy-max 1 --max-step 0", "max_step"}}) {
+  for (const auto& [args, message] :
+       std::vector<std::pair<std::string, std::string>>{{"--k 0 --energy-max 1", "--k"},
+                                                        {"--k 3..1 --energy-max 1", "--k"},
+                                                        {"--k 1..x --energy-max 1", "--k"},
+                                                        {"--k 1..99 --energy-max 1", "--k"},
+                                                        {"--k 1 --energy-max -1", "energy_max"},
+                                                        {"--k 1 --energy-max 1 --max-step 0", "max_step"}}) {
     const CliRun r = run("modes " + kChain + " " + args + " --json " + js.string());
     EXPECT_EQ(r.code, 1) << args << ": " << r.out;
     EXPECT_NE(r.out.find(message), std::string::npos) << args << ": " << r.out;
@@ -937,8 +961,8 @@ const char* kSweepWindow = " --t1-max 8 --t2-max 8 ";
 TEST(Cli, SweepOfTwentyValuesGivesTheTableOfTwentySolves) {
   const std::string sys = parametric_two_dof();
   const fs::path out = fresh_dir("sweep20");
-  const CliRun s = run("sweep " + sys + " --parameter k2 --values 1:5.75:0.25 --out-dir " + out.string() +
-                       kSweepWindow + "--quiet");
+  const CliRun s =
+      run("sweep " + sys + " --parameter k2 --values 1:5.75:0.25 --out-dir " + out.string() + kSweepWindow + "--quiet");
   ASSERT_EQ(s.code, 0) << s.out;
   EXPECT_NE(s.out.find("20 values, 20 done (0 resumed from their files), 0 failed"), std::string::npos) << s.out;
   const nlohmann::json table = read_json(out / "sweep.json");

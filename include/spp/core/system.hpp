@@ -59,6 +59,10 @@ inline constexpr int kMaxDenseDofs = 10000;
 /// meaningful change of a model).
 inline constexpr double kSameToRounding = 1e-12;
 
+/// Whether a and b are one system to rounding: same n, and M, K, w, g0 equal to kSameToRounding relative to each
+/// one's largest entry (at least 1). A result file's system against the one a caller passes with it. Cost O(n^2).
+bool same_system(const System& a, const System& b);
+
 /// Relative tolerance used to accept M and K as symmetric: |A - A^T|_max <= tol * |A|_max.
 inline constexpr double kSymmetryTolerance = 1e-10;
 /// M and K are positive definite when the smallest eigenvalue of their unit-diagonal scaling exceeds this many
