@@ -18,17 +18,18 @@ std::string read_file(const std::string& path) {
   // until memory ran out (found by an independent attack: `spp solve /dev/zero` reached 2.9 GB in 3 s).
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
-  if (!fs::exists(st)) invalid("cannot open \"" + path + "\" for reading: no such file");
-  if (fs::is_directory(st)) invalid("\"" + path + "\" is a directory, not a file");
+  const std::string shown = io::shorten(path, io::kQuotedPathChars);
+  if (!fs::exists(st)) invalid("cannot open \"" + shown + "\" for reading: no such file");
+  if (fs::is_directory(st)) invalid("\"" + shown + "\" is a directory, not a file");
   if (!fs::is_regular_file(st))
-    invalid("\"" + path + "\" is not a regular file (a device, a pipe or a socket): expected a file on disk");
+    invalid("\"" + shown + "\" is not a regular file (a device, a pipe or a socket): expected a file on disk");
   const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) invalid("cannot open \"" + path + "\" for reading");
+  if (ec) invalid("cannot open \"" + shown + "\" for reading");
   if (size > kMaxInputFileBytes)
-    invalid("\"" + path + "\" has " + std::to_string(size) + " bytes, more than the " +
+    invalid("\"" + shown + "\" has " + std::to_string(size) + " bytes, more than the " +
             std::to_string(kMaxInputFileBytes) + " an input file of spp may have (" + kMaxInputFileReason + ")");
   std::ifstream in(path, std::ios::binary);
-  if (!in) invalid("cannot open \"" + path + "\" for reading");
+  if (!in) invalid("cannot open \"" + shown + "\" for reading");
   // read at most the limit and one byte more: a file that grew since its size was taken is still bounded
   std::string text(static_cast<size_t>(size), '\0');
   in.read(text.data(), static_cast<std::streamsize>(size));
@@ -36,7 +37,7 @@ std::string read_file(const std::string& path) {
   for (char buf[4096]; in.read(buf, sizeof buf) || in.gcount() > 0;) {
     text.append(buf, static_cast<size_t>(in.gcount()));
     if (text.size() > kMaxInputFileBytes)
-      invalid("\"" + path + "\" grew past the " + std::to_string(kMaxInputFileBytes) +
+      invalid("\"" + shown + "\" grew past the " + std::to_string(kMaxInputFileBytes) +
               " bytes an input file of spp may have while it was read");
   }
   return text;

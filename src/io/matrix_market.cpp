@@ -81,7 +81,7 @@ void parse_matrix_market(const std::string& path, bool dense, OnSize on_size, On
   if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
     invalid("Matrix Market file \"" + path + "\" is not a regular file (a directory, a device or a pipe)");
   std::ifstream in(path);
-  if (!in) invalid("cannot open Matrix Market file \"" + path + "\"");
+  if (!in) invalid("cannot open Matrix Market file \"" + shorten(path, io::kQuotedPathChars) + "\"");
   std::string line;
   if (!read_line(in, line, path, 1) || line.rfind("%%MatrixMarket", 0) != 0)
     invalid(path + ": line 1 must start with %%MatrixMarket");

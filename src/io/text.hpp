@@ -16,6 +16,10 @@ inline std::string shorten(const std::string& t, size_t n = 40) {
   return t.size() > n ? t.substr(0, n) + "..." : t;
 }
 
+/// Characters of a file path quoted in an error message: a real path fits (PATH_MAX is 4096, paths are far shorter in
+/// practice), text passed where a path was expected (a whole JSON result, 100 kB) is cut.
+inline constexpr size_t kQuotedPathChars = 512;
+
 /// A double with 17 significant digits (reads back to the same value).
 inline std::string num(double v) {
   std::ostringstream os;

@@ -255,12 +255,26 @@ TEST(Io, ResultWithoutModalCoordinatesReadsAndSamplesLikeTheOriginal) {
   const ModalForm md(s);
   for (size_t i = 0; i < r.solutions.size(); ++i) {
     EXPECT_EQ(back.solutions[i].orbit.p0.size(), 0);
-    const OrbitSamples a = sample_orbit(md, r.solutions[i].orbit, 21), b = sample_orbit(md, back.solutions[i].orbit, 21);
+    const OrbitSamples a = sample_orbit(md, r.solutions[i].orbit, 21),
+                       b = sample_orbit(md, back.solutions[i].orbit, 21);
     EXPECT_LE((a.x - b.x).norm(), 1e-10 * a.x.norm()) << i;
     EXPECT_LE((a.gap - b.gap).norm(), 1e-10 * (a.gap.norm() + 1.0)) << i;
   }
   const SolveResult again = parse_result(result_json(s, back), "written again");
   EXPECT_EQ(again.solutions.size(), r.solutions.size());
+}
+
+TEST(Io, TextGivenAsAPathIsNotEchoedWhole) {
+  // SolveResult.from_json takes a path; given the JSON text itself (100 kB), its "cannot open" message echoed all of
+  // it (found by an independent review). Paths are quoted to io::kQuotedPathChars characters.
+  const std::string text = "{\"solutions\": [" + std::string(100000, ' ') + "]}";
+  try {
+    load_result(text);
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_LT(std::string(e.what()).size(), 700u);
+    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Io, LoadResultNamesWhatItCannotRead) {
