@@ -28,15 +28,20 @@ struct CliRun {
   std::string out;  // stdout + stderr
 };
 
-// spp with args, optionally under a launcher (e.g. "timeout ..."); exit code -1 when ended by a signal.
-CliRun run(const std::string& args, const std::string& launcher = "") {
-  const std::string cmd = launcher + std::string(SPP_CLI) + " " + args + " 2>&1";
+// The executable `exe` with args, stdout + stderr.
+CliRun run_exe(const std::string& exe, const std::string& args, const std::string& launcher = "") {
+  const std::string cmd = launcher + exe + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf{};
   while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
   const int st = pclose(p);
   return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+// spp with args, optionally under a launcher (e.g. "timeout ..."); exit code -1 when ended by a signal.
+CliRun run(const std::string& args, const std::string& launcher = "") {
+  return run_exe(SPP_CLI, args, launcher);
 }
 
 fs::path dir() {
@@ -910,16 +915,6 @@ TEST(Cli, ModesRejectsBadInput) {
 
 namespace {
 
-// The executable `exe` with args, stdout + stderr.
-CliRun run_exe(const std::string& exe, const std::string& args, const std::string& launcher = "") {
-  const std::string cmd = launcher + exe + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
 
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
