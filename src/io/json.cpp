@@ -97,7 +97,8 @@ json vector_json(const Eigen::VectorXd& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
-Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir) {
+Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir,
+                             long expected_size) {
   if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\"");
   const json& v = j.at(key);
   if (v.is_object()) {
@@ -107,7 +108,7 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
     fs::path p = v.at("matrix_market").get<std::string>();
     if (p.is_relative()) p = fs::path(dir) / p;
     try {
-      return read_matrix_market(p.string());
+      return read_matrix_market(p.string(), expected_size);
     } catch (const std::invalid_argument& e) {
       invalid(where + ": field \"" + key + "\": " + e.what());
     }

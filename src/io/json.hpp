@@ -34,7 +34,9 @@ json parse_json_text(const std::string& text, const std::string& path);
 json matrix_json(const Eigen::MatrixXd& A);
 json vector_json(const Eigen::VectorXd& v);
 /// A field "key" of j: a list of rows (or {"matrix_market": "file.mtx"}, relative to dir) / a list of numbers.
-Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir);
+/// expected_size >= 0: a Matrix Market file must declare that size (checked before its n^2 doubles are allocated).
+Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir,
+                             long expected_size = -1);
 Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where);
 
 /// Reads the fields of one JSON object, each naming where it is when it cannot. Doubles written as null (NaN) read
@@ -53,6 +55,10 @@ struct Reader {
 
 System system_from_json(const json& j, const std::string& where, const std::string& dir = ".");
 json system_to_json(const System& system);
+/// The system a result file embeds: system_to_json plus "n", "w_normalized", "w_input_norm" (w and g0 stored already
+/// divided by |w|); read back to the same System, each of the three checked against M, K, w.
+json embedded_system_to_json(const System& system);
+System embedded_system_from_json(const json& j, const std::string& where);
 bool declares_parameter(const json& j);
 ParametricSystem parametric_system_from_json(const json& j, const std::string& where, const std::string& dir = ".");
 json parametric_system_to_json(const ParametricSystem& system);

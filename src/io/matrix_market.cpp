@@ -71,11 +71,18 @@ bool read_line(std::istream& in, std::string& line, const std::string& path, int
   }
 }
 
+// The size line against the size the caller knows (w's length), before anything of the declared size is allocated.
+void check_size(const std::string& path, long rows, long cols, long expected_size) {
+  if (expected_size >= 0 && (rows != expected_size || cols != expected_size))
+    invalid(path + ": declares a " + std::to_string(rows) + " x " + std::to_string(cols) + " matrix, expected " +
+            std::to_string(expected_size) + " x " + std::to_string(expected_size) + " (the length of w)");
+}
+
 // The one parser of both readers: checks the banner and the size line, calls on_size(rows, cols) once, then
 // on_entry(i, j, v) (0-based, as stored: one triangle of a symmetric file) for every stored entry. `where` names the
-// current line.
+// current line. expected_size >= 0: the size line must declare it (checked before anything else about the size).
 template <typename OnSize, typename OnEntry>
-void parse_matrix_market(const std::string& path, bool dense, OnSize on_size, OnEntry on_entry) {
+void parse_matrix_market(const std::string& path, bool dense, long expected_size, OnSize on_size, OnEntry on_entry) {
   std::error_code ec;
   const std::filesystem::file_status st = std::filesystem::status(path, ec);
   if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
@@ -115,6 +122,7 @@ void parse_matrix_market(const std::string& path, bool dense, OnSize on_size, On
       (coordinate && !parse_index(size[2], nnz)) || rows <= 0 || cols <= 0 || nnz < 0)
     invalid(where() + ": bad size line \"" + shown(line) + "\" (expected rows cols" + (coordinate ? " entries" : "") +
             ")");
+  check_size(path, rows, cols, expected_size);
   if (dense && static_cast<double>(rows) * static_cast<double>(cols) > kMaxDenseEntries)
     invalid(where() + ": a " + std::to_string(rows) + " x " + std::to_string(cols) +
             " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) +
@@ -169,16 +177,17 @@ std::string mirror_given(long i, long j) {
          ") of a symmetric file: its mirror was given too (store one triangle)";
 }
 
+
 }  // namespace
 
-Eigen::MatrixXd read_matrix_market(const std::string& path) {
+Eigen::MatrixXd read_matrix_market(const std::string& path, long expected_size) {
   Eigen::MatrixXd A;
   // Duplicate entries are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one
   // triangle: an entry given in both triangles is refused.
   Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic> side;
   bool sym = false;
   parse_matrix_market(
-      path, true,
+      path, true, expected_size,
       [&](long rows, long cols, bool symmetric, const auto& where) {
         sym = symmetric;
         detail::naming_allocation(
@@ -209,11 +218,8 @@ Eigen::SparseMatrix<double> read_sparse_matrix_market(const std::string& path, l
   bool sym = false;
   long rows = 0, cols = 0;
   parse_matrix_market(
-      path, false,
+      path, false, expected_size,
       [&](long r, long c, bool symmetric, const auto&) {
-        if (expected_size >= 0 && (r != expected_size || c != expected_size))
-          invalid(path + ": declares a " + std::to_string(r) + " x " + std::to_string(c) + " matrix, expected " +
-                  std::to_string(expected_size) + " x " + std::to_string(expected_size) + " (the length of w)");
         rows = r;
         cols = c;
         sym = symmetric;

@@ -22,10 +22,7 @@ io::json point_json(const modes::ModePoint& p) {
 
 std::string modes_json(const System& system, const modes::ModesResult& result, int indent) {
   io::json j;
-  j["system"] = io::system_to_json(system);  // as in solve's result files: w unit, with its input norm
-  j["system"]["n"] = system.n();
-  j["system"]["w_normalized"] = system.w_input_norm() != 1.0;
-  j["system"]["w_input_norm"] = system.w_input_norm();
+  j["system"] = io::embedded_system_to_json(system);  // as in solve's result files: w unit, with its input norm
   j["linear_frequencies"] = io::vector_json(result.linear_frequencies);
   j["status"] = modes::to_string(result.status);
   j["stats"] = {{"corrector_solves", result.corrector_solves},

@@ -1,5 +1,6 @@
 #include "spp/io/result_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -57,6 +58,95 @@ std::vector<const char*> count_keys() {
   const SolveResult none;
   for_each_count(none, [&](const char* key, const auto&) { keys.push_back(key); });
   return keys;
+}
+
+// One SPP's values that no solve leaves undefined (written as null they would read as NaN, found by an independent
+// review) and its flags (one of kSolutionFlags each).
+void check_solution_values(const json& o, const std::string& at) {
+  for (const char* k : {"min_gap", "min_force", "energy", "residual", "mid_flight_gap", "mid_contact_force"})
+    if (o.contains(k) && !(o.at(k).is_number() && std::isfinite(o.at(k).get<double>())))
+      invalid(at + ": field \"" + k + "\": expected a finite number, got " + describe(o.at(k)));
+  for (const char* k : {"x0", "v0"}) {
+    if (!o.contains(k) || !o.at(k).is_array()) continue;  // (the reader names a missing or malformed vector)
+    const json& v = o.at(k);
+    for (size_t i = 0; i < v.size(); ++i)
+      if (!(v[i].is_number() && std::isfinite(v[i].get<double>())))
+        invalid(at + ": field \"" + k + "\"[" + std::to_string(i) + "]: expected a finite number, got " +
+                describe(v[i]));
+  }
+  if (o.contains("flags") && o.at("flags").is_array())
+    for (size_t i = 0; i < o.at("flags").size(); ++i) {
+      const json& f = o.at("flags")[i];
+      const bool known = f.is_string() && std::any_of(kSolutionFlags.begin(), kSolutionFlags.end(), [&](const char* k) {
+                           return f.get<std::string>() == k;
+                         });
+      if (!known) {
+        std::string list;
+        for (const char* k : kSolutionFlags) list += std::string(list.empty() ? "" : ", ") + k;
+        invalid(at + ": field \"flags\"[" + std::to_string(i) + "]: expected one of " + list + ", got " +
+                describe(f));
+      }
+    }
+}
+
+// What the solver's status means (search/solver.cpp, finalize: "success" exactly when no warning and no uncertified
+// region), checked across fields: "success" beside a count of unproved work, a warning or an SPP whose
+// admissibility is not certified; "incomplete" with neither warning nor region; fewer roots than SPPs listed (an
+// admissible_only solve lists fewer, never more); an SPP outside the window. Each read silently before (found by an
+// independent review).
+void check_consistency(const json& r, const std::string& where) {
+  const bool has_status = r.contains("status") && r.at("status").is_string();
+  const std::string status = has_status ? r.at("status").get<std::string>() : "";
+  const json none = json::array();
+  const json& warnings = r.contains("warnings") && r.at("warnings").is_array() ? r.at("warnings") : none;
+  const json& unc = r.contains("uncertified") && r.at("uncertified").is_array() ? r.at("uncertified") : none;
+  const json& sols = r.contains("solutions") && r.at("solutions").is_array() ? r.at("solutions") : none;
+  const bool has_stats = r.contains("stats") && r.at("stats").is_object();
+  if (status == "success") {
+    if (!warnings.empty())
+      invalid(where + ": field \"status\" is \"success\" but field \"warnings\" has " +
+              std::to_string(warnings.size()) + " entr" + (warnings.size() == 1 ? "y" : "ies") +
+              ": a search with warnings is \"incomplete\"");
+    if (has_stats)
+      for (const char* k : {"uncertified_steps", "uncertified_corners", "unpaired_crossings", "unresolved_pieces",
+                            "unpolished_roots", "unsearched_cells"})
+        if (r.at("stats").contains(k) && r.at("stats").at(k).is_number_integer() &&
+            r.at("stats").at(k).get<long>() != 0)
+          invalid(where + ": field \"status\" is \"success\" but field \"stats\".\"" + k + "\" is " +
+                  std::to_string(r.at("stats").at(k).get<long>()) + ": expected 0, or status \"incomplete\"");
+    for (size_t i = 0; i < sols.size(); ++i)
+      if (sols[i].is_object() && sols[i].contains("admissibility_certified") &&
+          sols[i].at("admissibility_certified") == false)
+        invalid(where + ": field \"status\" is \"success\" but field \"solutions\"[" + std::to_string(i) +
+                "] has \"admissibility_certified\": false: expected true, or status \"incomplete\"");
+  } else if (status == "incomplete" && warnings.empty() && unc.empty()) {
+    invalid(where + ": field \"status\" is \"incomplete\" but neither \"warnings\" nor \"uncertified\" says why: "
+            "expected at least one of them non-empty, or status \"success\"");
+  }
+  if (has_stats && r.at("stats").contains("roots") && r.at("stats").at("roots").is_number_integer() &&
+      r.at("stats").at("roots").get<long>() < static_cast<long>(sols.size()))
+    invalid(where + ": field \"stats\".\"roots\" must count at least the " + std::to_string(sols.size()) +
+            " SPP(s) listed in \"solutions\", got " + std::to_string(r.at("stats").at("roots").get<long>()));
+  if (!r.contains("window") || !r.at("window").is_object()) return;
+  const Reader win{r.at("window"), where + ": field \"window\""};
+  // (a root within rounding of an edge is kept on it: search::kOnEdgeUlps)
+  auto outside = [](double t, double lo, double hi) {
+    const double slack = kSameToRounding * hi;
+    return !(t >= lo - slack && t <= hi + slack);
+  };
+  for (size_t i = 0; i < sols.size(); ++i) {
+    const json& o = sols[i];
+    if (!o.is_object() || !o.contains("t1") || !o.contains("t2") || !o.at("t1").is_number() ||
+        !o.at("t2").is_number())
+      continue;  // (named by the reader)
+    const double t1 = o.at("t1").get<double>(), t2 = o.at("t2").get<double>();
+    if (!(t1 > 0.0 && t2 > 0.0)) continue;  // (named by check_solution)
+    if (outside(t1, win.number("t1_min"), win.number("t1_max")) ||
+        outside(t2, win.number("t2_min"), win.number("t2_max")))
+      invalid(where + ": field \"solutions\"[" + std::to_string(i) + "] at (t1, t2) = (" + num(t1) + ", " + num(t2) +
+              ") is outside the field \"window\" (" + num(win.number("t1_min")) + ", " + num(win.number("t1_max")) +
+              "] x (" + num(win.number("t2_min")) + ", " + num(win.number("t2_max")) + "]");
+  }
 }
 
 // What result_to_json writes and nothing else: an unknown field is refused, not ignored (a misspelt field was read as
@@ -133,6 +223,7 @@ void check_result(const json& r, const std::string& where) {
           invalid(at + ": field \"orbit\" must be an object, got " + describe(o.at("orbit")));
         check_fields(o.at("orbit"), {"a", "c", "p0", "p0dot", "closure_ratio", "energy"}, at + ": field \"orbit\"");
       }
+      check_solution_values(o, at);
       if (o.contains("period") && o.contains("t1") && o.contains("t2")) {
         const Reader so{o, at};
         const double t1 = so.number("t1"), t2 = so.number("t2"), period = so.number("period");
@@ -144,6 +235,7 @@ void check_result(const json& r, const std::string& where) {
       }
     }
   }
+  check_consistency(r, where);
 }
 
 }  // namespace
@@ -151,10 +243,7 @@ void check_result(const json& r, const std::string& where) {
 json result_to_json(const System& s, const SolveResult& r) {
   json j;
   auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
-  j["system"] = system_to_json(s);
-  j["system"]["n"] = s.n();
-  j["system"]["w_normalized"] = s.w_input_norm() != 1.0;
-  j["system"]["w_input_norm"] = s.w_input_norm();
+  j["system"] = embedded_system_to_json(s);
   j["window"] = {{"t1_min", r.t1_min}, {"t1_max", r.t1_max}, {"t2_min", r.t2_min}, {"t2_max", r.t2_max}};
   j["status"] = to_string(r.status);
   j["symmetry"] = to_string(r.symmetry);
@@ -314,16 +403,7 @@ System result_system(const json& r, const std::string& where) {
   if (!r.at("system").contains("M") || !r.at("system").contains("K"))
     invalid(where + ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): run spp solve again");
   check_result(r, where);
-  const std::string at = where + ": field \"system\"";
-  const System s = system_from_json(r.at("system"), at);
-  if (!r.at("system").contains("w_input_norm")) return s;
-  // w and g0 as stored (already divided by |w|: normalising them again moves them by an ulp), and the input's |w|.
-  const Reader js{r.at("system"), at};
-  try {
-    return System::normalized(s.M(), s.K(), js.vector("w"), js.number("g0"), js.number("w_input_norm"), s.name());
-  } catch (const std::invalid_argument& e) {
-    invalid(at + ": " + e.what());
-  }
+  return embedded_system_from_json(r.at("system"), where + ": field \"system\"");
 }
 
 }  // namespace spp::io

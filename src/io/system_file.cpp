@@ -1,5 +1,6 @@
 #include "spp/io/system_file.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 #include "io/json.hpp"
@@ -47,10 +48,19 @@ auto affine_field(const json& j, const char* key, const std::string& name, const
 
 }  // namespace
 
-System system_from_json(const json& j, const std::string& where, const std::string& dir) {
+namespace {
+// A system file's fields, or also a result's embedded system's (embedded_system_to_json) when `embedded`.
+System system_fields(const json& j, const std::string& where, const std::string& dir, bool embedded) {
   if (!j.is_object()) invalid(where + ": expected a JSON object with fields M, K, w, g0");
-  // (a result's "system" also carries what result_to_json adds)
-  check_fields(j, {"name", "description", "M", "K", "w", "g0"}, where, {"n", "w_normalized", "w_input_norm"});
+  if (embedded)
+    check_fields(j, {"name", "description", "M", "K", "w", "g0", "n", "w_normalized", "w_input_norm"}, where);
+  else if (const char* k = j.contains("n") ? "n" : j.contains("w_input_norm") ? "w_input_norm"
+                           : j.contains("w_normalized") ? "w_normalized" : nullptr)
+    invalid(where + ": field \"" + k + "\" belongs to the system a result file embeds, not to a system file "
+            "(expected name, description, M, K, w, g0): remove it, or give the result file itself where a result is "
+            "taken");
+  else
+    check_fields(j, {"name", "description", "M", "K", "w", "g0"}, where);
   // w first: its length is n, refused beyond the dense solver's reach before M and K (maybe Matrix Market files of
   // gigabytes) are read
   Eigen::VectorXd w = vector_field(j, "w", where);
@@ -60,12 +70,51 @@ System system_from_json(const json& j, const std::string& where, const std::stri
             " dofs is beyond the dense solver (its O(n^3) modal form would take half an hour or more); reduce it "
             "first: spp reduce " +
             where + " --modes m --out REDUCED.json");
-  Eigen::MatrixXd M = matrix_field(j, "M", where, dir);
-  Eigen::MatrixXd K = matrix_field(j, "K", where, dir);
+  const long n = static_cast<long>(w.size());
+  Eigen::MatrixXd M = matrix_field(j, "M", where, dir, n);
+  Eigen::MatrixXd K = matrix_field(j, "K", where, dir, n);
   const double g0 = g0_field(j, where);
   std::string name = name_field(j, where);  // (outside the try: its message already names the file)
   try {
     return System(std::move(M), std::move(K), std::move(w), g0, std::move(name));
+  } catch (const std::invalid_argument& e) {
+    invalid(where + ": " + e.what());
+  }
+}
+}  // namespace
+
+System system_from_json(const json& j, const std::string& where, const std::string& dir) {
+  return system_fields(j, where, dir, false);
+}
+
+json embedded_system_to_json(const System& s) {
+  json j = system_to_json(s);
+  j["n"] = s.n();
+  j["w_normalized"] = s.w_input_norm() != 1.0;
+  j["w_input_norm"] = s.w_input_norm();
+  return j;
+}
+
+System embedded_system_from_json(const json& j, const std::string& where) {
+  const System s = system_fields(j, where, ".", true);
+  const Reader js{j, where};
+  if (j.contains("n") && js.integer("n") != s.n())
+    invalid(where + ": field \"n\" must be the size of M, K and w, " + std::to_string(s.n()) + ", got " +
+            std::to_string(js.integer("n")));
+  if (!j.contains("w_input_norm")) {
+    if (j.contains("w_normalized"))
+      invalid(where + ": field \"w_normalized\" given without \"w_input_norm\" (both or neither)");
+    return s;
+  }
+  const double norm = js.number("w_input_norm");
+  if (!(norm > 0.0 && std::isfinite(norm)))
+    invalid(where + ": field \"w_input_norm\" must be |w| as given, a positive finite number, got " + num(norm));
+  if (j.contains("w_normalized") && js.boolean("w_normalized") != (norm != 1.0))
+    invalid(where + ": field \"w_normalized\" must be " + (norm != 1.0 ? "true" : "false") +
+            " (w_input_norm = " + num(norm) + "), got " + (js.boolean("w_normalized") ? "true" : "false"));
+  // w and g0 as stored (already divided by |w|: normalising them again moves them by an ulp), and the input's |w|.
+  try {
+    return System::normalized(s.M(), s.K(), js.vector("w"), js.number("g0"), norm, s.name());
   } catch (const std::invalid_argument& e) {
     invalid(where + ": " + e.what());
   }
@@ -103,11 +152,13 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   par.min = p.at("min").get<double>();
   par.max = p.at("max").get<double>();
   if (par.name == "constant") invalid(where + ": the parameter cannot be named \"constant\"");
-  auto mat = [&](const json& o, const char* k, const std::string& at) { return matrix_field(o, k, at, dir); };
+  // w first: its length is n, which a Matrix Market file's size line must match before it is read
   auto vec = [&](const json& o, const char* k, const std::string& at) { return vector_field(o, k, at); };
+  auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
+  const long n = static_cast<long>(w0.size());
+  auto mat = [&](const json& o, const char* k, const std::string& at) { return matrix_field(o, k, at, dir, n); };
   auto [M0, M1] = affine_field(j, "M", par.name, where, mat);
   auto [K0, K1] = affine_field(j, "K", par.name, where, mat);
-  auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
   const double g0 = g0_field(j, where);
   std::string name = name_field(j, where);  // (outside the try: its message already names the file)
   try {
@@ -198,7 +249,7 @@ SparseSystem load_sparse_system(const std::string& path) {
   if (io::declares_parameter(j))
     io::invalid(path + ": declares a parameter (a parametric system): spp reduce takes a system without one");
   if (!j.is_object()) io::invalid(path + ": expected a JSON object with fields M, K, w, g0");
-  io::check_fields(j, {"name", "description", "M", "K", "w", "g0"}, path, {"n", "w_normalized", "w_input_norm"});
+  io::check_fields(j, {"name", "description", "M", "K", "w", "g0"}, path);
   const std::string d = std::filesystem::path(path).parent_path().string();
   const std::string dir = d.empty() ? "." : d;
   // w first: its length fixes n, which each Matrix Market file's size line must match before it is read

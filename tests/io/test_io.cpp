@@ -409,6 +409,108 @@ TEST(Io, ResultWithUnknownFieldsOrContradictionsIsRefused) {
   fs::remove(p);
 }
 
+// Found by an independent attack: each of these read silently before (a status that its own counts contradict, a
+// root count below the SPPs listed, an SPP outside the window, an unknown flag, null read as NaN, the embedded
+// system's "n" or "w_input_norm" unlike its matrices).
+TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  ASSERT_EQ(good["status"], "success");
+  ASSERT_GE(good["solutions"].size(), 2u);
+  auto refusal = [](const io::json& j) -> std::string {
+    try {
+      parse_result_file(j.dump(), "r.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  auto expect_refused = [&](const io::json& j, const std::string& what) {
+    EXPECT_NE(refusal(j).find("r.json: " + what), std::string::npos) << refusal(j);
+  };
+  EXPECT_EQ(refusal(good), "(accepted)");
+  for (const char* count : {"uncertified_steps", "uncertified_corners", "unpaired_crossings", "unresolved_pieces",
+                            "unpolished_roots", "unsearched_cells"}) {
+    io::json j = good;
+    j["stats"][count] = 2;
+    expect_refused(j, std::string("field \"status\" is \"success\" but field \"stats\".\"") + count +
+                          "\" is 2: expected 0, or status \"incomplete\"");
+  }
+  io::json j = good;
+  j["warnings"] = {"something"};
+  expect_refused(j, "field \"status\" is \"success\" but field \"warnings\" has 1 entry");
+  j = good;
+  j["solutions"][1]["admissibility_certified"] = false;
+  expect_refused(j, "field \"status\" is \"success\" but field \"solutions\"[1] has \"admissibility_certified\": false");
+  j = good;
+  j["status"] = "incomplete";
+  expect_refused(j, "field \"status\" is \"incomplete\" but neither \"warnings\" nor \"uncertified\" says why");
+  j["warnings"] = {"1 trace step(s) were not proved"};
+  EXPECT_EQ(refusal(j), "(accepted)");
+  j = good;
+  j["stats"]["roots"] = 1;
+  expect_refused(j, "field \"stats\".\"roots\" must count at least the ");
+  j = good;
+  j["stats"]["roots"] = 1000;  // (an admissible_only solve lists fewer SPPs than it found)
+  EXPECT_EQ(refusal(j), "(accepted)");
+  j = good;
+  j["window"]["t1_max"] = 0.5 * good["solutions"][0]["t1"].get<double>() + 0.5 * good["window"]["t1_min"].get<double>();
+  expect_refused(j, "field \"solutions\"[0] at (t1, t2) = (");
+  j = good;
+  j["solutions"][0]["flags"] = {"near_pole_line", "shiny"};
+  expect_refused(j, "field \"solutions\"[0]: field \"flags\"[1]: expected one of point_symmetric, ");
+  for (const char* field : {"min_gap", "energy", "residual"}) {
+    j = good;
+    j["solutions"][0][field] = nullptr;
+    expect_refused(j, std::string("field \"solutions\"[0]: field \"") + field + "\": expected a finite number, got null");
+  }
+  j = good;
+  j["solutions"][0]["x0"][1] = nullptr;
+  expect_refused(j, "field \"solutions\"[0]: field \"x0\"[1]: expected a finite number, got null");
+  j = good;
+  j["system"]["n"] = 7;
+  expect_refused(j, "field \"system\": field \"n\" must be the size of M, K and w, 3, got 7");
+  j = good;
+  j["system"]["w_input_norm"] = -2.0;
+  expect_refused(j, "field \"system\": field \"w_input_norm\" must be |w| as given, a positive finite number");
+  j = good;
+  j["system"]["w_normalized"] = !good["system"]["w_normalized"].get<bool>();
+  expect_refused(j, "field \"system\": field \"w_normalized\" must be ");
+}
+
+TEST(Io, MatrixMarketOfAnotherSizeThanWIsRefusedBeforeItIsAllocated) {
+  // A 60-byte file declaring 20000 x 20000 as M of a 2-dof system took 3.1 GB before the sizes were compared (found
+  // by an independent attack): its size line is now checked against w's length first. (A 1e6 x 1e6 declaration
+  // would need 8 TB: this test would fail with an out-of-memory error if the check came after the allocation.)
+  const fs::path d = tmpdir();
+  write(d / "big.mtx", "%%MatrixMarket matrix coordinate real symmetric\n1000000 1000000 1\n1 1 1.0\n");
+  write(d / "ok.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1.0\n2 2 1.0\n");
+  for (const char* m : {"big.mtx", "ok.mtx"}) {
+    write(d / "mm.json", std::string(R"({"M": {"matrix_market": ")") + m +
+                             R"("}, "K": {"matrix_market": "big.mtx"}, "w": [0, 1], "g0": 1})");
+    try {
+      load_system((d / "mm.json").string());
+      ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("big.mtx: declares a 1000000 x 1000000 matrix, expected 2 x 2 (the "
+                                           "length of w)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  write(d / "pmm.json", R"({"parameter": {"name": "k", "min": 0, "max": 1}, "M": {"matrix_market": "big.mtx"},
+                            "K": [[2, 0], [0, 2]], "w": [0, 1], "g0": 1})");
+  try {
+    load_parametric_system((d / "pmm.json").string());
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("declares a 1000000 x 1000000 matrix, expected 2 x 2"), std::string::npos)
+        << e.what();
+  }
+}
+
 namespace {
 // load_system of `json` (written to bad.json) must throw std::invalid_argument containing `part`.
 void expect_load_refused(const std::string& json, const std::string& part) {
@@ -568,4 +670,13 @@ TEST(Io, DenseSystemBeyondTheDenseSolverIsRefusedBeforeItsMatricesAreRead) {
     EXPECT_NE(what.find("spp reduce"), std::string::npos) << what;
     EXPECT_EQ(what.find("absent.mtx"), std::string::npos) << what;
   }
+}
+
+TEST(Io, SystemFileWithAResultsEmbeddedFieldsIsRefused) {
+  // "n", "w_normalized", "w_input_norm" are what a result file adds to its system: a system file took them with
+  // any value, silently (found by an independent attack)
+  for (const char* field : {"n", "w_normalized", "w_input_norm"})
+    expect_load_refused(std::string(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, ")") + field +
+                            "\": 99}",
+                        std::string("field \"") + field + "\" belongs to the system a result file embeds");
 }

@@ -12,7 +12,8 @@ namespace spp {
 /// duplicates are summed (the format's convention, as scipy.io.mmread); a symmetric file stores one triangle (an
 /// entry given in both is refused); more or fewer entries than the size line declares, and tokens that are not whole
 /// numbers ("1.5xyz"), are refused. Throws std::invalid_argument naming the file and line.
-Eigen::MatrixXd read_matrix_market(const std::string& path);
+/// expected_size >= 0: as for read_sparse_matrix_market below (checked on the size line, before the n^2 allocation).
+Eigen::MatrixXd read_matrix_market(const std::string& path, long expected_size = -1);
 
 /// The same file held sparse (any size; a symmetric file is expanded to both triangles; stored zeros dropped).
 /// expected_size >= 0: the file must declare expected_size x expected_size, checked on its size line, before anything

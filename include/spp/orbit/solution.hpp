@@ -6,6 +6,7 @@
 // a summary (continuation/continuation.hpp), from which solution_at rebuilds the Solution when one is wanted.
 
 #include <Eigen/Dense>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,10 @@
 #include "spp/stability/floquet.hpp"
 
 namespace spp {
+
+/// Every flag a Solution can carry (see Solution::flags); a result file with another is refused.
+inline constexpr std::array<const char*, 5> kSolutionFlags = {"point_symmetric", "uncertified_step", "near_pole_line",
+                                                              "decoupled_mode_resonant", "gap_closure_degenerate"};
 
 struct Solution {
   Orbit orbit;                  ///< t1, t2, the state at contact onset, modal coordinates, energy
@@ -25,7 +30,7 @@ struct Solution {
   /// "point_symmetric" (Symmetry::Point),
   /// "uncertified_step" (found in a step whose bound could not be proved), "near_pole_line" (found in a thin strip),
   /// "decoupled_mode_resonant" (a mode that never sees the contact has the same period: any amount of it can be added),
-  /// "gap_closure_degenerate".
+  /// "gap_closure_degenerate": the list kSolutionFlags.
   std::vector<std::string> flags;
 
   // Views of the parts above (one place holds each number).
