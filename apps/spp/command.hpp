@@ -2,14 +2,17 @@
 // The spp command line: one file per subcommand (solve.cpp, continue.cpp, ...), each registering its options on the
 // application and returning how to run it. Exit codes: 0 success, 1 invalid input or failed run (message on stderr),
 // 3 verify: a simulation disagrees with the solver's admissibility,
-// 4 sweep: at least one item failed.
+// 4 sweep: at least one item failed, 5 simulate: stopped at --max-events (the CSV holds the trajectory so far).
 
 #include <CLI/CLI.hpp>
+#include <stdexcept>
 #include <functional>
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
@@ -47,5 +50,22 @@ void check_output(const std::string& out, const std::string& opt, const std::vec
 /// The whole of `item` read as one number (std::stod), or nullopt ("1.5xyz", "", out of range).
 std::optional<double> parse_number(const std::string& item);
 std::vector<double> parse_list(const std::string& s, const char* opt);
+/// f(), with a refusal of the system itself re-thrown naming the file it came from: the checks made when the modal
+/// form is built or a solve starts (g0 = 0, a spectrum beyond double precision) say "system: ..." and know no path.
+template <class F>
+decltype(auto) naming_system_file(const std::string& path, F&& f) {
+  try {
+    return f();
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    if (m.rfind("system: ", 0) == 0) detail::invalid(path + ": " + m.substr(8));
+    throw;
+  }
+}
+/// A count option's check: "1e7" reads as 10000000 (as --help writes defaults), anything not a whole number in
+/// [min, max] is refused naming the option (CLI11 read "1e3" as an error and 1e20 as some long).
+CLI::Validator whole_number(double min, double max);
+/// The largest count an option takes: every such count stays exact in a double.
+inline constexpr double kMaxCount = 1e15;
 
 }  // namespace spp::cli

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -59,6 +60,20 @@ std::optional<double> parse_number(const std::string& item) {
   }
   if (pos == 0 || pos != item.size()) return std::nullopt;  // "1.5xyz" is not 1.5
   return x;
+}
+
+CLI::Validator whole_number(double min, double max) {
+  std::ostringstream range;
+  range << "a whole number from " << min << " to " << max;
+  return CLI::Validator(
+      [min, max, want = range.str()](std::string& text) -> std::string {
+        const std::optional<double> x = parse_number(text);
+        if (!x || !(*x >= min && *x <= max) || std::floor(*x) != *x)
+          return "expected " + want + " (1e7 and 10000000 both read), got \"" + cli::quoted(text) + "\"";
+        text = std::to_string(static_cast<long long>(*x));  // what CLI11 then reads into the integer
+        return "";
+      },
+      "COUNT");
 }
 
 std::vector<double> parse_list(const std::string& s, const char* opt) {

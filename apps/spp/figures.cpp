@@ -1,4 +1,5 @@
 // spp plot and spp animate: delegated to the Python package (python3 -m spp plot|animate), which draws with matplotlib.
+#include <limits>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -69,7 +70,8 @@ std::vector<Subcommand> add_figures(CLI::App& app) {
   auto a = std::make_shared<AnimateArgs>();
   auto* anim = app.add_subcommand("animate", "animation of one SPP of a result (GIF, or MP4 with ffmpeg)");
   anim->add_option("result", a->result, "result JSON of spp solve")->required();
-  anim->add_option("--solution", a->solution, "index of the solution in the result (default: first admissible)");
+  anim->add_option("--solution", a->solution, "index of the solution in the result (default: first admissible)")
+      ->transform(whole_number(0, std::numeric_limits<int>::max()));
   anim->add_option("--out", a->out, "output file, .gif or .mp4")->required();
   anim->add_option("--frames", a->frames, "frames per period (default 120)");
   anim->add_option("--periods", a->periods, "periods shown (default 1)");

@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success (spp solve also when its status is incomplete: read the status); 1 invalid input, usage "
       "error, failed run, out of memory or internal error (one message on stderr naming what and where; no output "
       "file written); 3 spp verify: a simulation disagrees with the solver's admissibility; 4 spp sweep: at least one "
-      "item failed (each named on stderr; the others' results and the table are written); 130 spp solve stopped "
+      "item failed (each named on stderr; the others' results and the table are written); 5 spp simulate stopped "
+      "at --max-events before --duration (the CSV holds the trajectory up to the last event); 130 spp solve stopped "
       "by Ctrl-C (what was found is written, status incomplete).");
   std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app),    spp::cli::add_continue(app),
                                                 spp::cli::add_modes(app),    spp::cli::add_trajectory(app),

@@ -1,6 +1,7 @@
 // spp simulate: the exact event-driven simulator from any initial state.
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 
 #include "command.hpp"
 #include "spp/io.hpp"
@@ -30,12 +31,16 @@ int run(SimulateArgs& a) {
   const std::string csv = simulation_csv(r);
   const std::string events = a.events.empty() ? "" : events_csv(r);
   std::cout << r.brief_report() << "\n";
+  if (r.status == SimulationStatus::Stalled)  // a defect of the simulator: exit 1, nothing written (README)
+    throw std::runtime_error("simulation stalled (over 100 events in a row without time passing) at t = " +
+                             std::to_string(r.end_time) + ": please report it with the command line");
   write_file_atomic(a.csv, csv);
   if (!a.events.empty()) write_file_atomic(a.events, events);
-  if (r.status != SimulationStatus::Success) {
-    std::cerr << "spp: error: simulation " << to_string(r.status) << " before t = " << a.options.duration
-              << " (--max-events " << a.options.max_events << "; output written up to t = " << r.end_time << ")\n";
-    return 1;
+  if (r.status != SimulationStatus::Success) {  // EventLimit: a partial result, exit 5
+    std::cerr << "spp: simulation stopped: " << to_string(r.status) << " before t = " << a.options.duration
+              << " (--max-events " << a.options.max_events << "); the CSV holds the trajectory up to t = " << r.end_time
+              << " (exit code 5)\n";
+    return 5;
   }
   return 0;
 }
@@ -53,7 +58,8 @@ Subcommand add_simulate(CLI::App& app) {
   s->add_option("--csv", a->csv, "output CSV: t, x1..xn, v1..vn, gap, force, contact")->required();
   s->add_option("--events", a->events, "output CSV of the impacts, contact onsets and releases");
   s->add_option("--samples-per-unit", a->per_unit, "rows per unit of time (default 100), plus one per event");
-  s->add_option("--max-events", a->options.max_events, "stop after this many events (default 1e7)");
+  s->add_option("--max-events", a->options.max_events, "stop after this many events (default 1e7)")
+      ->transform(whole_number(1, kMaxCount));
   return {s, [a] { return run(*a); }};
 }
 

@@ -92,6 +92,19 @@ int run_zero_gap(const SolveArgs& a) {
   return 0;
 }
 
+// The parametric system at --at, a refusal naming the option, the file and the value (M or K not positive definite
+// there was reported as "M[0][0] must be finite" or the like, with no word of --at).
+System system_at(const ParametricSystem& ps, double at, const std::string& path) {
+  try {
+    return ps.at(at);
+  } catch (const std::invalid_argument& e) {
+    std::ostringstream os;
+    os << "--at " << at << ": " << path << " at " << ps.parameter().name << " = " << at << " is no valid system: "
+       << e.what();
+    detail::invalid(os.str());
+  }
+}
+
 int run(SolveArgs& a) {
   a.options.symmetry = *symmetry_named(a.symmetry);  // CLI11 checked the name
   const bool maxes = a.t1_max_given->count() > 0 || a.t2_max_given->count() > 0;
@@ -114,6 +127,7 @@ int run(SolveArgs& a) {
   const bool root = is_root();  // prints and writes (rank 0 on MPI)
   std::optional<ParametricSystem> ps;
   if (parametric) {
+    if (!std::isfinite(a.at)) detail::invalid("--at: expected a finite parameter value, got " + std::to_string(a.at));
     ps = load_parametric_system(a.system);
     const Parameter& par = ps->parameter();
     if (root && (a.at < par.min || a.at > par.max))  // allowed (the system is affine in it), but likely a slip
@@ -126,12 +140,12 @@ int run(SolveArgs& a) {
   auto elapsed = [&clock_start] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   };
-  const System sys = parametric ? ps->at(a.at) : load_system(a.system);
+  const System sys = parametric ? system_at(*ps, a.at, a.system) : load_system(a.system);
   const bool stages = root && !a.quiet && sys.n() >= kStageNotesFrom;
   if (stages)
     std::cerr << "spp: " << sys.n() << " dofs read and checked in " << std::setprecision(3) << elapsed()
               << " s; computing the modal form (O(n^3): two eigenproblems of size n)\n";
-  const ModalForm modal(sys);
+  const ModalForm modal = naming_system_file(a.system, [&] { return ModalForm(sys); });
   if (stages) std::cerr << "spp: modal form done at " << std::setprecision(3) << elapsed() << " s\n";
   if (a.box) {
     std::tie(a.options.t1_max, a.options.t2_max) = fundamental_box(modal);
@@ -162,7 +176,7 @@ int run(SolveArgs& a) {
   }
   bool shown = false;
   a.options.progress = cli_progress(a.quiet, shown);
-  const SolveResult res = solve_window(sys, modal, a.options);
+  const SolveResult res = naming_system_file(a.system, [&] { return solve_window(sys, modal, a.options); });
   std::signal(SIGINT, SIG_DFL);
   if (!root) return 0;  // rank 0 holds the merged result
   if (shown) std::fputs("\n", stderr);
@@ -209,7 +223,8 @@ Subcommand add_solve(CLI::App& app) {
               "print the window's pole lines, cells and a rough time estimate, then stop (writes nothing)");
   s->add_option("--threads", o.threads, "worker threads (default 0: all hardware threads)");
   s->add_option("--max-cells", o.max_cells,
-                "refuse windows holding more cells between pole lines than this (default 1e7)");
+                "refuse windows holding more cells between pole lines than this (default 1e7)")
+      ->transform(whole_number(1, kMaxCount));
   s->add_flag("--certify-steps,!--no-certify-steps", o.certify_steps,
               "prove every trace step (default; drift, curvature, spectral or onset-inertia bound): success only if "
               "every step is proved. --no-certify-steps: the midpoint check takes every step (3-25x faster, a "

@@ -138,7 +138,8 @@ Subcommand add_sweep(CLI::App& app) {
   s->add_option("--threads", o.threads,
                 "worker threads of each solve (on MPI: per rank; default 0: all hardware threads, divided by the "
                 "ranks on the node)");
-  s->add_option("--max-cells", o.max_cells, "refuse windows holding more cells than this (default 1e7)");
+  s->add_option("--max-cells", o.max_cells, "refuse windows holding more cells than this (default 1e7)")
+      ->transform(whole_number(1, kMaxCount));
   s->add_flag("--certify-steps,!--no-certify-steps", o.certify_steps, "as spp solve (default: certify)");
   s->add_flag("--admissible-only", o.admissible_only, "keep only admissible SPPs");
   s->add_option("--symmetry", a->symmetry, "axial (default) or point, as spp solve")

@@ -1,4 +1,5 @@
 // spp trajectory: one period of an SPP (of a result file, or the nearest to a guess) as CSV.
+#include <limits>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -112,7 +113,8 @@ Subcommand add_trajectory(CLI::App& app) {
                 "with --t1/--t2: relative half-width of the window searched around the guess (default 0.05)")
       ->check(CLI::Range(1e-12, 0.999));
   auto* res = t->add_option("--result", a->result, "result JSON of spp solve");
-  t->add_option("--solution", a->solution, "index of the solution in --result");
+  t->add_option("--solution", a->solution, "index of the solution in --result (0-based)")
+      ->transform(whole_number(0, std::numeric_limits<int>::max()));
   t->add_option("--csv", a->csv, "output CSV")->required();
   t->add_option("--samples", a->samples,
                 "number of samples over one period (default 1001; at most 2e7 values, samples x (2n + 3), in the CSV)")

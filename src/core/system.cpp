@@ -18,7 +18,9 @@ void check_finite(const Eigen::MatrixXd& A, const char* field) {
     for (Eigen::Index i = 0; i < A.rows(); ++i)
       if (!std::isfinite(A(i, j))) {
         std::ostringstream os;
-        os << "system: " << field << "[" << i << "][" << j << "] must be finite, got " << A(i, j);
+        os << "system: " << field << "[" << i << "]";
+        if (A.cols() > 1) os << "[" << j << "]";  // (w, a vector, has one index)
+        os << " must be finite, got " << A(i, j);
         detail::invalid(os.str());
       }
 }

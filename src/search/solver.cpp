@@ -200,9 +200,12 @@ std::string SolutionAt::brief_report() const {
   if (found)
     os << "SPP at (t1, t2) = (" << solution.t1() << ", " << solution.t2() << "), period " << solution.period() << ", "
        << (solution.admissible() ? "admissible" : "not admissible");
-  else
+  else if (std::isfinite(residual) && std::isfinite(t1) && std::isfinite(t2))
     os << "no SPP near (t1, t2) = (" << start_t1 << ", " << start_t2 << "): Newton reached residual " << residual
        << " at (" << t1 << ", " << t2 << ")";
+  else  // (a start far below the axis band, e.g. 1e-300: the equations overflow there; "residual -nan" said nothing)
+    os << "no SPP near (t1, t2) = (" << start_t1 << ", " << start_t2 << "): Newton left the finite numbers (the "
+       << "equations are not resolvable there: start at t1 and t2 comparable to the system's quarter periods)";
   return os.str();
 }
 

@@ -428,8 +428,9 @@ TEST(Cli, InputThatCannotFoolIt) {
   expect_rejected(mm("extra", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2 2 1\n1 2 0\n"),
                   "more entries than the 2");
   expect_rejected(mm("xyz", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.5xyz\n2 2 1\n"), "bad entry");
+  // (checked against w's length on the size line, before any allocation)
   expect_rejected(mm("huge", "%%MatrixMarket matrix coordinate real general\n1000000 1000000 1\n1 1 1\n"),
-                  "too large to hold densely");
+                  "huge.mtx: declares a 1000000 x 1000000 matrix, expected 2 x 2 (the length of w)");
   const std::string dup = write("dup.json", mm("dup",
                                                "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 0.5\n"
                                                "1 1 0.5\n2 2 1\n"));
@@ -849,6 +850,52 @@ TEST(Cli, MessagesNameTheOptionGiven) {
   expect_refused_without_output(
       "reduce " + bar.string() + " --modes 3 --out " + red.string() + " --csv " + red.string(),
       "--csv: \"" + red.string() + "\" is also the output of --out", red);
+}
+
+// Found by an independent attack on the error discipline: each was a silent or misleading answer.
+TEST(Cli, CountsReadAsTheHelpWritesThemAndRefusalsNameTheOptionAndFile) {
+  const fs::path out = dir() / "counts.json";
+  // --help writes the default as 1e7: 1e3 is a count too; 1e20 (beyond a long) and 2.5 are refused, naming the option
+  fs::remove(out);
+  CliRun r = run("solve " + kChain + " --t1-max 3 --t2-max 3 --max-cells 1e3 --quiet --json " + out.string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(out));
+  for (const char* bad : {"99999999999999999999", "2.5", "0", "-3", "many"})
+    expect_refused_without_output("solve " + kChain + " --t1-max 3 --t2-max 3 --max-cells " + bad + " --json " +
+                                      out.string(),
+                                  "--max-cells: expected a whole number from 1 to 1e+15", out);
+  // --solution -1 was reported as missing
+  const fs::path res = dir() / "counts_res.json", csv = dir() / "counts.csv";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 3 --t2-max 3 --quiet --json " + res.string()).code, 0);
+  expect_refused_without_output("trajectory --result " + res.string() + " --solution -1 --csv " + csv.string(),
+                                "--solution: expected a whole number from 0 to", csv);
+  // refusals made when the modal form is built or the solve starts name the file, not "system"
+  const std::string g0 = write("zero_gap.json", R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,2]], "w": [0,1], "g0": 0})");
+  expect_refused_without_output("solve " + g0 + " --t1-max 3 --t2-max 3 --json " + out.string(),
+                                "spp: error: " + g0 + ": g0 = 0 (obstacle touching the rest position)", out);
+  const std::string span =
+      write("span.json", R"({"M": [[1,0],[0,1]], "K": [[1e20,0],[0,1e-20]], "w": [1,1], "g0": 1})");
+  expect_refused_without_output("solve " + span + " --t1-max 3 --t2-max 3 --json " + out.string(),
+                                "spp: error: " + span + ": its frequencies span", out);
+  // --at nan was reported as "M[0][0] must be finite"; a value where the system is invalid names --at and the file
+  const fs::path ps = dir() / "counts_p.json";
+  ASSERT_EQ(run("generate two-dof --parameter k2 --range 1,10 --out " + ps.string()).code, 0);
+  expect_refused_without_output("solve " + ps.string() + " --at nan --t1-max 3 --t2-max 3 --json " + out.string(),
+                                "--at: expected a finite parameter value, got nan", out);
+  expect_refused_without_output("solve " + ps.string() + " --at -1e6 --t1-max 3 --t2-max 3 --json " + out.string(),
+                                "--at -1e+06: " + ps.string() + " at k2 = -1e+06 is no valid system: ", out);
+}
+
+TEST(Cli, SimulateStoppedAtItsEventLimitExits5WithThePartialTrajectory) {
+  // README: exit 1 writes no output; the event limit wrote the CSV and exited 1 (found by an independent attack).
+  // It is a partial result, like Ctrl-C's: exit 5, the CSV holds the trajectory up to the last event.
+  const fs::path csv = dir() / "limit.csv";
+  fs::remove(csv);
+  const CliRun r = run("simulate " + kChain + " --x0 0,0,0,0,0 --v0 0.3,-0.2,0.5,0.1,0.9 --duration 1000 " +
+                       "--restitution 0.5 --max-events 1e1 --csv " + csv.string());
+  EXPECT_EQ(r.code, 5) << r.out;
+  EXPECT_NE(r.out.find("the CSV holds the trajectory up to t = "), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(csv));
 }
 
 TEST(Cli, ModesWritesTheIssueLayout) {
