@@ -48,8 +48,23 @@ py::object outcome(E v) {
 // The options (or their defaults) with the keyword arguments set on them, field by field: one mechanism for every
 // function that takes an Options struct. An unknown keyword is refused with the list of fields; the list is the bound
 // attributes (not the dunders nor validate), so it cannot drift from the binding.
+// A value's type and (shortened) repr for a message: "str '3'".
+inline std::string typed_repr(const py::handle& v) {
+  std::string r = py::repr(v).cast<std::string>();
+  if (r.size() > 60) r = r.substr(0, 60) + "...";
+  return std::string(py::str(py::type::of(v).attr("__name__"))) + " " + r;
+}
+
 template <class Options>
 Options with_fields(const py::object& options, const py::kwargs& fields, const char* where, const char* type_name) {
+  // a wrong type is a TypeError naming the argument, not pybind11's cast failure (RuntimeError) or signature dump
+  if (!options.is_none() && !py::isinstance<Options>(options)) {
+    if (py::isinstance<py::dict>(options))
+      throw py::type_error(std::string(where) + ": options must be an spp." + type_name +
+                           " or None, got a dict: pass its entries as keywords (**options)");
+    throw py::type_error(std::string(where) + ": options must be an spp." + type_name + " or None, got " +
+                         typed_repr(options) + " (the window is given as keywords, e.g. t1_max=12, t2_max=12)");
+  }
   py::object o = options.is_none() ? py::cast(Options{}) : py::cast(options.cast<Options>());
   std::vector<std::string> known;
   for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
@@ -64,7 +79,15 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
       detail::invalid(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
                                   " fields: " + list + ")");
     }
-    py::setattr(o, key, value);
+    try {
+      py::setattr(o, key, value);
+    } catch (const py::error_already_set& e) {
+      if (!e.matches(PyExc_TypeError)) throw;
+      const py::object current = o.attr(key);
+      throw py::type_error(std::string(where) + ": option " + name + " must be " +
+                           std::string(py::str(py::type::of(current).attr("__name__"))) + " like its default " +
+                           py::repr(current).cast<std::string>() + ", got " + typed_repr(value));
+    }
   }
   return o.cast<Options>();
 }

@@ -202,6 +202,11 @@ void bind_search(py::module_& m) {
         o.validate();
         // a callable is called; anything else is taken for its truth (True, numpy.True_: the text line)
         const bool call = PyCallable_Check(progress.ptr()) != 0;
+        // True/False/None (numpy's bool too) or a callable: anything else was taken for its truth (progress=5)
+        if (!call && !progress.is_none() && !py::isinstance<py::bool_>(progress) &&
+            !py::isinstance(progress, py::module_::import("numpy").attr("bool_")))
+          throw py::type_error("solve: progress must be True, False, None, a callable or \"bar\", got " +
+                               typed_repr(progress));
         auto truth = [](const py::object& v) {
           const int t = PyObject_IsTrue(v.ptr());
           if (t < 0) throw py::error_already_set();

@@ -17,17 +17,27 @@ from ._spp import monodromy  # linearised one-period map under an impact law (do
 from . import _spp
 from ._progress import Bar as _Bar
 from ._sweep import sweep  # one solve per parameter value or system file: mpi4py or a process pool
+from ._args import named_constructor_type_errors as _named_constructor_type_errors
+from ._args import named_type_errors as _named_type_errors
+
+# every bound function and constructor: an argument of the wrong type is named (spp._args)
+for _name, _value in list(globals().items()):
+    if type(_value).__name__ == "builtin_function_or_method" and getattr(_value, "__module__", "") == "spp._spp":
+        globals()[_name] = _named_type_errors(_value, f"spp.{_name}")
+    elif isinstance(_value, type) and _value.__module__ == "spp._spp" and "__init__" in vars(_value):
+        _named_constructor_type_errors(_value)
+_solve = _named_type_errors(_spp.solve, "spp.solve")
 
 
 def solve(system, options=None, progress=None, **fields):
     if isinstance(progress, str):
         if progress != "bar":
-            raise ValueError(f"solve: progress must be True, False, a callable or \"bar\", got {progress!r}")
+            raise ValueError(f"solve: progress must be True, False, None, a callable or \"bar\", got {progress!r}")
         with _Bar() as bar:
-            return _spp.solve(system, options, progress=bar, **fields)
+            return _solve(system, options, progress=bar, **fields)
     if progress is None:
-        return _spp.solve(system, options, **fields)
-    return _spp.solve(system, options, progress=progress, **fields)
+        return _solve(system, options, **fields)
+    return _solve(system, options, progress=progress, **fields)
 
 
 solve.__doc__ = _spp.solve.__doc__ + (

@@ -512,3 +512,30 @@ def test_solve_result_from_json_refuses_unknown_fields_and_contradictions(tmp_pa
             spp.SolveResult.from_json(str(p))
         with pytest.raises(ValueError, match=message):
             spp.load_result(str(p))
+
+
+def test_arguments_of_the_wrong_type_are_named_not_dumped():
+    # Found by an independent attack: spp.solve(s, 5) and a dict as options raised pybind11's RuntimeError; a str
+    # for a number raised TypeError with every signature dumped; progress=5 was taken for its truth.
+    s = spp.two_dof()
+    with pytest.raises(TypeError, match=r"^solve: options must be an spp.SolveOptions or None, got int 5"):
+        spp.solve(s, 5)
+    with pytest.raises(TypeError, match=r"got a dict: pass its entries as keywords \(\*\*options\)"):
+        spp.solve(s, {"t1_max": 3, "t2_max": 3})
+    with pytest.raises(TypeError, match=r"^solve: option t1_max must be float like its default 0.0, got str '3'"):
+        spp.solve(s, t1_max="3", t2_max=3)
+    with pytest.raises(TypeError, match=r"^solve: progress must be True, False, None, a callable or \"bar\", got int 5"):
+        spp.solve(s, t1_max=3, t2_max=3, progress=5)
+    assert spp.solve(s, t1_max=3, t2_max=3, progress=np.bool_(False)).status == "success"
+    with pytest.raises(TypeError, match=r"^spp.System: argument g0 must be float, got str '1'$"):
+        spp.System(np.eye(2), np.eye(2), [0.0, 1.0], g0="1")
+    with pytest.raises(TypeError, match=r"^spp.two_dof: argument m1 must be float, got str 'x'$"):
+        spp.two_dof("x")
+    with pytest.raises(TypeError, match=r"^spp.chain: argument n must be int, got float 2.5$"):
+        spp.chain(2.5)
+    # the wrapped functions pickle by reference and keep their documentation
+    assert pickle.loads(pickle.dumps(spp.two_dof)) is spp.two_dof
+    assert "2-dof system of paper" in spp.two_dof.__doc__
+    # a vector has one index in messages: w[1], not w[1][0]
+    with pytest.raises(ValueError, match=r"w\[1\] must be finite, got inf"):
+        spp.System(np.eye(2), np.eye(2), [0.0, np.inf], 1.0)

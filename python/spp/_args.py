@@ -1,0 +1,116 @@
+"""An argument of the wrong type, named plainly.
+
+pybind11 answers a call whose argument cannot be converted (``System(M, K, w, g0="1")``) with a TypeError that dumps
+every signature of the function and the whole call. ``named_type_errors`` wraps a bound function so that the same
+TypeError names the argument, the type it must have and what it got; anything else passes through unchanged. The
+signatures are read from the docstrings pybind11 writes (one mechanism for every function and constructor, so it
+cannot drift from the binding). Written here: pybind11 has no option for it.
+"""
+import functools
+import numbers
+import re
+
+_PYBIND_MESSAGES = ("incompatible function arguments", "incompatible constructor arguments")
+_SIGNATURE = re.compile(r"^\s*(?:\d+\.\s*)?(\w+)\((.*)\)\s*->")
+
+
+def _split_top_level(text):
+    """'a: int, b: List[float] = [1, 2]' -> ['a: int', 'b: List[float] = [1, 2]']"""
+    parts, depth, current = [], 0, ""
+    for ch in text:
+        if ch in "[(":
+            depth += 1
+        elif ch in "])":
+            depth -= 1
+        if ch == "," and depth == 0:
+            parts.append(current.strip())
+            current = ""
+        else:
+            current += ch
+    if current.strip():
+        parts.append(current.strip())
+    return parts
+
+
+def _signatures(fn):
+    """Each overload as a list of (name, type) from pybind11's docstring, 'self' left out."""
+    out = []
+    for line in (getattr(fn, "__doc__", None) or "").splitlines():
+        m = _SIGNATURE.match(line)
+        if not m:
+            continue
+        params = []
+        for p in _split_top_level(m.group(2)):
+            if p.startswith("*"):
+                continue
+            name, _, rest = p.partition(":")
+            params.append((name.strip(), rest.split("=")[0].strip()))
+        out.append([p for p in params if p[0] != "self"])
+    return out
+
+
+def _fits(value, type_name):
+    """Whether pybind11 would convert value to type_name (None when the type is not one of the plain ones)."""
+    if type_name == "float":
+        return isinstance(value, numbers.Real) or hasattr(value, "__float__") and not isinstance(value, (str, bytes))
+    if type_name == "int":
+        return isinstance(value, numbers.Integral) or hasattr(value, "__index__")
+    if type_name == "str":
+        return isinstance(value, str)
+    if type_name == "bool":
+        return isinstance(value, bool) or type(value).__name__ == "bool_"
+    return None
+
+
+def _explain(label, signatures, args, kwargs):
+    """'spp.System: argument g0 must be float, got str '1'' for the first argument that fits no overload."""
+    for params in signatures:
+        given = dict(zip((p[0] for p in params), args))
+        given.update(kwargs)
+        for name, type_name in params:
+            if name in given and _fits(given[name], type_name) is False:
+                value = repr(given[name])
+                value = value if len(value) <= 60 else value[:60] + "..."
+                return f"{label}: argument {name} must be {type_name}, got {type(given[name]).__name__} {value}"
+    return None
+
+
+def named_type_errors(fn, label):
+    """fn with pybind11's argument TypeError replaced by one that names the argument (see the module's text)."""
+    signatures = _signatures(fn)
+
+    @functools.wraps(fn)
+    def call(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except TypeError as e:
+            if not any(m in str(e) for m in _PYBIND_MESSAGES):
+                raise
+            message = _explain(label, signatures, args, kwargs)
+            if message is None:
+                raise
+            raise TypeError(message) from None
+
+    call.__module__ = "spp"  # pickled by reference as spp.<name>, the wrapper itself
+    call.__qualname__ = label.rsplit(".", 1)[-1]
+    return call
+
+
+def named_constructor_type_errors(cls):
+    """The same for a bound class's constructor (the first argument, self, is not named)."""
+    init = cls.__init__
+    signatures = _signatures(init)
+
+    def __init__(self, *args, **kwargs):
+        try:
+            init(self, *args, **kwargs)
+        except TypeError as e:
+            if not any(m in str(e) for m in _PYBIND_MESSAGES):
+                raise
+            message = _explain(f"spp.{cls.__name__}", signatures, args, kwargs)
+            if message is None:
+                raise
+            raise TypeError(message) from None
+
+    __init__.__doc__ = init.__doc__
+    cls.__init__ = __init__
