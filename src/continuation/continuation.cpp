@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "continuation/corrector.hpp"
+#include "spp/detail/internal_error.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/modal/equation_set.hpp"
 #include "spp/modal/modal.hpp"
@@ -150,25 +151,49 @@ class Tracer {
     ModalForm modal;
     std::unique_ptr<EquationSet> equations;  // on `modal` (the Cached is not moved once built)
   };
-  const Cached& at(double mu) {
+  // The system, modal form and equations at mu, or nullptr where there is no valid system: a corrector or a
+  // bisection may try a mu beyond the declared range where M(mu) or K(mu) is not positive definite (or the
+  // spectrum is beyond double precision). That is an outcome of the step (it fails and is shortened), never an
+  // error of the run. System and ModalForm refuse by throwing from their constructors (their one way to validate):
+  // this is the one place where the refusal is turned into that outcome.
+  const Cached* try_at(double mu) {
     for (auto it = cache_.begin(); it != cache_.end(); ++it)
       if (it->first == mu) {
         cache_.splice(cache_.begin(), cache_, it);
-        return *cache_.front().second;
+        return cache_.front().second.get();
       }
-    System s = ps_.at(mu);
-    ModalForm md(s);
-    auto c = std::make_unique<Cached>(Cached{std::move(s), std::move(md), nullptr});
+    std::unique_ptr<Cached> c;
+    try {
+      System s = ps_.at(mu);
+      ModalForm md(s);
+      c = std::make_unique<Cached>(Cached{std::move(s), std::move(md), nullptr});
+    } catch (const std::invalid_argument&) {
+      return nullptr;
+    }
     c->equations = make_equations(c->modal, o_.symmetry);
     cache_.emplace_front(mu, std::move(c));
     if (cache_.size() > kCachedForms) cache_.pop_back();
-    return *cache_.front().second;
+    return cache_.front().second.get();
+  }
+  // The same where mu is known valid (a converged point's): its absence is a defect.
+  const Cached& at(double mu) {
+    const Cached* c = try_at(mu);
+    if (c == nullptr) detail::internal_error("continuation: no valid system at a converged point's parameter value");
+    return *c;
   }
 
   // F at y and, when J is given, its Jacobian in y: analytic in t1 and t2 (derivatives of the bordered solve, on
   // the same LU), central differences in mu (the modal form's dependence on mu has no closed form here).
+  // F is NaN (and J) where there is no valid system at mu(y) (try_at): Newton and the tangent then fail the step.
   Eval eval(const V3& y, const Vec& xref, Eigen::Matrix<double, 2, 3>* J = nullptr) {
-    const Cached& c = at(mu(y));
+    const Cached* cp = try_at(mu(y));
+    if (cp == nullptr) {
+      Eval none;
+      none.F.setConstant(std::numeric_limits<double>::quiet_NaN());
+      if (J != nullptr) J->setConstant(std::numeric_limits<double>::quiet_NaN());
+      return none;
+    }
+    const Cached& c = *cp;
     const ModalForm& md = c.modal;
     const EquationSet& eq = *c.equations;
     const int m = md.m();
@@ -214,18 +239,9 @@ class Tracer {
     return continuation::curve_tangent(J, orient);
   }
 
-  // Newton on F(y) = 0, tau . (y - ypred) = 0 from ypred. Returns false if it does not converge.
-  // A system that is not valid at a trial parameter value (e.g. M not positive definite beyond the declared
-  // range, where a corrector may wander) makes the step fail instead of the whole run.
+  // Newton on F(y) = 0, tau . (y - ypred) = 0 from ypred. Returns false if it does not converge (also where a
+  // trial parameter value has no valid system: F is NaN there, see eval).
   bool correct(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
-    try {
-      return correct_unchecked(ypred, tau, xref, y, e, its);
-    } catch (const std::invalid_argument&) {
-      return false;
-    }
-  }
-
-  bool correct_unchecked(const V3& ypred, const V3& tau, const Vec& xref, V3& y, Eval& e, int& its) {
     ++corrector_solves;
     auto linearize = [&](const Vec& yk, Vec& F, Mat& J) {
       Eigen::Matrix<double, 2, 3> Jk;
@@ -239,23 +255,30 @@ class Tracer {
     if (!r.converged) return false;
     y = yc;
     e = eval(y, xref);
-    return true;
+    return e.F.allFinite();
   }
 
   BranchPoint point(const V3& y, const Eval& e) {
-    const Cached& c = at(mu(y));
-    const ModalForm& md = c.modal;
     BranchPoint p;
     p.mu = mu(y);
     p.t1 = t1(y);
     p.t2 = t2(y);
     p.period = 2.0 * (p.t1 + p.t2);
+    p.margin = std::numeric_limits<double>::quiet_NaN();
+    // (a bisection's unconverged trial point may lie where there is no valid system: no orbit, not admissible)
+    const Cached* cp = e.F.allFinite() ? try_at(p.mu) : nullptr;
+    if (cp == nullptr) {
+      p.closure = std::numeric_limits<double>::quiet_NaN();
+      p.admissible = false;
+      return p;
+    }
+    const Cached& c = *cp;
+    const ModalForm& md = c.modal;
     const Eigen::ArrayXd& w = md.omega().array();
     // u^T W^-1 cos(W t1) a: the gap at onset (axial, p0 = cos(W t1) a) or the normal velocity at onset (point,
     // p0' = cos(W t1) a), continuous along the branch.
     const Vec q0 = ((w * p.t1).cos() * e.a.array() / w).matrix();
     p.closure = md.u().dot(q0) / (e.a.array() / w).matrix().norm();
-    p.margin = std::numeric_limits<double>::quiet_NaN();
     const EquationSet& eq = *c.equations;
     const bool free_scale = md.g0() == 0.0;
     // no orbit where eq. (5.2) has no scale (u^T W^-1 p0 = 0 exactly), or no null vector to scale to unit energy
@@ -339,11 +362,7 @@ class BranchWalker {
       bool ok = tr_.correct(s.y + h * s.tau, s.tau, s.xref, y, e, its);
       V3 tau;
       if (ok) {
-        try {
-          tau = tr_.tangent(y, s.xref, s.tau);
-        } catch (const std::invalid_argument&) {
-          tau = V3::Constant(std::numeric_limits<double>::quiet_NaN());
-        }
+        tau = tr_.tangent(y, s.xref, s.tau);  // NaN where there is no valid system (eval)
         ok = tau.allFinite() && tau.dot(s.tau) >= std::cos(o_.max_turn) && (y - s.y).norm() <= 2.0 * h;
       }
       if (!ok) {
