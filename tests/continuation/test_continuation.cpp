@@ -257,3 +257,28 @@ TEST(Continuation, StabilityChangesAreLocated) {
     }
   EXPECT_GE(located, 1) << r.brief_report();
 }
+
+// K(k2) of eq. (6.1) is positive definite only for k2 > 0: with the range starting just above 0 and long steps, the
+// corrector, the tangent's differences and the range-end bisection try parameter values with no valid system. That
+// is an outcome of the step (it fails and is shortened), not an error of the run (Tracer::try_at).
+TEST(Continuation, TrialValuesBeyondTheRangeWithNoValidSystemFailTheStepNotTheRun) {
+  const ParametricSystem ps = paper_61(1.0, 1e-3, 2.0);
+  EXPECT_THROW(ps.at(-0.5), std::invalid_argument);
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  o.max_step = 0.5;  // half the scaled range per step: trial points land far below k2 = 0
+  ContinuationResult r;
+  ASSERT_NO_THROW(r = continue_branches(ps, o));
+  ASSERT_FALSE(r.branches.empty());
+  long range_ends_at_min = 0;
+  for (const Branch& b : r.branches) {
+    for (const BranchPoint& p : b.points) {
+      EXPECT_GE(p.mu, 1e-3 * (1 - 1e-9));
+      EXPECT_LE(p.mu, 2.0 * (1 + 1e-9));
+    }
+    for (const BranchEvent& e : b.events)
+      range_ends_at_min += e.kind == BranchEventKind::RangeEnd && std::abs(e.at.mu - 1e-3) <= 1e-6;
+  }
+  EXPECT_GT(range_ends_at_min, 0);
+}
