@@ -1,9 +1,11 @@
 #include "spp/distributed/sweep.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -23,9 +25,21 @@ namespace fs = std::filesystem;
 
 void require_out_dir(const std::string& out_dir) {
   std::error_code ec;
-  if (out_dir.empty() || !fs::is_directory(out_dir, ec))
+  if (out_dir.empty()) detail::invalid("sweep: the output directory is empty: expected a directory's path");
+  const fs::file_status st = fs::status(out_dir, ec);
+  if (fs::exists(st) && !fs::is_directory(st))
+    detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
+                    "\" is not a directory (it is a file): expected a directory");
+  if (!fs::is_directory(st))
     detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
                     "\" does not exist (create it first)");
+}
+
+// The shortest text that reads back to v (2.1, not 2.1000000000000001).
+std::string shortest(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break (a file name may).
@@ -45,7 +59,24 @@ std::string numbered(size_t index) {
 // Why the result read back is not this item's (empty: it is): system, symmetry, window.
 std::string mismatch(const System& sys, const SolveOptions& opt, const System& stored, const SolveResult& res) {
   if (!same_system(sys, stored)) return "another system";
-  if (res.symmetry != opt.symmetry) return std::string("symmetry ") + to_string(res.symmetry);
+  if (res.symmetry != opt.symmetry)
+    return std::string("the symmetry ") + to_string(res.symmetry) + ", not " + to_string(opt.symmetry) +
+           " as this sweep asks";
+  // the options the file does not record, inferred from it: certified steps exist only with certify_steps; a run
+  // with admissible_only drops SPPs (roots counted > SPPs kept) and keeps no non-admissible one
+  const bool certified = res.stats.certified_steps > 0;
+  const bool uncertified_only = res.stats.certified_steps == 0 && res.stats.uncertified_steps > 0;
+  if (certified && !opt.certify_steps)
+    return "a result solved with certified steps (without --no-certify-steps), not with --no-certify-steps";
+  if (uncertified_only && opt.certify_steps)
+    return "a result solved without certified steps (--no-certify-steps), not with certify_steps";
+  const bool dropped = res.stats.roots > static_cast<long>(res.solutions.size());
+  const bool kept_inadmissible =
+      std::any_of(res.solutions.begin(), res.solutions.end(), [](const Solution& s) { return !s.admissible(); });
+  if (dropped && !opt.admissible_only)
+    return "a result solved with --admissible-only (non-admissible SPPs dropped), not without it";
+  if (kept_inadmissible && opt.admissible_only)
+    return "a result solved without --admissible-only (non-admissible SPPs kept), not with it";
   // the window as solve() reports it: lower ends filled in (0 = automatic) and raised to the axis bands
   const ModalForm md(sys);
   const auto [auto1, auto2] = default_lower_ends(md, opt.t1_max, opt.t2_max);
@@ -76,10 +107,11 @@ const char* to_string(SweepItemStatus s) {
 Sweep Sweep::over_values(const std::string& parametric_file, const std::string& parameter,
                          const std::vector<double>& values, const std::string& out_dir) {
   require_out_dir(out_dir);
-  if (values.empty()) detail::invalid("sweep: no parameter value given");
+  if (values.empty()) detail::invalid("sweep: no parameter value given: expected at least one");
   for (size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
-      detail::invalid("sweep: parameter value " + std::to_string(i) + " is not finite (" + io::num(values[i]) + ")");
+      detail::invalid("sweep: parameter value #" + std::to_string(i + 1) + " (position " + std::to_string(i) +
+                      ") is not finite: expected a finite number, got " + shortest(values[i]));
   if (!file_declares_parameter(parametric_file))
     detail::invalid("sweep: " + io::shorten(parametric_file, 200) +
                     " declares no parameter (no field \"parameter\"): a sweep over values needs a "
@@ -88,9 +120,17 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
   s.parametric_.push_back(load_parametric_system(parametric_file));
   const std::string& declared = s.parametric_.front().parameter().name;
   if (parameter != declared)
-    detail::invalid("sweep: --parameter \"" + io::shorten(parameter, 80) + "\", but " +
+    detail::invalid("sweep: the parameter asked for is \"" + io::shorten(parameter, 80) + "\", but " +
                     io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
   s.parameter_ = parameter;
+  s.out_dir_ = out_dir;
+  const Parameter& range = s.parametric_.front().parameter();
+  for (size_t i = 0; i < values.size(); ++i)
+    if (values[i] < range.min || values[i] > range.max)
+      s.notes_.push_back("value #" + std::to_string(i + 1) + ", " + parameter + " = " + shortest(values[i]) +
+                         ", lies outside the range [" + shortest(range.min) + ", " + shortest(range.max) + "] that " +
+                         io::shorten(parametric_file, 200) +
+                         " declares (the system is validated at each value: where it is not positive definite, that value fails)");
   for (size_t i = 0; i < values.size(); ++i)
     s.items_.push_back(
         {i, values[i], parametric_file, (fs::path(out_dir) / (parameter + "_" + numbered(i) + ".json")).string()});
@@ -101,6 +141,7 @@ Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string
   require_out_dir(out_dir);
   if (files.empty()) detail::invalid("sweep: no system file given");
   Sweep s;
+  s.out_dir_ = out_dir;
   for (size_t i = 0; i < files.size(); ++i)
     s.items_.push_back(
         {i, std::numeric_limits<double>::quiet_NaN(), files[i],
@@ -112,6 +153,34 @@ System Sweep::system(size_t i) const {
   if (i >= items_.size()) detail::invalid("sweep: item " + std::to_string(i) + " of " + std::to_string(items_.size()));
   if (parametric_.empty()) return load_system(items_[i].system_file);
   return parametric_.front().at(items_[i].value);  // its message names the parameter and the value
+}
+
+void check_sweep_outputs(const Sweep& sweep, const SolveOptions& options) {
+  options.validate();
+  check_writable_directory(sweep.out_dir(), "sweep: the output directory");
+  for (size_t i = 0; i < sweep.items().size(); ++i) {
+    const SweepItem& item = sweep.items()[i];
+    std::error_code ec;
+    if (!fs::exists(item.result_file, ec)) continue;
+    const std::string refused = "sweep: the output directory \"" + io::shorten(sweep.out_dir(), 200) +
+                                "\" holds results this sweep cannot resume from: " +
+                                io::shorten(item.result_file, io::kQuotedPathChars);
+    const std::string fix = " (remove its result files, or give another output directory); nothing was written";
+    std::optional<System> sys;
+    try {
+      sys.emplace(sweep.system(i));
+    } catch (const std::invalid_argument&) {
+      continue;  // the item fails on its own (a value where the system is invalid, an unreadable file)
+    }
+    std::optional<ResultFile> stored;
+    try {
+      stored.emplace(parse_result_file(read_file(item.result_file), item.result_file));
+    } catch (const std::invalid_argument& e) {
+      detail::invalid(refused + " cannot be read back (" + io::shorten(e.what(), 300) + ")" + fix);
+    }
+    const std::string why = mismatch(*sys, options, stored->system, stored->result);
+    if (!why.empty()) detail::invalid(refused + " holds " + why + fix);
+  }
 }
 
 SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions& options) {
@@ -205,10 +274,10 @@ std::string sweep_table_csv(const SweepTable& t) {
      << ",system_file,result_file,solve_status,t1,t2,period,admissible,min_gap,min_force,energy\n";
   for (const SweepRow& r : t.rows) {
     const SweepItem& item = t.items[r.index];
-    os << r.index << "," << (std::isnan(r.value) ? std::string() : io::num(r.value)) << ","
+    os << r.index << "," << (std::isnan(r.value) ? std::string() : shortest(r.value)) << ","
        << csv_field(item.system_file) << "," << csv_field(item.result_file) << "," << to_string(t.solve_status[r.index])
-       << "," << io::num(r.t1) << "," << io::num(r.t2) << "," << io::num(r.period) << "," << (r.admissible ? 1 : 0)
-       << "," << io::num(r.min_gap) << "," << io::num(r.min_force) << "," << io::num(r.energy) << "\n";
+       << "," << shortest(r.t1) << "," << shortest(r.t2) << "," << shortest(r.period) << "," << (r.admissible ? 1 : 0)
+       << "," << shortest(r.min_gap) << "," << shortest(r.min_force) << "," << shortest(r.energy) << "\n";
   }
   return os.str();
 }

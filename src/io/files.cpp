@@ -1,9 +1,13 @@
 #include "spp/io/files.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <atomic>
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "io/text.hpp"
@@ -73,4 +77,32 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     invalid("cannot write \"" + path + "\": rename failed");
   }
 }
+void check_writable_directory(const std::string& dir, const std::string& what) {
+  const fs::path d = dir.empty() ? fs::path(".") : fs::path(dir);
+  const std::string shown = io::shorten(d.string(), io::kQuotedPathChars);
+  std::error_code ec;
+  const fs::file_status st = fs::status(d, ec);
+  if (!fs::exists(st)) {
+    // a regular file further up the path (a/file/b): say so rather than "does not exist"
+    for (fs::path up = d.parent_path(); !up.empty() && up != up.root_path(); up = up.parent_path())
+      if (fs::exists(up, ec) && !fs::is_directory(up, ec))
+        invalid(what + ": the directory \"" + shown + "\" cannot exist: \"" +
+                io::shorten(up.string(), io::kQuotedPathChars) + "\" on its path is a file, not a directory");
+    invalid(what + ": the directory \"" + shown + "\" does not exist (create it first)");
+  }
+  if (!fs::is_directory(st))
+    invalid(what + ": \"" + shown + "\" is not a directory (it is a file): expected a directory to write in");
+  // a probe file, created exclusively (several processes of one MPI run may probe the same directory) and removed
+  static std::atomic<unsigned> counter{0};
+  static const unsigned salt = std::random_device{}();  // MPI ranks on two hosts may share a pid
+  const fs::path probe = d / (".spp_write_probe." + std::to_string(::getpid()) + "." + std::to_string(salt) + "." +
+                              std::to_string(counter++));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0)
+    invalid(what + ": cannot write in the directory \"" + shown +
+            "\" (a file cannot be created there: read-only, or no permission); nothing was written");
+  ::close(fd);
+  fs::remove(probe, ec);
+}
+
 }  // namespace spp

@@ -270,6 +270,48 @@ TEST(Sweep, AResultFileOfAnotherWindowIsNotReplaced) {
   EXPECT_EQ(run_sweep_item(moved, 0, sweep_window()).status, SweepItemStatus::Failed);
 }
 
+TEST(Sweep, CheckSweepOutputsRefusesAResumeOfAnotherWindowOrOptionsBeforeAnySolve) {
+  // issue 16: a refused resume rewrote the table with every item failed; now refused before anything is run, naming
+  // the out-dir and what differs (window, symmetry, certify_steps, admissible_only inferred from the file)
+  const std::string file = two_dof_k2_file();
+  const std::string dir = temp_dir("check_outputs").string();
+  const Sweep sweep = Sweep::over_values(file, "k2", {1.5, 2.5}, dir);
+  EXPECT_NO_THROW(check_sweep_outputs(sweep, sweep_window()));  // nothing there yet
+  ASSERT_EQ(run_sweep_item(sweep, 0, sweep_window()).status, SweepItemStatus::Solved);
+  EXPECT_NO_THROW(check_sweep_outputs(sweep, sweep_window()));  // a resume of the same run
+  auto refused = [&](const SolveOptions& o, const std::string& what) {
+    try {
+      check_sweep_outputs(sweep, o);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("\"" + dir + "\" holds results this sweep cannot resume from"), std::string::npos) << m;
+      EXPECT_NE(m.find(what), std::string::npos) << m;
+    }
+  };
+  refused(window(7.0, 8.0), "the window");
+  SolveOptions point = sweep_window();
+  point.symmetry = Symmetry::Point;
+  refused(point, "the symmetry axial, not point as this sweep asks");
+  SolveOptions midpoint = sweep_window();
+  midpoint.certify_steps = false;
+  refused(midpoint, "with certified steps");
+  const SolveResult stored = load_result(sweep.items()[0].result_file);
+  const bool inadmissible = std::any_of(stored.solutions.begin(), stored.solutions.end(),
+                                        [](const Solution& s) { return !s.admissible(); });
+  if (inadmissible) {
+    SolveOptions admissible = sweep_window();
+    admissible.admissible_only = true;
+    refused(admissible, "without --admissible-only");
+  }
+  // an out-dir that is a file; a value outside the declared range [1, 10] is noted
+  EXPECT_THROW((void)Sweep::over_values(file, "k2", {1.5}, file), std::invalid_argument);
+  const Sweep outside = Sweep::over_values(file, "k2", {0.5, 2.0, 11.0}, dir);
+  ASSERT_EQ(outside.notes().size(), 2u);
+  EXPECT_NE(outside.notes()[0].find("k2 = 0.5, lies outside the range [1, 10]"), std::string::npos)
+      << outside.notes()[0];
+}
+
 TEST(Sweep, OverSystemFilesAnUnreadableFileFailsItsItemOnly) {
   const std::string chain = std::string(SPP_SOURCE_DIR) + "/examples/chain5.json";
   const Sweep sweep = Sweep::over_files({chain, chain + ".missing"}, temp_dir("files").string());

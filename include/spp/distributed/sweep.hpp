@@ -32,8 +32,9 @@ class Sweep {
  public:
   /// Over values of the parameter that the parametric system file declares: `parameter` must be its name (a slip is
   /// refused naming both). Result files "<out_dir>/<parameter>_<index, 4 digits>.json". Throws std::invalid_argument
-  /// naming what is wrong: an unreadable file, another parameter name, no value, a value not finite, out_dir not a
-  /// directory.
+  /// naming what is wrong: an unreadable file, another parameter name, no value, a value not finite (named by its
+  /// number from 1 and its position from 0), out_dir missing or not a directory. A value outside the declared range
+  /// is kept, with a note (notes()).
   static Sweep over_values(const std::string& parametric_file, const std::string& parameter,
                            const std::vector<double>& values, const std::string& out_dir);
   /// Over system files (not parametric ones). Result files "<out_dir>/<index, 4 digits>_<file's stem>.json". Throws
@@ -44,12 +45,18 @@ class Sweep {
   const std::vector<SweepItem>& items() const { return items_; }
   /// The parameter's name; empty for a sweep over files.
   const std::string& parameter() const { return parameter_; }
+  /// The output directory of the result files.
+  const std::string& out_dir() const { return out_dir_; }
+  /// Notes for the user, one a line: each value outside the range [min, max] the parametric file declares (its
+  /// system is validated at that value: where it is not positive definite the item fails). Empty for files.
+  const std::vector<std::string>& notes() const { return notes_; }
   /// The system of item i (loaded, or the parametric system at the item's value). Throws std::invalid_argument naming
   /// the file or the value (e.g. not positive definite there).
   System system(size_t i) const;
 
  private:
-  std::string parameter_;
+  std::string parameter_, out_dir_;
+  std::vector<std::string> notes_;
   std::vector<SweepItem> items_;
   std::vector<ParametricSystem> parametric_;  // one (parameter sweeps) or none
 };
@@ -67,10 +74,20 @@ struct SweepItemOutcome {
   std::string message;  ///< why it failed (empty otherwise)
 };
 
+/// Before any solve and any file written: the output directory can be written (a probe file is created and
+/// removed), and every result file already there is one this sweep resumes from: it holds its item's system, the
+/// symmetry and window of `options`, and was solved with the same certify_steps and admissible_only (inferred from
+/// the file: steps certified only with certify_steps; SPPs dropped, or a non-admissible one kept). Throws
+/// std::invalid_argument naming the output directory, the first file that differs and what differs (a resumed sweep
+/// with other options would mix results; run_sweep_item would fail that item only, and the table would be rewritten
+/// with it failed). An item whose system cannot be built is left to fail on its own. Cost: per file there, reading it
+/// and the item's modal form (O(n^3)).
+void check_sweep_outputs(const Sweep& sweep, const SolveOptions& options);
+
 /// Solves item i with `options` (the window, and options.threads for this solve) and writes its result file
 /// atomically; or reads it back when it is there already and holds this item's system, symmetry and window (t1_max,
-/// t2_max; t1_min, t2_min when given). A result file of another system or window is not replaced: the item fails,
-/// naming the file. Never throws for an item's own failure (Failed with the message); throws std::invalid_argument
+/// t2_max; t1_min, t2_min when given; certify_steps and admissible_only as check_sweep_outputs infers them). A result
+/// file of another system, window or options is not replaced: the item fails, naming the file. Never throws for an item's own failure (Failed with the message); throws std::invalid_argument
 /// for i out of range or invalid options.
 SweepItemOutcome run_sweep_item(const Sweep& sweep, size_t i, const SolveOptions& options);
 
@@ -103,7 +120,8 @@ struct SweepTable {
 /// no longer be read.
 SweepTable sweep_table(const Sweep& sweep, const std::vector<SweepItemOutcome>& outcomes);
 /// index, <parameter> (or "value"), system_file, result_file, solve_status, t1, t2, period, admissible, min_gap,
-/// min_force, energy: one row per SPP, doubles with 17 digits.
+/// min_force, energy: one row per SPP, each double in its shortest text that reads back to it (2.1, as in the JSON and
+/// on stderr, not 2.1000000000000001).
 std::string sweep_table_csv(const SweepTable& table);
 /// {"parameter", "items": [{"index", "value", "system_file", "result_file", "outcome", "message", "solve_status",
 /// "spps": [{"t1", "t2", "period", "admissible", "min_gap", "min_force", "energy"}]}]}.

@@ -21,5 +21,9 @@ std::string read_file(const std::string& path);
 /// Writes `content` to a temporary file in the target's directory and renames it over `path`. Throws
 /// std::invalid_argument naming the file (missing directory, write or rename failure); the target is then untouched.
 void write_file_atomic(const std::string& path, const std::string& content);
+/// Checks before any work that files can be written in directory `dir` ("" is the working directory): creates a
+/// temporary file there and removes it. Throws std::invalid_argument starting with `what` (e.g. "--json") when `dir`
+/// does not exist, is not a directory (a regular file on the path), or a file cannot be created in it (read-only).
+void check_writable_directory(const std::string& dir, const std::string& what);
 
 }  // namespace spp
