@@ -43,7 +43,8 @@ struct NamedOutput {
 };
 /// An output file named by option `opt`: refused before any work when it is one of `inputs` (files the run reads, or
 /// outputs not named in `outputs`) or one of the run's other `outputs` (it would be replaced; the message names the
-/// option of that output), or when its directory does not exist (the work would be lost at the end).
+/// option of that output), or when its directory does not exist or cannot be written (a probe file is created there
+/// and removed: the work would be lost at the end).
 void check_output(const std::string& out, const std::string& opt, const std::vector<std::string>& inputs,
                   const std::vector<NamedOutput>& outputs = {});
 /// "1,2.5,3" -> {1, 2.5, 3}; anything else is refused naming the option.

@@ -5,10 +5,14 @@
 
 #include "command.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/io/files.hpp"
 
 namespace spp::cli {
 
 namespace {
+std::string quoted_path(const std::string& s) {
+  return s.size() > 512 ? s.substr(0, 512) + "..." : s;
+}
 // out and path name one file: the same file (a link, ./x), or the same path not written yet (two outputs of one run)
 bool same_file(const std::string& out, const std::string& path) {
   namespace fs = std::filesystem;
@@ -38,9 +42,9 @@ void check_output(const std::string& out, const std::string& opt, const std::vec
   if (fs::exists(st) && !fs::is_regular_file(st))
     detail::invalid(opt + ": \"" + out + "\" exists and is not a regular file (a directory or a device): " +
                                 "write the output to a file");
-  const fs::path dir = fs::path(out).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir, ec))
-    detail::invalid(opt + ": the directory \"" + dir.string() + "\" of \"" + out + "\" does not exist");
+  // its directory: there and writable, checked by writing a probe file before any work (a read-only directory was
+  // found only when the output was written, after the solve; found by an independent attack)
+  check_writable_directory(fs::path(out).parent_path().string(), opt + " \"" + quoted_path(out) + "\"");
 }
 
 namespace {

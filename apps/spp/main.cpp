@@ -7,6 +7,7 @@
 #include <chrono>
 #include <iostream>
 #include <new>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -25,6 +26,28 @@ std::string bounded(const char* what) {
   return m.size() > kMax ? m.substr(0, kMax) + "... (message cut at " + std::to_string(kMax) + " characters)" : m;
 }
 }  // namespace
+
+namespace spp::cli {
+// The options naming a file or directory written (and --parameter, --values): an empty text is refused naming the
+// option (`--json ""` was silently ignored, `spp trajectory --csv ""` failed with 'cannot write "": rename failed';
+// found by an independent attack), on every subcommand, nested ones (generate chain) included.
+void refuse_empty_texts(CLI::App& app) {
+  static const std::set<std::string> kNames = {"json", "csv", "out", "out-dir", "events", "spp-csv", "parameter",
+                                               "values"};
+  const CLI::Validator non_empty(
+      [](std::string& text) {
+        return text.empty() ? std::string("expected a non-empty text (a path, or the values), got \"\"")
+                            : std::string();
+      },
+      "");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    for (CLI::Option* opt : sub->get_options([](CLI::Option*) { return true; }))
+      for (const std::string& name : opt->get_lnames())
+        if (kNames.count(name)) opt->check(non_empty);
+    refuse_empty_texts(*sub);
+  }
+}
+}  // namespace spp::cli
 
 int main(int argc, char** argv) {
   const spp::cli::Runtime runtime(argc, argv);  // MPI in spp-mpi (parallel.hpp)
@@ -48,16 +71,17 @@ int main(int argc, char** argv) {
   commands.push_back(spp::cli::add_generate(app));
   commands.push_back(spp::cli::add_reduce(app));
   commands.push_back(spp::cli::add_sweep(app));
+  spp::cli::refuse_empty_texts(app);
   app.set_version_flag("--version", std::string("spp ") + SPP_VERSION);
   // Usage errors exit 1 like every other error (README), not CLI11's 105-107; --help and --version exit 0.
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+  } catch (const CLI::CallForHelp& e) {  // under mpirun, printed by rank 0 only (found by an independent attack)
+    return spp::cli::is_root() ? app.exit(e) : 0;
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return spp::cli::is_root() ? app.exit(e) : 0;
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return spp::cli::is_root() ? app.exit(e) : 0;
   } catch (const CLI::ParseError& e) {
     if (spp::cli::is_root()) std::cerr << "spp: error: " << bounded(e.what()) << "\n(run with --help for the usage)\n";
     return 1;
@@ -65,13 +89,13 @@ int main(int argc, char** argv) {
   // An error message: rank 0 prints it as spp does; another rank names itself. Under MPI every rank runs the same
   // checks of the input: another rank gives rank 0 a moment to print the same message and end the run (its own is then
   // not printed), and prints its own only when that did not happen (an error of that rank alone).
+  // An input error found by every rank (they validate alike) ends them all through MPI_Finalize, exit code 1 and one
+  // message; only an error of one rank alone aborts the others (every_rank_failed waits kAgreeSeconds for them).
+  constexpr double kAgreeSeconds = 10.0;
   auto error = [](const std::string& what, bool input_error) {
-    if (spp::cli::is_root()) {
-      std::cerr << "spp: error: " << what << "\n";
-    } else {
-      if (input_error) std::this_thread::sleep_for(std::chrono::seconds(5));
-      std::cerr << "spp (rank " << spp::cli::rank() << "): error: " << what << "\n";
-    }
+    if (spp::cli::is_root()) std::cerr << "spp: error: " << what << "\n" << std::flush;
+    if (input_error && spp::cli::every_rank_failed(kAgreeSeconds)) return 1;
+    if (!spp::cli::is_root()) std::cerr << "spp (rank " << spp::cli::rank() << "): error: " << what << "\n";
     return spp::cli::end_on_error(1);
   };
   try {

@@ -33,6 +33,12 @@ bool distributed(const std::string& subcommand);
 /// Ends the run after an error on this process (message already printed): with more than one rank, every rank ends
 /// (MPI_Abort with `code`), otherwise returns `code`.
 int end_on_error(int code);
+/// After an input error on this process: whether every rank reached one too within `seconds` (true in spp). Under MPI
+/// every rank validates the input alike, so a mistake is found by all: they then end together through MPI_Finalize
+/// with exit code 1 (one message, by rank 0), instead of several ranks racing to MPI_Abort (which printed Open MPI's
+/// "ORTE_ERROR_LOG: Data unpack had inadequate space" in about 1 run in 3; found by an independent attack). False:
+/// an error of this rank alone, which ends the run with end_on_error.
+bool every_rank_failed(double seconds);
 
 /// solve() on this process, or over the ranks (solve_mpi: the result on rank 0, NotRun elsewhere; progress only on
 /// one rank).

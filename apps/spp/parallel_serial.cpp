@@ -20,6 +20,9 @@ bool distributed(const std::string&) {
 int end_on_error(int code) {
   return code;
 }
+bool every_rank_failed(double) {
+  return true;
+}
 
 SolveResult solve_window(const System& system, const ModalForm& modal, const SolveOptions& options) {
   return solve(system, modal, options);

@@ -2,7 +2,10 @@
 // --out-dir, then the table of every SPP with its value. A stopped sweep run again resumes from the files written.
 #include "spp/distributed/sweep.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -17,7 +20,7 @@ namespace spp::cli {
 
 namespace {
 
-// Most values one sweep takes (each is a solve and a file).
+// Most values one sweep takes (each is a solve and a file); README, "Sweeps and MPI".
 constexpr double kMaxSweepValues = 1e6;
 
 struct SweepArgs {
@@ -27,12 +30,16 @@ struct SweepArgs {
   bool quiet = false;
 };
 
-// "start:stop:step" (stop included when a whole number of steps reaches it, to rounding) or "1,2.5,3".
+// "start:stop:step" or "1,2.5,3". start:stop:step gives the decimal values a user expects: count = (stop - start) /
+// step rounded when within 1e-9 (relative) of a whole number (then the last value is stop exactly), else its floor;
+// value i = start + i step, snapped to 15 significant digits of the range's scale (1.7, not 1.7000000000000002 =
+// 1 + 7 x 0.1; 0, not 5.6e-17) and never past stop (0.1:0.7:0.1 ended at 0.7000000000000001; found by an
+// independent attack).
 std::vector<double> parse_values(const std::string& text) {
   if (text.find(':') == std::string::npos) return parse_list(text, "--values");
+  const std::string shown = text.size() > 80 ? text.substr(0, 80) + "..." : text;
   const std::string bad =
-      "--values: expected start:stop:step (step > 0, stop >= start) or comma-separated numbers, got \"" +
-      (text.size() > 80 ? text.substr(0, 80) + "..." : text) + "\"";
+      "--values: expected start:stop:step (step > 0, stop >= start) or comma-separated numbers, got \"" + shown + "\"";
   double v[3];
   std::stringstream ss(text);
   std::string item;
@@ -47,12 +54,30 @@ std::vector<double> parse_values(const std::string& text) {
   const double start = v[0], stop = v[1], step = v[2];
   if (k != 3 || !std::isfinite(start) || !std::isfinite(stop) || !(step > 0) || !std::isfinite(step) || stop < start)
     detail::invalid(bad);
-  const double count = std::floor((stop - start) / step * (1 + 1e-12) + 1e-9) + 1;
-  if (count > kMaxSweepValues)
-    detail::invalid("--values: " + text + " gives " + std::to_string(count) + " values, more than " +
-                                std::to_string(static_cast<long>(kMaxSweepValues)));
-  std::vector<double> values;
-  for (long i = 0; i < static_cast<long>(count); ++i) values.push_back(start + static_cast<double>(i) * step);
+  const double steps = (stop - start) / step;  // may overflow to inf (1:2:1e-320)
+  if (!(steps + 1 <= kMaxSweepValues)) {
+    char about[32];
+    std::snprintf(about, sizeof about, "%.3g", steps + 1);
+    detail::invalid("--values: expected at most " + std::to_string(static_cast<long>(kMaxSweepValues)) +
+                    " values (each is a solve and a file), got about " + about + " from \"" + shown + "\"");
+  }
+  const double whole = std::round(steps);
+  const bool reaches_stop = std::abs(steps - whole) <= 1e-9 * std::max(1.0, steps);
+  const long count = static_cast<long>(reaches_stop ? whole : std::floor(steps)) + 1;
+  const double scale = std::max({std::abs(start), std::abs(stop), step});
+  const double quantum = std::pow(10.0, std::floor(std::log10(scale)) - 14);
+  std::vector<double> raw, values;
+  for (long i = 0; i < count; ++i) {
+    const double x = start + static_cast<double>(i) * step;
+    raw.push_back(std::min(x, stop));
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.15g", std::round(x / quantum) * quantum);
+    values.push_back(std::min(std::strtod(buf, nullptr), stop));
+  }
+  if (reaches_stop) values.back() = raw.back() = stop;
+  // a step near the last digits of the scale (1e6:1e6+1e-6:1e-12): snapping would merge values; kept unsnapped
+  for (size_t i = 1; i < values.size(); ++i)
+    if (!(values[i] > values[i - 1])) return raw;
   return values;
 }
 
@@ -89,6 +114,9 @@ int run(SweepArgs& a) {
   const std::string json = a.json.empty() ? a.out_dir + "/sweep.json" : a.json;
   const Sweep sweep = by_value ? Sweep::over_values(a.systems.front(), a.parameter, parse_values(a.values), a.out_dir)
                                : Sweep::over_files(a.systems, a.out_dir);
+  // before any solve and any file written: the out-dir can be written, and the result files already there are this
+  // sweep's (a refused resume rewrote the table with every item failed; found by an independent attack)
+  check_sweep_outputs(sweep, a.options);
   std::vector<std::string> inputs = a.systems;
   std::vector<NamedOutput> outputs;
   for (const SweepItem& item : sweep.items())
@@ -97,6 +125,8 @@ int run(SweepArgs& a) {
   inputs.push_back(csv);
   check_output(json, "--json", inputs, outputs);
   const bool root = is_root();
+  if (root)
+    for (const std::string& note : sweep.notes()) std::cerr << "spp sweep: note: " << note << "\n";
   auto on_done = [&](size_t i, const SweepItemOutcome& o) {
     if (root && !a.quiet)
       std::cerr << "  " << item_name(sweep, i) << ": " << to_string(o.status) << " (" << i + 1 << " / "
@@ -127,7 +157,9 @@ Subcommand add_sweep(CLI::App& app) {
   SolveOptions& o = a->options;
   s->add_option("systems", a->systems, "system JSON files (one parametric file with --parameter)")->required();
   s->add_option("--parameter", a->parameter, "the parameter swept: the name the parametric system file declares");
-  s->add_option("--values", a->values, "the parameter's values: start:stop:step (stop included) or 1,2.5,3");
+  s->add_option("--values", a->values,
+                "the parameter's values: start:stop:step (stop included when a whole number of steps reaches it; at "
+                "most 1e6 values) or 1,2.5,3");
   s->add_option("--out-dir", a->out_dir, "directory of the result files (one per item) and the table")->required();
   s->add_option("--csv", a->csv, "the table as CSV (default <out-dir>/sweep.csv)");
   s->add_option("--json", a->json, "the table as JSON (default <out-dir>/sweep.json)");

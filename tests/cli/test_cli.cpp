@@ -1138,6 +1138,167 @@ TEST(Cli, SweepWithAFailingValueExits4AndWritesTheOthers) {
   EXPECT_EQ(table.at("items")[2].at("outcome"), "solved");
 }
 
+// ---- issue 16's defects (an independent attack): refused before anything is written, values as typed ----
+
+TEST(Cli, SweepRefusedResumeWritesNothing) {
+  // a sweep run again in its out-dir with another window or symmetry: refused before any solve, the table of the
+  // first run kept (it was rewritten with every item failed)
+  const std::string sys = parametric_two_dof();
+  const fs::path out = fresh_dir("sweep_resume_refused");
+  const std::string args = "sweep " + sys + " --parameter k2 --values 1,2 --quiet --out-dir " + out.string();
+  ASSERT_EQ(run(args + kSweepWindow).code, 0);
+  const std::string csv = slurp(out / "sweep.csv"), json = slurp(out / "sweep.json");
+  for (const auto& [other, what] : std::vector<std::pair<std::string, std::string>>{
+           {" --t1-max 7 --t2-max 8", "the window"}, {kSweepWindow + std::string("--symmetry point"), "symmetry"}}) {
+    const CliRun r = run(args + other);
+    EXPECT_EQ(r.code, 1) << other << "\n" << r.out;
+    EXPECT_NE(r.out.find("the output directory \"" + out.string() + "\" holds results this sweep cannot resume from"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(what), std::string::npos) << r.out;
+    EXPECT_EQ(slurp(out / "sweep.csv"), csv) << other;
+    EXPECT_EQ(slurp(out / "sweep.json"), json) << other;
+  }
+}
+
+TEST(Cli, SweepResumeWithOtherCertifyOrAdmissibleFlagsIsRefused) {
+  // the result files do not record --no-certify-steps / --admissible-only: inferred from them (certified steps; SPPs
+  // dropped or non-admissible ones kept), a resume with other flags is refused rather than mixing results
+  const std::string sys = parametric_two_dof();
+  const fs::path out = fresh_dir("sweep_resume_flags");
+  const std::string args = "sweep " + sys + " --parameter k2 --values 1,2 --quiet --out-dir " + out.string();
+  ASSERT_EQ(run(args + kSweepWindow).code, 0);
+  const nlohmann::json first = read_json(out / "sweep.json");
+  bool inadmissible = false;
+  for (const auto& item : first.at("items"))
+    for (const auto& spp : item.at("spps")) inadmissible = inadmissible || !spp.at("admissible").get<bool>();
+  const CliRun uncertified = run(args + kSweepWindow + "--no-certify-steps");
+  EXPECT_EQ(uncertified.code, 1) << uncertified.out;
+  EXPECT_NE(uncertified.out.find("certified steps"), std::string::npos) << uncertified.out;
+  if (inadmissible) {
+    const CliRun admissible = run(args + kSweepWindow + "--admissible-only");
+    EXPECT_EQ(admissible.code, 1) << admissible.out;
+    EXPECT_NE(admissible.out.find("--admissible-only"), std::string::npos) << admissible.out;
+  }
+  EXPECT_EQ(read_json(out / "sweep.json"), first);
+  // and the other way: files made with the flags refuse a resume without them
+  const fs::path out2 = fresh_dir("sweep_resume_flags2");
+  const std::string args2 = "sweep " + sys + " --parameter k2 --values 1,2 --quiet --out-dir " + out2.string();
+  ASSERT_EQ(run(args2 + kSweepWindow + "--no-certify-steps --admissible-only").code, 0);
+  const CliRun certified = run(args2 + kSweepWindow + "--admissible-only");
+  EXPECT_EQ(certified.code, 1) << certified.out;
+  EXPECT_NE(certified.out.find("without certified steps"), std::string::npos) << certified.out;
+  ASSERT_EQ(run(args2 + kSweepWindow + "--no-certify-steps --admissible-only").code, 0);  // the same flags resume
+}
+
+TEST(Cli, UnwritableOutputIsRefusedBeforeAnySolve) {
+  // an output location that cannot be written is found before any solve and before any other output is written:
+  // a path under a regular file (reliable, also as root), a read-only directory (skipped as root)
+  const std::string sys = parametric_two_dof();
+  const fs::path d = fresh_dir("unwritable");
+  const std::string file = write("a_regular_file", "x");
+  const fs::path ok = d / "ok.json";
+  CliRun r = run("solve " + kChain + " --t1-max 5 --t2-max 5 --json " + ok.string() + " --csv " + file + "/x.csv");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--csv \"" + file + "/x.csv\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("is not a directory"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(ok)) << "--json written although --csv could not be";
+  const fs::path out = fresh_dir("unwritable_sweep");
+  r = run("sweep " + sys + " --parameter k2 --values 1,2 --out-dir " + out.string() + kSweepWindow + "--json " + file +
+          "/t.json");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--json"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_empty(out)) << "item files written before --json was refused";
+  r = run("sweep " + sys + " --parameter k2 --values 1,2 --out-dir " + file + kSweepWindow);
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("is not a directory"), std::string::npos) << r.out;
+  r = run("trajectory " + kChain + " --t1 3.25 --t2 0.54 --csv " + file + "/x.csv");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--csv"), std::string::npos) << r.out;
+  if (::geteuid() == 0) {
+    std::cout << "running as root: chmod does not stop writes, read-only directory case skipped\n";
+    return;
+  }
+  const fs::path ro = fresh_dir("read_only");
+  fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
+  r = run("sweep " + sys + " --parameter k2 --values 1,2 --out-dir " + ro.string() + kSweepWindow);
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("cannot write in the directory"), std::string::npos) << r.out;
+  r = run("solve " + kChain + " --t1-max 5 --t2-max 5 --json " + ok.string() + " --csv " + (ro / "x.csv").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("cannot write in the directory"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(ok));
+  fs::permissions(ro, fs::perms::owner_all);
+  EXPECT_TRUE(fs::is_empty(ro));
+}
+
+TEST(Cli, EmptyOutputPathIsRefusedNamingTheOption) {
+  // --json "" and --csv "" were ignored (exit 0, nothing written); trajectory --csv "" failed without naming --csv
+  for (const auto& [args, opt] : std::vector<std::pair<std::string, std::string>>{
+           {"solve " + kChain + " --t1-max 5 --t2-max 5 --json \"\"", "--json"},
+           {"solve " + kChain + " --t1-max 5 --t2-max 5 --csv \"\"", "--csv"},
+           {"trajectory " + kChain + " --t1 3.25 --t2 0.54 --csv \"\"", "--csv"},
+           {"sweep " + kChain + " --t1-max 5 --t2-max 5 --out-dir \"\"", "--out-dir"},
+           {"sweep " + kChain + " --t1-max 5 --t2-max 5 --out-dir " + dir().string() + " --json \"\"", "--json"}}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(opt + ": expected a non-empty text"), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
+TEST(Cli, SweepValuesAreTheDecimalsAUserExpects) {
+  // 1:2:0.1 swept 1.7000000000000002 (1 + 7 x 0.1); 0.1:0.7:0.1 ended at 0.7000000000000001, past the stop; the CSV
+  // printed 17 digits where the JSON and stderr printed 1.1
+  const std::string sys = parametric_two_dof();
+  const fs::path out = fresh_dir("sweep_decimals"), out2 = fresh_dir("sweep_decimals2");
+  CliRun r = run("sweep " + sys + " --parameter k2 --values 1:2:0.1 --out-dir " + out.string() + kSweepWindow);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const char* expected[] = {"1", "1.1", "1.2", "1.3", "1.4", "1.5", "1.6", "1.7", "1.8", "1.9", "2"};
+  const nlohmann::json table = read_json(out / "sweep.json");
+  ASSERT_EQ(table.at("items").size(), 11u);
+  for (size_t i = 0; i < 11; ++i) {
+    EXPECT_EQ(table.at("items")[i].at("value").get<double>(), std::stod(expected[i])) << i;
+    EXPECT_NE(r.out.find("k2 = " + std::string(expected[i]) + ":"), std::string::npos) << expected[i];
+  }
+  std::istringstream csv(slurp(out / "sweep.csv"));
+  std::string line;
+  std::getline(csv, line);  // the header
+  size_t rows = 0;
+  while (std::getline(csv, line)) {
+    const size_t a = line.find(','), b = line.find(',', a + 1);
+    const size_t index = std::stoul(line.substr(0, a));
+    ASSERT_LT(index, 11u) << line;
+    EXPECT_EQ(line.substr(a + 1, b - a - 1), expected[index]) << line;  // as the JSON and stderr print it
+    ++rows;
+  }
+  EXPECT_GT(rows, 0u);
+  r = run("sweep " + sys + " --parameter k2 --values 0.1:0.7:0.1 --out-dir " + out2.string() + kSweepWindow);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json t2 = read_json(out2 / "sweep.json");
+  ASSERT_EQ(t2.at("items").size(), 7u);
+  EXPECT_EQ(t2.at("items")[6].at("value").get<double>(), 0.7);
+  EXPECT_EQ(t2.at("items")[2].at("value").get<double>(), 0.3);
+  // k2 = 0.1 ... 0.7 lie outside the range [1, 10] the file declares: noted, each value named
+  EXPECT_NE(r.out.find("note: value #1, k2 = 0.1, lies outside the range [1, 10]"), std::string::npos) << r.out;
+}
+
+TEST(Cli, SweepValueMessagesNameWhatIsWrong) {
+  const std::string sys = parametric_two_dof();
+  const fs::path out = fresh_dir("sweep_messages");
+  auto refused = [&](const std::string& values, const std::string& message) {
+    const CliRun r = run("sweep " + sys + " --parameter k2 --values " + values + " --out-dir " + out.string() +
+                         kSweepWindow);
+    EXPECT_EQ(r.code, 1) << values << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
+    EXPECT_LT(r.out.size(), 600u) << r.out;  // no 300-digit count
+    EXPECT_TRUE(fs::is_empty(out)) << values;
+  };
+  refused("1:2:1e-300", "expected at most 1000000 values (each is a solve and a file), got about 1e+300");
+  refused("0:1e308:1e-300", "expected at most 1000000 values (each is a solve and a file), got about inf");
+  refused("nan", "value #1 (position 0) is not finite: expected a finite number, got nan");
+  refused("1,2,inf", "value #3 (position 2) is not finite: expected a finite number, got inf");
+}
+
 #ifdef SPP_MPI_CLI
 namespace {
 const std::string kMpirun = std::string(SPP_MPIEXEC) + " -n 2 --oversubscribe --allow-run-as-root ";
@@ -1230,5 +1391,27 @@ TEST(CliMpi, BadInputOnTwoRanksIsOneMessageAndExitCode1) {
   const CliRun other = run_mpi("continue " + kChain + " --t1-max 3 --t2-max 1");
   EXPECT_EQ(other.code, 1) << other.out;
   EXPECT_NE(other.out.find("does not run on several MPI ranks"), std::string::npos) << other.out;
+}
+
+TEST(CliMpi, HelpAndVersionPrintOnceUnderMpirun) {
+  const CliRun version = run_mpi("--version");
+  EXPECT_EQ(version.code, 0) << version.out;
+  EXPECT_EQ(occurrences(version.out, "spp "), 1u) << version.out;
+  const CliRun help = run_mpi("--help");
+  EXPECT_EQ(help.code, 0) << help.out;
+  EXPECT_EQ(occurrences(help.out, "Exit codes:"), 1u) << help.out;
+}
+
+TEST(CliMpi, InputErrorOnEveryRankEndsCleanlyWithoutAbort) {
+  // every rank finds the same mistake: they end together (exit code 1, one message), no MPI_Abort race (about 1 run
+  // in 3 printed Open MPI's "ORTE_ERROR_LOG: Data unpack had inadequate space")
+  for (int k = 0; k < 6; ++k) {
+    const CliRun r = run_mpi("sweep " + kChain + " --parameter k2 --values nan --t1-max 5 --t2-max 5 --out-dir " +
+                             dir().string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(occurrences(r.out, "spp: error:"), 1u) << r.out;
+    EXPECT_EQ(r.out.find("ORTE_ERROR_LOG"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("MPI_ABORT"), std::string::npos) << r.out;
+  }
 }
 #endif
