@@ -65,6 +65,18 @@ void bind_distributed(py::module_& m) {
       "systems"_a, "parameter"_a, "values"_a, "out_dir"_a,
       "The items of a sweep (index, value, system_file, result_file); ValueError for a bad plan.");
   m.def(
+      "_sweep_check",
+      [](const std::vector<std::string>& systems, const py::object& parameter, const py::object& values,
+         const std::string& out_dir, const py::kwargs& fields) {
+        const SolveOptions o = with_fields<SolveOptions>(py::none(), fields, "sweep", "SolveOptions");
+        const Sweep s = plan(systems, parameter, values, out_dir);
+        check_sweep_outputs(s, o);
+        return s.notes();
+      },
+      "systems"_a, "parameter"_a, "values"_a, "out_dir"_a,
+      "Before any solve: out_dir can be written and its result files are this sweep's (ValueError naming what "
+      "differs); returns the notes (values outside the declared range).");
+  m.def(
       "_sweep_item",
       [](const std::vector<std::string>& systems, const py::object& parameter, const py::object& values,
          const std::string& out_dir, size_t index, const py::kwargs& fields) {

@@ -12,7 +12,10 @@ P - 1 ranks solve them (mpi4py.futures.MPICommExecutor); ``sweep`` returns the t
 """
 import concurrent.futures
 import json
+import math
+import numbers
 import os
+import warnings
 
 from . import _spp
 
@@ -38,6 +41,43 @@ def _run_item(spec, index):
                             **spec["fields"])
 
 
+def _checked_values(values):
+    """values as a list of floats: a list (tuple, array, range) of real numbers; a str, a single number, a bool
+    are refused naming the argument (values='25' swept 2.0 and 5.0, the characters; found by an independent attack).
+    A "start:stop:step" text as spp sweep --values takes is not read here: Python gives the list itself."""
+    if values is None:
+        return None
+    if isinstance(values, (str, bytes)):
+        raise TypeError(f"sweep: values must be a list of numbers, got the text {values[:80]!r} (a 'start:stop:step' "
+                        "text is not read in Python: give the list, e.g. [1 + 0.25 * i for i in range(37)] or "
+                        "numpy.linspace(1, 10, 37))")
+    if isinstance(values, numbers.Number) or not hasattr(values, "__iter__"):
+        raise TypeError(f"sweep: values must be a list of numbers, got the {type(values).__name__} {values!r} "
+                        f"(one value: [{values!r}])")
+    out = []
+    for i, v in enumerate(values):
+        if isinstance(v, bool) or not isinstance(v, numbers.Real):
+            raise TypeError(f"sweep: values[{i}] must be a real number, got the {type(v).__name__} {v!r}")
+        if not math.isfinite(float(v)):
+            raise ValueError(f"sweep: values[{i}] must be finite, got {float(v)!r}")
+        out.append(float(v))
+    if not out:
+        raise ValueError("sweep: values is empty: expected at least one number")
+    return out
+
+
+def _checked_workers(workers):
+    """None, or a whole number >= 1 (0, -1 and 1.5 were clamped to a number of threads; now refused)."""
+    if workers is None:
+        return None
+    if isinstance(workers, bool) or not isinstance(workers, numbers.Integral):
+        raise TypeError(f"sweep: workers must be a whole number >= 1 or None, got the {type(workers).__name__} "
+                        f"{workers!r}")
+    if workers < 1:
+        raise ValueError(f"sweep: workers must be >= 1 (or None: one per core), got {int(workers)}")
+    return int(workers)
+
+
 def sweep(systems, out_dir, parameter=None, values=None, workers=None, **fields):
     """One solve per value of ``parameter`` (``values``: a list of numbers) of the parametric system file
     ``systems`` (one path), or per system file (``systems``: a list of paths, no parameter), each result written to
@@ -46,15 +86,20 @@ def sweep(systems, out_dir, parameter=None, values=None, workers=None, **fields)
     Without MPI: ``workers`` threads, each solving one item at a time (default: os.cpu_count() // threads, at least 1; each solve then gets
     ``threads`` threads, default os.cpu_count() // workers) so that workers x threads does not oversubscribe the
     cores. Returns the table (the dict of out_dir/sweep.json: "parameter", "items" with each item's "outcome",
-    "message", "solve_status" and "spps"). Raises ValueError for a bad plan (a missing out_dir, another parameter
-    name, no value), before any solve.
+    "message", "solve_status" and "spps"). Raises, before any solve and any file written: TypeError for values that
+    are not a list of real numbers (a str such as "1:10:0.25" is not read: give the list) or workers not a whole
+    number; ValueError for workers < 1, a bad plan (a missing or read-only out_dir, another parameter name, no value,
+    a value not finite) or result files in out_dir of another system, window or options (a resume that would mix
+    results). A value outside the parameter's declared range gives a warning (UserWarning).
     """
     if isinstance(systems, (str, os.PathLike)):
         systems = [systems]
     systems = [os.fspath(s) for s in systems]
     out_dir = os.fspath(out_dir)
-    values = None if values is None else [float(v) for v in values]
+    values = _checked_values(values)
+    workers = _checked_workers(workers)
     items = _spp._sweep_items(systems, parameter, values, out_dir)  # checks the plan (ValueError) on every rank
+    notes = _spp._sweep_check(systems, parameter, values, out_dir, **fields)  # out_dir writable, resumable
     cores = os.cpu_count() or 1
     comm = _world()
     if comm is not None:
@@ -64,8 +109,12 @@ def sweep(systems, out_dir, parameter=None, values=None, workers=None, **fields)
         with MPICommExecutor(comm, root=0) as executor:
             if executor is None:  # a worker rank: it served items until the root was done
                 return None
+            for note in notes:
+                warnings.warn("sweep: " + note, stacklevel=2)
             outcomes = list(executor.map(_run_item, [spec] * len(items), range(len(items))))
     else:
+        for note in notes:
+            warnings.warn("sweep: " + note, stacklevel=2)
         threads = int(fields.get("threads", 0))
         if workers is None:
             workers = max(1, cores // threads) if threads > 0 else cores
