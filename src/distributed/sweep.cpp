@@ -124,13 +124,26 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
                     io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
   s.parameter_ = parameter;
   s.out_dir_ = out_dir;
+  // one note for every value outside the declared range: the first named, at most 5 more (a sweep may have 1e6)
   const Parameter& range = s.parametric_.front().parameter();
+  std::vector<size_t> outside;
   for (size_t i = 0; i < values.size(); ++i)
-    if (values[i] < range.min || values[i] > range.max)
-      s.notes_.push_back("value #" + std::to_string(i + 1) + ", " + parameter + " = " + shortest(values[i]) +
-                         ", lies outside the range [" + shortest(range.min) + ", " + shortest(range.max) + "] that " +
-                         io::shorten(parametric_file, 200) +
-                         " declares (the system is validated at each value: where it is not positive definite, that value fails)");
+    if (values[i] < range.min || values[i] > range.max) outside.push_back(i);
+  if (!outside.empty()) {
+    std::string note = "value #" + std::to_string(outside[0] + 1) + ", " + parameter + " = " +
+                       shortest(values[outside[0]]) + ", lies outside the range [" + shortest(range.min) + ", " +
+                       shortest(range.max) + "] that " + io::shorten(parametric_file, 200) + " declares";
+    if (outside.size() > 1) {
+      note += ", and " + std::to_string(outside.size() - 1) + (outside.size() == 2 ? " more value:" : " more values:");
+      constexpr size_t kNamed = 5;
+      for (size_t k = 1; k < outside.size() && k <= kNamed; ++k)
+        note += std::string(k > 1 ? "," : "") + " #" + std::to_string(outside[k] + 1) + " (" +
+                shortest(values[outside[k]]) + ")";
+      if (outside.size() - 1 > kNamed) note += ", ...";
+    }
+    s.notes_.push_back(note +
+                       " (the system is validated at each value: where it is not positive definite, that value fails)");
+  }
   for (size_t i = 0; i < values.size(); ++i)
     s.items_.push_back(
         {i, values[i], parametric_file, (fs::path(out_dir) / (parameter + "_" + numbered(i) + ".json")).string()});

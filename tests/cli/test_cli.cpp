@@ -1280,6 +1280,9 @@ TEST(Cli, SweepValuesAreTheDecimalsAUserExpects) {
   EXPECT_EQ(t2.at("items")[2].at("value").get<double>(), 0.3);
   // k2 = 0.1 ... 0.7 lie outside the range [1, 10] the file declares: noted, each value named
   EXPECT_NE(r.out.find("note: value #1, k2 = 0.1, lies outside the range [1, 10]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("and 6 more values: #2 (0.2), #3 (0.3), #4 (0.4), #5 (0.5), #6 (0.6), ..."), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("note:"), r.out.rfind("note:")) << "one note for all: " << r.out;
 }
 
 TEST(Cli, SweepValueMessagesNameWhatIsWrong) {

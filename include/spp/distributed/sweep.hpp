@@ -47,8 +47,9 @@ class Sweep {
   const std::string& parameter() const { return parameter_; }
   /// The output directory of the result files.
   const std::string& out_dir() const { return out_dir_; }
-  /// Notes for the user, one a line: each value outside the range [min, max] the parametric file declares (its
-  /// system is validated at that value: where it is not positive definite the item fails). Empty for files.
+  /// Notes for the user, one a line: the values outside the range [min, max] the parametric file declares, in one
+  /// note naming the first and at most 5 more (the system is validated at each value: where it is not positive
+  /// definite the item fails). Empty for files, or when every value lies in the range.
   const std::vector<std::string>& notes() const { return notes_; }
   /// The system of item i (loaded, or the parametric system at the item's value). Throws std::invalid_argument naming
   /// the file or the value (e.g. not positive definite there).
