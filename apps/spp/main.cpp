@@ -7,7 +7,7 @@
 #include <chrono>
 #include <iostream>
 #include <new>
-#include <set>
+#include <map>
 #include <stdexcept>
 #include <thread>
 
@@ -32,18 +32,22 @@ namespace spp::cli {
 // option (`--json ""` was silently ignored, `spp trajectory --csv ""` failed with 'cannot write "": rename failed';
 // found by an independent attack), on every subcommand, nested ones (generate chain) included.
 void refuse_empty_texts(CLI::App& app) {
-  static const std::set<std::string> kNames = {"json", "csv", "out", "out-dir", "events", "spp-csv", "parameter",
-                                               "values"};
-  const CLI::Validator non_empty(
-      [](std::string& text) {
-        return text.empty() ? std::string("expected a non-empty text (a path, or the values), got \"\"")
-                            : std::string();
-      },
-      "");
+  static const std::map<std::string, std::string> kExpected = {
+      {"json", "a file path"},     {"csv", "a file path"},
+      {"out", "a path"},           {"out-dir", "a directory's path"},
+      {"events", "a file path"},   {"spp-csv", "a file path"},
+      {"parameter", "the parameter's name"}, {"values", "values (start:stop:step or 1,2.5,3)"}};
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
     for (CLI::Option* opt : sub->get_options([](CLI::Option*) { return true; }))
       for (const std::string& name : opt->get_lnames())
-        if (kNames.count(name)) opt->check(non_empty);
+        if (const auto it = kExpected.find(name); it != kExpected.end()) {
+          const std::string expected = it->second;
+          opt->check(CLI::Validator(
+              [expected](std::string& text) {
+                return text.empty() ? "expected " + expected + ", got an empty text" : std::string();
+              },
+              ""));
+        }
     refuse_empty_texts(*sub);
   }
 }

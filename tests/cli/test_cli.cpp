@@ -1242,7 +1242,8 @@ TEST(Cli, EmptyOutputPathIsRefusedNamingTheOption) {
            {"sweep " + kChain + " --t1-max 5 --t2-max 5 --out-dir " + dir().string() + " --json \"\"", "--json"}}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
-    EXPECT_NE(r.out.find(opt + ": expected a non-empty text"), std::string::npos) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(opt + ": expected a"), std::string::npos) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find("got an empty text"), std::string::npos) << args << "\n" << r.out;
   }
 }
 
