@@ -30,9 +30,14 @@ void require_out_dir(const std::string& out_dir) {
   if (fs::exists(st) && !fs::is_directory(st))
     detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
                     "\" is not a directory (it is a file): expected a directory");
-  if (!fs::is_directory(st))
+  if (!fs::is_directory(st)) {
+    for (fs::path up = fs::path(out_dir).parent_path(); !up.empty() && up != up.root_path(); up = up.parent_path())
+      if (fs::exists(up, ec) && !fs::is_directory(up, ec))
+        detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) + "\" cannot exist: \"" +
+                        io::shorten(up.string(), 200) + "\" on its path is a file, not a directory");
     detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
                     "\" does not exist (create it first)");
+  }
 }
 
 // The shortest text that reads back to v (2.1, not 2.1000000000000001).
@@ -191,7 +196,9 @@ void check_sweep_outputs(const Sweep& sweep, const SolveOptions& options) {
     } catch (const std::invalid_argument& e) {
       detail::invalid(refused + " cannot be read back (" + io::shorten(e.what(), 300) + ")" + fix);
     }
-    const std::string why = mismatch(*sys, options, stored->system, stored->result);
+    std::string why = mismatch(*sys, options, stored->system, stored->result);
+    if (why == "another system" && !sweep.parameter().empty())
+      why += " than " + sweep.parameter() + " = " + shortest(item.value) + " (were the values changed?)";
     if (!why.empty()) detail::invalid(refused + " holds " + why + fix);
   }
 }

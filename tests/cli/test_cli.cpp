@@ -1145,12 +1145,15 @@ TEST(Cli, SweepRefusedResumeWritesNothing) {
   // first run kept (it was rewritten with every item failed)
   const std::string sys = parametric_two_dof();
   const fs::path out = fresh_dir("sweep_resume_refused");
-  const std::string args = "sweep " + sys + " --parameter k2 --values 1,2 --quiet --out-dir " + out.string();
+  const std::string base = "sweep " + sys + " --parameter k2 --quiet --out-dir " + out.string() + " --values ";
+  const std::string args = base + "1,2 ";
   ASSERT_EQ(run(args + kSweepWindow).code, 0);
   const std::string csv = slurp(out / "sweep.csv"), json = slurp(out / "sweep.json");
   for (const auto& [other, what] : std::vector<std::pair<std::string, std::string>>{
-           {" --t1-max 7 --t2-max 8", "the window"}, {kSweepWindow + std::string("--symmetry point"), "symmetry"}}) {
-    const CliRun r = run(args + other);
+           {"1,2 --t1-max 7 --t2-max 8", "the window"},
+           {"1,2" + std::string(kSweepWindow) + "--symmetry point", "symmetry"},
+           {"1.5,2" + std::string(kSweepWindow), "another system than k2 = 1.5 (were the values changed?)"}}) {
+    const CliRun r = run(base + other);
     EXPECT_EQ(r.code, 1) << other << "\n" << r.out;
     EXPECT_NE(r.out.find("the output directory \"" + out.string() + "\" holds results this sweep cannot resume from"),
               std::string::npos)

@@ -306,6 +306,12 @@ TEST(Sweep, CheckSweepOutputsRefusesAResumeOfAnotherWindowOrOptionsBeforeAnySolv
   }
   // an out-dir that is a file; a value outside the declared range [1, 10] is noted
   EXPECT_THROW((void)Sweep::over_values(file, "k2", {1.5}, file), std::invalid_argument);
+  try {
+    (void)Sweep::over_values(file, "k2", {1.5}, file + "/x");
+    ADD_FAILURE() << "an out-dir under a file accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("on its path is a file, not a directory"), std::string::npos) << e.what();
+  }
   const Sweep outside = Sweep::over_values(file, "k2", {0.5, 2.0, 11.0}, dir);
   ASSERT_EQ(outside.notes().size(), 1u);  // one note for all (a sweep may have 1e6 values)
   EXPECT_NE(outside.notes()[0].find("value #1, k2 = 0.5, lies outside the range [1, 10]"), std::string::npos)
