@@ -71,7 +71,8 @@ std::vector<double> parse_values(const std::string& text) {
     const double x = start + static_cast<double>(i) * step;
     raw.push_back(std::min(x, stop));
     char buf[40];
-    std::snprintf(buf, sizeof buf, "%.15g", std::round(x / quantum) * quantum);
+    // (a subnormal quantum, values near 1e-300, has too few bits to snap to: those are only rounded to 15 digits)
+    std::snprintf(buf, sizeof buf, "%.15g", quantum > 1e-290 ? std::round(x / quantum) * quantum : x);
     values.push_back(std::min(std::strtod(buf, nullptr), stop));
   }
   if (reaches_stop) values.back() = raw.back() = stop;
