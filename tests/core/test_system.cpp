@@ -56,7 +56,7 @@ TEST(System, RejectsNonFinite) {
   Eigen::MatrixXd K = K2();
   K(1, 0) = std::nan("");
   expect_error([&] { System(I2(), K, w2(), 1); }, "K[1][0] must be finite");
-  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, INFINITY), 1); }, "w[1][0] must be finite");
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, INFINITY), 1); }, "w[1] must be finite");
   expect_error([] { System(I2(), K2(), w2(), INFINITY); }, "g0 must be finite");
 }
 
