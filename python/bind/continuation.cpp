@@ -99,6 +99,24 @@ void bind_continuation(py::module_& m) {
       "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
       "Every SPP of the window followed over the parameter's range: continue_branches(system, t1_max=3, t2_max=1, "
       "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Raises ValueError.");
+  m.def(
+      "continue_branch",
+      [](const spp::ParametricSystem& s, double mu, const spp::Solution& solution, std::optional<double> t1_max,
+         std::optional<double> t2_max, const py::object& options, const py::kwargs& fields) {
+        spp::ContinueOptions o =
+            with_fields<spp::ContinueOptions>(options, fields, "continue_branch", "ContinueOptions");
+        if (t1_max) o.t1_max = *t1_max;
+        if (t2_max) o.t2_max = *t2_max;
+        o.symmetry = solution.orbit.symmetry;  // (the solution says which equations it solves)
+        o.validate();
+        py::gil_scoped_release release;
+        return spp::continue_branch(s, mu, solution, o);
+      },
+      "system"_a, "mu"_a, "solution"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
+      "The one branch through `solution`, an SPP of system.at(mu) (e.g. spp.solve(system.at(mu), ...).solutions[i]), "
+      "followed both ways over the parameter's range within the window t1 <= t1_max, t2 <= t2_max: "
+      "continue_branch(system, mu, solution, t1_max=3, t2_max=1). No seed solves: the branch's cost alone. Raises "
+      "ValueError when the solution is no SPP at mu.");
 }
 
 }  // namespace spp::python

@@ -12,6 +12,7 @@ from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, Continuati
                    SolveProgress, SolveResult, SolveStatus, SppCheck, Symmetry, System, Verdict,
                    VerifyOptions, VerifyResult, VerifyStatus, chain, continue_branches, fundamental_box, load_result,
                    modal_frequencies, nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
+from ._spp import continue_branch  # the one branch through a given SPP
 from ._spp import ModeEvent, ModeFamily, ModePoint, ModesResult, modes  # k-IPP families (docs/modes.md)
 from ._spp import monodromy  # linearised one-period map under an impact law (docs/stability.md)
 from . import _spp
@@ -48,7 +49,7 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "SimulationResult", "SppCheck", "VerifyOptions", "VerifyResult", "RootMap", "RootMapCell",
            "RootMapOptions", "chain", "rod_with_slip", "two_dof", "solve", "simulate", "verify", "load_result",
            "root_map", "ParametricSystem", "continue_branches", "ContinueOptions", "Branch", "BranchEvent",
-           "BranchPoint", "ContinuationResult", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
+           "BranchPoint", "ContinuationResult", "continue_branch", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
            "ContinuationStatus", "BranchEventKind", "monodromy", "modes", "ModesResult", "ModeFamily",
            "ModePoint", "ModeEvent", "sweep", "__version__"]

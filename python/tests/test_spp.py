@@ -539,3 +539,17 @@ def test_arguments_of_the_wrong_type_are_named_not_dumped():
     # a vector has one index in messages: w[1], not w[1][0]
     with pytest.raises(ValueError, match=r"w\[1\] must be finite, got inf"):
         spp.System(np.eye(2), np.eye(2), [0.0, np.inf], 1.0)
+
+
+def test_continue_branch_follows_the_branch_through_one_solution():
+    ps = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                              np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 1.0, "k2", 1.0, 10.0)
+    sol = spp.solve(ps.at(4.9), t1_max=8, t2_max=3).solutions[0]
+    r = spp.continue_branch(ps, 4.9, sol, t1_max=8, t2_max=3)
+    assert r.status is spp.ContinuationStatus.success and len(r.branches) == 1
+    pts = r.branches[0].arrays  # mu, t1, t2, ... per point
+    at = np.abs(pts[:, 0] - 4.9) <= 1e-12
+    assert at.any() and np.min(np.hypot(pts[at, 1] - sol.t1, pts[at, 2] - sol.t2)) < 1e-9
+    assert pts[:, 0].min() < 4.9 < pts[:, 0].max()  # followed both ways
+    with pytest.raises(ValueError, match="continue_branch: expected mu in the range"):
+        spp.continue_branch(ps, 20.0, sol, t1_max=8, t2_max=3)

@@ -9,10 +9,12 @@
 #include <list>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <numbers>
 #include <sstream>
 
 #include "continuation/corrector.hpp"
+#include "search/tolerances.hpp"
 #include "spp/detail/internal_error.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/modal/equation_set.hpp"
@@ -545,6 +547,52 @@ BranchEvent reversed(BranchEvent e) {
   return e;
 }
 
+// The branch through y0 (a point on it, scaled) whose null vector in y0's modal basis is `a`: walked forward (mu
+// increasing at the start) and, unless it closed on itself, backward, as one list of points and events.
+Branch trace_branch(Tracer& tr, BranchWalker& walker, const V3& y0, const Vec& a) {
+  const ModalForm& md = tr.at(tr.mu(y0)).modal;
+  Vec xref = md.Phi() * (a.array() / md.omega().array()).matrix();
+  xref /= xref.norm();
+  const Eval e0 = tr.eval(y0, xref);
+  const V3 tau0 = tr.tangent(y0, xref, V3(0.0, 0.0, 1.0));
+  State start{y0, tau0, xref, tr.point(y0, e0)};
+  Branch br;
+  br.points.push_back(start.point);
+  std::vector<BranchPoint> fwd_pts;
+  std::vector<BranchEvent> fwd_ev;
+  const bool closed = walker.walk(start, fwd_pts, fwd_ev);
+  if (!closed) {
+    std::vector<BranchPoint> back_pts;
+    std::vector<BranchEvent> back_ev;
+    State back = start;
+    back.tau = -start.tau;
+    walker.walk(back, back_pts, back_ev);
+    br.points.clear();
+    for (auto it = back_pts.rbegin(); it != back_pts.rend(); ++it) br.points.push_back(*it);
+    for (auto it = back_ev.rbegin(); it != back_ev.rend(); ++it) br.events.push_back(reversed(*it));
+    br.points.push_back(start.point);
+  }
+  br.points.insert(br.points.end(), fwd_pts.begin(), fwd_pts.end());
+  br.events.insert(br.events.end(), fwd_ev.begin(), fwd_ev.end());
+  return br;
+}
+
+// The window's lower ends: options' own, or (0) as solve() picks them, the smaller over both ends of the range.
+std::pair<double, double> window_lower_ends(const ParametricSystem& ps, const ContinueOptions& options) {
+  double t1_min = options.t1_min, t2_min = options.t2_min;
+  if (t1_min == 0.0 || t2_min == 0.0) {
+    double lo1 = options.t1_max, lo2 = options.t2_max;
+    for (double mu : {ps.parameter().min, ps.parameter().max}) {
+      const auto [a, b] = default_lower_ends(ModalForm(ps.at(mu)), options.t1_max, options.t2_max);
+      lo1 = std::min(lo1, a);
+      lo2 = std::min(lo2, b);
+    }
+    if (t1_min == 0.0) t1_min = lo1;
+    if (t2_min == 0.0) t2_min = lo2;
+  }
+  return {t1_min, t2_min};
+}
+
 }  // namespace
 
 ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueOptions& options) {
@@ -559,17 +607,7 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   const bool free_scale = ps.g0() == 0.0;
 
   // One window for every seed: the lower ends as solve() picks them, over both ends of the range.
-  double t1_min = options.t1_min, t2_min = options.t2_min;
-  if (t1_min == 0.0 || t2_min == 0.0) {
-    double lo1 = options.t1_max, lo2 = options.t2_max;
-    for (double mu : {par.min, par.max}) {
-      const auto [a, b] = default_lower_ends(ModalForm(ps.at(mu)), options.t1_max, options.t2_max);
-      lo1 = std::min(lo1, a);
-      lo2 = std::min(lo2, b);
-    }
-    if (t1_min == 0.0) t1_min = lo1;
-    if (t2_min == 0.0) t2_min = lo2;
-  }
+  const auto [t1_min, t2_min] = window_lower_ends(ps, options);
   res.t1_min = t1_min;
   res.t2_min = t2_min;
 
@@ -611,34 +649,8 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   for (int k = 0; k < options.seeds; ++k) {
     for (const Solution& sol : seed_sols[k]) {
       if (matched(k, sol.t1(), sol.t2())) continue;
-      const V3 y0 = tr.scaled(sol.t1(), sol.t2(), seed_mu[k]);
-      const ModalForm& md = tr.at(seed_mu[k]).modal;
-      Vec xref = md.Phi() * (sol.orbit.a.array() / md.omega().array()).matrix();
-      xref /= xref.norm();
-      const Eval e0 = tr.eval(y0, xref);
-      const V3 tau0 = tr.tangent(y0, xref, V3(0.0, 0.0, 1.0));
-      State start{y0, tau0, xref, tr.point(y0, e0)};
       walker.crossings.push_back({k, sol.t1(), sol.t2()});
-
-      Branch br;
-      br.points.push_back(start.point);
-      std::vector<BranchPoint> fwd_pts;
-      std::vector<BranchEvent> fwd_ev;
-      const bool closed = walker.walk(start, fwd_pts, fwd_ev);
-      if (!closed) {
-        std::vector<BranchPoint> back_pts;
-        std::vector<BranchEvent> back_ev;
-        State back = start;
-        back.tau = -start.tau;
-        walker.walk(back, back_pts, back_ev);
-        br.points.clear();
-        for (auto it = back_pts.rbegin(); it != back_pts.rend(); ++it) br.points.push_back(*it);
-        for (auto it = back_ev.rbegin(); it != back_ev.rend(); ++it) br.events.push_back(reversed(*it));
-        br.points.push_back(start.point);
-      }
-      br.points.insert(br.points.end(), fwd_pts.begin(), fwd_pts.end());
-      br.events.insert(br.events.end(), fwd_ev.begin(), fwd_ev.end());
-      res.branches.push_back(std::move(br));
+      res.branches.push_back(trace_branch(tr, walker, tr.scaled(sol.t1(), sol.t2(), seed_mu[k]), sol.orbit.a));
     }
   }
 
@@ -663,6 +675,57 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
     for (const BranchEvent& e : b.events) res.stalled_branches += e.kind == BranchEventKind::Stalled;
   const bool complete = res.incomplete_seed_solves == 0 && res.stalled_branches == 0 && res.unlisted_crossings == 0;
   res.status = complete ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
+  res.corrector_solves = tr.corrector_solves;
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  return res;
+}
+
+ContinuationResult continue_branch(const ParametricSystem& ps, double mu, const Solution& solution,
+                                   const ContinueOptions& options) {
+  options.validate();
+  const auto t_start = std::chrono::steady_clock::now();
+  const Parameter& par = ps.parameter();
+  if (!(mu >= par.min && mu <= par.max)) {
+    std::ostringstream os;
+    os << "continue_branch: expected mu in the range [" << par.min << ", " << par.max << "] of " << par.name
+       << ", got " << mu;
+    detail::invalid(os.str());
+  }
+  if (solution.orbit.symmetry != options.symmetry)
+    detail::invalid(std::string("continue_branch: expected a solution of symmetry ") + to_string(options.symmetry) +
+                    " (options.symmetry), got one of symmetry " + to_string(solution.orbit.symmetry));
+  ContinuationResult res;
+  res.parameter = par;
+  res.symmetry = options.symmetry;
+  res.t1_max = options.t1_max;
+  res.t2_max = options.t2_max;
+  std::tie(res.t1_min, res.t2_min) = window_lower_ends(ps, options);
+  Tracer tr(ps, options, res.t1_min, res.t2_min);
+  // the solution's null vector in this modal basis (refuses an orbit of another system), then the point corrected
+  // onto the branch at fixed mu: the hyperplane of the corrector is mu = const
+  const ModalForm& md = tr.at(mu).modal;
+  const Vec a = in_modal_basis(md, solution.orbit, "continue_branch").a;
+  const V3 y_given = tr.scaled(solution.t1(), solution.t2(), mu);
+  Vec xref = md.Phi() * (a.array() / md.omega().array()).matrix();
+  xref /= xref.norm();
+  V3 y0;
+  Eval e;
+  int its = 0;
+  const bool on_branch = tr.correct(y_given, V3(0.0, 0.0, 1.0), xref, y0, e, its) &&
+                         std::hypot(tr.t1(y0) - solution.t1(), tr.t2(y0) - solution.t2()) <=
+                             search::kPolishReach * (solution.t1() + solution.t2());
+  if (!on_branch) {
+    std::ostringstream os;
+    os << "continue_branch: the solution at (t1, t2) = (" << solution.t1() << ", " << solution.t2()
+       << ") is no SPP of the system at " << par.name << " = " << mu
+       << " (Newton at fixed mu did not converge near it): give a solution of system.at(mu)";
+    detail::invalid(os.str());
+  }
+  const std::vector<double> no_seeds;  // (the walker keeps a reference)
+  BranchWalker walker(tr, options, no_seeds, ps.g0() == 0.0);
+  res.branches.push_back(trace_branch(tr, walker, y0, a));
+  for (const BranchEvent& ev : res.branches.front().events) res.stalled_branches += ev.kind == BranchEventKind::Stalled;
+  res.status = res.stalled_branches == 0 ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
   res.corrector_solves = tr.corrector_solves;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return res;

@@ -2,6 +2,7 @@
 // and the zero-gap SPPs of paper §6.1 come out where the two flight frequencies are in an odd ratio.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -281,4 +282,54 @@ TEST(Continuation, TrialValuesBeyondTheRangeWithNoValidSystemFailTheStepNotTheRu
       range_ends_at_min += e.kind == BranchEventKind::RangeEnd && std::abs(e.at.mu - 1e-3) <= 1e-6;
   }
   EXPECT_GT(range_ends_at_min, 0);
+}
+
+// continue_branch: the branch through one SPP of solve() at a non-seed value is the branch continue_branches gives
+// through the same point (same ends, same events), at the cost of that branch alone; a point that is no SPP there,
+// or a mu outside the range, is refused.
+TEST(Continuation, OneBranchFromOneSolutionIsTheBranchThroughIt) {
+  const ParametricSystem ps = paper_61(1.0, 1.0, 10.0);
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  const ContinuationResult all = continue_branches(ps, o);
+  const double mu = 4.9;
+  SolveOptions so;
+  so.t1_max = o.t1_max;
+  so.t2_max = o.t2_max;
+  const SolveResult sr = solve(ps.at(mu), so);
+  ASSERT_GE(sr.solutions.size(), 3u);
+  int compared = 0;
+  for (size_t k = 0; k < sr.solutions.size(); k += 3) {
+    const Solution& sol = sr.solutions[k];
+    const ContinuationResult one = continue_branch(ps, mu, sol, o);
+    ASSERT_EQ(one.branches.size(), 1u);
+    EXPECT_EQ(one.status, ContinuationStatus::Success) << one.brief_report();
+    EXPECT_LT(one.corrector_solves, all.corrector_solves);
+    const Branch& b = one.branches.front();
+    // it passes through the solution
+    double nearest = 1e300;
+    for (const BranchPoint& p : b.points)
+      if (std::abs(p.mu - mu) <= 1e-12) nearest = std::min(nearest, std::hypot(p.t1 - sol.t1(), p.t2 - sol.t2()));
+    EXPECT_LT(nearest, 1e-9);
+    // the branch of continue_branches that holds a point within 1e-6 of both of its ends is the same branch
+    const BranchPoint &first = b.points.front(), &last = b.points.back();
+    auto near = [](const BranchPoint& p, const BranchPoint& q) {
+      return std::abs(p.mu - q.mu) <= 1e-6 && std::hypot(p.t1 - q.t1, p.t2 - q.t2) <= 1e-6;
+    };
+    bool same = false;
+    for (const Branch& c : all.branches) {
+      const bool has_first = std::any_of(c.points.begin(), c.points.end(), [&](auto& p) { return near(p, first); });
+      const bool has_last = std::any_of(c.points.begin(), c.points.end(), [&](auto& p) { return near(p, last); });
+      same = same || (has_first && has_last && c.events.size() == b.events.size());
+    }
+    EXPECT_TRUE(same) << "branch from solution " << k << " ends at mu " << first.mu << " and " << last.mu;
+    ++compared;
+  }
+  EXPECT_GE(compared, 1);
+  // refused: no SPP there, mu outside the range
+  Solution moved = sr.solutions.front();
+  moved.orbit.t1 *= 1.3;
+  EXPECT_THROW(continue_branch(ps, mu, moved, o), std::invalid_argument);
+  EXPECT_THROW(continue_branch(ps, 11.0, sr.solutions.front(), o), std::invalid_argument);
 }

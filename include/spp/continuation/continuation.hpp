@@ -24,6 +24,7 @@
 
 #include "spp/core/parametric.hpp"
 #include "spp/modal/modal.hpp"
+#include "spp/orbit/solution.hpp"
 
 namespace spp {
 
@@ -110,6 +111,16 @@ struct ContinuationResult {
 /// `seeds` solves, then per branch step a few corrector iterations, each a few bordered solves and modal forms of
 /// size n (O(n^3)); corrector_solves counts them. Throws std::invalid_argument for invalid options.
 ContinuationResult continue_branches(const ParametricSystem& system, const ContinueOptions& options);
+
+/// The one branch through `solution`, an SPP of system.at(mu) (as solve() or solution_at() give it, from any
+/// machine: its orbit is taken in this modal basis, orbit/orbit.hpp in_modal_basis), followed both ways over the
+/// parameter's range within options' window. First the point is corrected at fixed mu (Newton on the branch
+/// equations); a solution that is no SPP there (it does not converge within 1e-3 (t1 + t2) of it) is refused. The
+/// result holds one branch; its status is Incomplete when an end stalled. No seed solves (seeds is ignored): the
+/// cost is the branch's alone. Throws std::invalid_argument for invalid options, a mu outside the range, a solution
+/// of another size or symmetry, or one that is no SPP at mu.
+ContinuationResult continue_branch(const ParametricSystem& system, double mu, const Solution& solution,
+                                   const ContinueOptions& options);
 
 /// The GapClosure events of a result (one per SPP), sorted by mu: with g0 = 0, the SPPs of paper §6.1.
 std::vector<BranchPoint> gap_closures(const ContinuationResult& result);
