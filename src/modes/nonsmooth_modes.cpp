@@ -74,6 +74,13 @@ std::string ModesResult::brief_report() const {
 
 namespace {
 
+// A family's first point is a tangency (a linear mode touching the obstacle, or a flight grazing it split into two
+// zero-speed impacts): its margin is 0 in exact arithmetic, and computed it is rounding of either sign. Within this
+// (relative to g0 and the speed scale, as the margin) it is taken as exactly 0, so that `admissible = margin >= 0`
+// holds at every point (the start was marked admissible whatever its computed margin; an independent attack found
+// margins of -1e-16 and, before the start of a past-grazing family was corrected onto it, -1.5e-6).
+constexpr double kTangencyMargin = 1e-9;
+
 namespace cont = spp::continuation;
 
 struct Tracer {
@@ -136,6 +143,14 @@ struct Tracer {
     p.admissible = o.margin >= 0.0;
     p.multiplicity = o.multiplicity;
     p.y = y;
+    return p;
+  }
+
+  // A family's first point, a tangency: its margin within kTangencyMargin of 0 is 0 (admissible); beyond, it is
+  // what it is (a start that is no tangency is reported as not admissible, not hidden).
+  static ModePoint tangency(ModePoint p) {
+    if (std::abs(p.margin) <= kTangencyMargin) p.margin = 0.0;
+    p.admissible = p.margin >= 0.0;
     return p;
   }
 
@@ -318,17 +333,21 @@ struct Tracer {
     y2(t0 + j + 1) = tau - tg;
     for (int i = j + 1; i <= m; ++i) y2(t0 + i + 1) = y(t0 + i);
     D = scales(next);
-    const Eigen::VectorXd z0 = (y2.array() / D.array()).matrix();
+    Eigen::VectorXd z0 = (y2.array() / D.array()).matrix();
+    // The source's grazing end is located to the bisection's tolerance, so the split flight's new impact has a gap
+    // of ~1e-6 g0: the start is corrected onto the k + 2 family (Newton across the curve) before it is recorded.
+    Eigen::VectorXd F;
+    Eigen::MatrixXd J;
+    linearize(next, z0, F, J);
+    Eigen::VectorXd z0c;
+    if (correct(next, z0, cont::curve_tangent(J, energy_gradient(next, z0)), z0c)) z0 = z0c;
     ModeFamily g;
     g.k = next.k;
     g.symmetry = next.symmetry;
     g.mode = src.mode;
-    ModePoint p0 = point(next, z0);
-    p0.admissible = true;  // the tangency counted twice: zero speed, gap >= 0
+    const ModePoint p0 = tangency(point(next, z0));  // the tangency counted twice: zero speed, gap >= 0
     g.points.push_back(p0);
     add_event(g, ModeEventKind::GrazingContinuation, p0, "flight_grazing end of " + src.label);
-    Eigen::VectorXd F;
-    Eigen::MatrixXd J;
     linearize(next, z0, F, J);
     const Eigen::VectorXd dir = cont::curve_tangent(J, energy_gradient(next, z0));
     start_family(g, next, z0, dir, nullptr);
@@ -348,9 +367,9 @@ struct Tracer {
     f.k = shape.k;
     f.symmetry = shape.symmetry;
     f.mode = mode;
-    ModePoint p0 = point(shape, z0);
+    // the linear mode touching the obstacle: gap >= 0, impact speeds 0
+    const ModePoint p0 = tangency(point(shape, z0));
     if (p0.energy >= options.energy_max) return;  // the family starts above the requested energies
-    p0.admissible = true;                         // the linear mode touching the obstacle: gap >= 0, impact speeds 0
     f.points.push_back(p0);
     add_event(f, ModeEventKind::GrazingStart, p0, "linear mode " + std::to_string(mode + 1) + " touching the obstacle");
     const Eigen::VectorXd tau = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
