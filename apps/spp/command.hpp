@@ -60,6 +60,7 @@ decltype(auto) naming_system_file(const std::string& path, F&& f) {
   } catch (const std::invalid_argument& e) {
     const std::string m = e.what();
     if (m.rfind("system: ", 0) == 0) detail::invalid(path + ": " + m.substr(8));
+    if (m.rfind("KippModel: ", 0) == 0) detail::invalid(path + ": " + m.substr(11));  // (spp modes)
     throw;
   }
 }

@@ -1,3 +1,4 @@
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -26,25 +27,27 @@ void check_output(const std::string& out, const std::string& opt, const std::vec
                   const std::vector<NamedOutput>& outputs) {
   namespace fs = std::filesystem;
   if (out.empty()) return;
+  // the file written: through a symbolic link; nothing under /dev or /proc; a name a file system takes (files.hpp)
+  const std::string target = output_file(out, opt);
   std::error_code ec;
   for (const std::string& in : inputs)
-    if (!in.empty() && same_file(out, in))
+    if (!in.empty() && same_file(target, in))
       detail::invalid(opt + ": \"" + out + "\" is also \"" + in +
                                   "\", a file this run reads (or another output): it would be replaced; write the " +
                                   "output to another file");
   for (const NamedOutput& o : outputs)
-    if (!o.path.empty() && same_file(out, o.path))
+    if (!o.path.empty() && same_file(target, o.path))
       detail::invalid(opt + ": \"" + out + "\" is also the output of " + o.option + " (\"" + o.path +
                                   "\"): two outputs of one run cannot share a file; give each its own");
   // an existing path that is not a regular file (a directory, /dev/null, a pipe) would be replaced by the rename of
   // the atomic write: refused (found by an independent attack: --out /dev/full replaced the device)
-  const fs::file_status st = fs::status(out, ec);
+  const fs::file_status st = fs::status(target, ec);
   if (fs::exists(st) && !fs::is_regular_file(st))
     detail::invalid(opt + ": \"" + out + "\" exists and is not a regular file (a directory or a device): " +
                                 "write the output to a file");
   // its directory: there and writable, checked by writing a probe file before any work (a read-only directory was
   // found only when the output was written, after the solve; found by an independent attack)
-  check_writable_directory(fs::path(out).parent_path().string(), opt + " \"" + quoted_path(out) + "\"");
+  check_writable_directory(fs::path(target).parent_path().string(), opt + " \"" + quoted_path(out) + "\"");
 }
 
 namespace {
@@ -55,14 +58,14 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 std::optional<double> parse_number(const std::string& item) {
-  size_t pos = 0;
+  // std::from_chars: decimal only ("0x10" and "0x1p-3" are not numbers here, as std::stod took them), no locale,
+  // "inf" and "nan" read (and refused where they are no values by the callers' checks)
   double x = 0.0;
-  try {
-    x = std::stod(item, &pos);
-  } catch (const std::exception&) {  // std::stod's way to say "not a number" or "out of range"
-    return std::nullopt;
-  }
-  if (pos == 0 || pos != item.size()) return std::nullopt;  // "1.5xyz" is not 1.5
+  const char* begin = item.data();
+  const char* end = item.data() + item.size();
+  if (begin != end && *begin == '+' && begin + 1 != end && begin[1] != '-') ++begin;  // "+3" (from_chars takes no +)
+  const auto [ptr, ec] = std::from_chars(begin, end, x);
+  if (ec != std::errc() || ptr != end || begin == end) return std::nullopt;  // "1.5xyz" is not 1.5; 1e400 no double
   return x;
 }
 

@@ -28,8 +28,8 @@ std::string bounded(const char* what) {
 }  // namespace
 
 namespace spp::cli {
-// The options naming a file or directory written (and --parameter, --values): an empty text is refused naming the
-// option (`--json ""` was silently ignored, `spp trajectory --csv ""` failed with 'cannot write "": rename failed';
+// Every option that takes a value, the files and directories written (and --parameter, --values) worded as such: an
+// empty text is refused naming the option (`--json ""` was silently ignored, `spp trajectory --csv ""` failed with 'cannot write "": rename failed';
 // found by an independent attack), on every subcommand, nested ones (generate chain) included.
 void refuse_empty_texts(CLI::App& app) {
   static const std::map<std::string, std::string> kExpected = {
@@ -38,16 +38,21 @@ void refuse_empty_texts(CLI::App& app) {
       {"events", "a file path"},   {"spp-csv", "a file path"},
       {"parameter", "the parameter's name"}, {"values", "values (start:stop:step or 1,2.5,3)"}};
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-    for (CLI::Option* opt : sub->get_options([](CLI::Option*) { return true; }))
+    for (CLI::Option* opt : sub->get_options([](CLI::Option*) { return true; })) {
+      if (opt->get_type_size_min() <= 0) continue;  // a flag
+      // every option that takes a value (CLI11 read `--t1-max ""` as 0); the paths' and names' wording from the list
+      std::string expected = "a value";
       for (const std::string& name : opt->get_lnames())
-        if (const auto it = kExpected.find(name); it != kExpected.end()) {
-          const std::string expected = it->second;
-          opt->check(CLI::Validator(
-              [expected](std::string& text) {
-                return text.empty() ? "expected " + expected + ", got an empty text" : std::string();
-              },
-              ""));
-        }
+        if (const auto it = kExpected.find(name); it != kExpected.end()) expected = it->second;
+      opt->check(CLI::Validator(
+          [expected](std::string& text) {
+            return text.empty() ? "expected " + expected + ", got an empty text" : std::string();
+          },
+          ""));
+      // every whole-number option reads counts as --help writes them (1e6; CLI11 said "Could not convert"); its own
+      // range is checked by its options' validate()
+      if (opt->get_type_name() == "INT") opt->transform(whole_number(-kMaxCount, kMaxCount));
+    }
     refuse_empty_texts(*sub);
   }
 }

@@ -65,7 +65,7 @@ int run(ModesArgs& a) {
   a.options.branch_points = !a.no_branches;
   a.options.validate();
   const System sys = load_system(a.system);
-  const modes::ModesResult r = modes::nonsmooth_modes(sys, a.options);
+  const modes::ModesResult r = naming_system_file(a.system, [&] { return modes::nonsmooth_modes(sys, a.options); });
   const std::string json_text = a.json.empty() ? "" : modes_json(sys, r);
   std::cout << table(r) << r.brief_report() << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);

@@ -64,7 +64,8 @@ int run(TrajectoryArgs& a) {
       detail::invalid(a.result + ": was solved for another system than " + a.system + " (omit " + a.system +
                       ": the result file holds its system)");
   }
-  const ModalForm md(sys);  // once, for the search and the samples
+  // once, for the search and the samples; a refusal of the system names the file it came from
+  const ModalForm md = naming_system_file(a.system.empty() ? a.result : a.system, [&] { return ModalForm(sys); });
   std::optional<Solution> loaded;
   if (!a.result.empty()) {
     if (a.solution < 0) detail::invalid("trajectory: --result needs --solution K (0-based)");

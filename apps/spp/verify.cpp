@@ -4,6 +4,7 @@
 
 #include "command.hpp"
 #include "spp/io.hpp"
+#include "spp/modal/modal.hpp"
 #include "spp/simulation/verify.hpp"
 #include "tables.hpp"
 
@@ -19,6 +20,9 @@ struct VerifyArgs {
 int run(const VerifyArgs& a) {
   check_output(a.json, "--json", {a.result});
   const ResultFile file = load_result_file(a.result);
+  // the modal form the solver used: a system it refuses (a spectrum beyond double precision) is refused here too,
+  // naming the file, not simulated for minutes to disagree (found by an independent attack)
+  naming_system_file(a.result, [&] { return ModalForm(file.system); });
   const VerifyResult r = verify(file.system, file.result.solutions, a.options);
   const std::string json_text = a.json.empty() ? "" : verify_json(r);
   std::cout << verify_table(r) << r.brief_report() << "\n";

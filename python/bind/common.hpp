@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,11 +80,23 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
       detail::invalid(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
                                   " fields: " + list + ")");
     }
+    const py::object current = o.attr(key);
+    py::object given = py::reinterpret_borrow<py::object>(value);
+    // a bool is no number here (t1_max=True solved the window (0, 1]); a whole float is a count (max_cells=1e7, as
+    // the CLI and --help write it)
+    const bool is_bool = py::isinstance<py::bool_>(given) ||
+                         py::isinstance(given, py::module_::import("numpy").attr("bool_"));
+    if (is_bool && !py::isinstance<py::bool_>(current))
+      throw py::type_error(std::string(where) + ": option " + name + " must be " +
+                           std::string(py::str(py::type::of(current).attr("__name__"))) + " like its default " +
+                           py::repr(current).cast<std::string>() + ", got " + typed_repr(given));
+    if (py::isinstance<py::int_>(current) && !py::isinstance<py::bool_>(current) && py::isinstance<py::float_>(given) &&
+        given.attr("is_integer")().cast<bool>() && std::abs(given.cast<double>()) <= 9e15)
+      given = py::int_(given);
     try {
-      py::setattr(o, key, value);
+      py::setattr(o, key, given);
     } catch (const py::error_already_set& e) {
       if (!e.matches(PyExc_TypeError)) throw;
-      const py::object current = o.attr(key);
       throw py::type_error(std::string(where) + ": option " + name + " must be " +
                            std::string(py::str(py::type::of(current).attr("__name__"))) + " like its default " +
                            py::repr(current).cast<std::string>() + ", got " + typed_repr(value));

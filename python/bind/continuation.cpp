@@ -107,7 +107,8 @@ void bind_continuation(py::module_& m) {
             with_fields<spp::ContinueOptions>(options, fields, "continue_branch", "ContinueOptions");
         if (t1_max) o.t1_max = *t1_max;
         if (t2_max) o.t2_max = *t2_max;
-        o.symmetry = solution.orbit.symmetry;  // (the solution says which equations it solves)
+        // the solution says which equations it solves, unless the caller said (then a mismatch is refused)
+        if (options.is_none() && !fields.contains("symmetry")) o.symmetry = solution.orbit.symmetry;
         o.validate();
         py::gil_scoped_release release;
         return spp::continue_branch(s, mu, solution, o);

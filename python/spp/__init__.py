@@ -25,8 +25,12 @@ from ._args import named_type_errors as _named_type_errors
 for _name, _value in list(globals().items()):
     if type(_value).__name__ == "builtin_function_or_method" and getattr(_value, "__module__", "") == "spp._spp":
         globals()[_name] = _named_type_errors(_value, f"spp.{_name}")
-    elif isinstance(_value, type) and _value.__module__ == "spp._spp" and "__init__" in vars(_value):
-        _named_constructor_type_errors(_value)
+    elif isinstance(_value, type) and _value.__module__ == "spp._spp":
+        if "__init__" in vars(_value):
+            _named_constructor_type_errors(_value)
+        if "from_json" in vars(_value):  # System.from_json(pathlib.Path(...)) and the like
+            setattr(_value, "from_json",
+                    staticmethod(_named_type_errors(_value.from_json, f"spp.{_name}.from_json")))
 _solve = _named_type_errors(_spp.solve, "spp.solve")
 
 

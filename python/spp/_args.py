@@ -8,6 +8,7 @@ cannot drift from the binding). Written here: pybind11 has no option for it.
 """
 import functools
 import numbers
+import os
 import re
 
 _PYBIND_MESSAGES = ("incompatible function arguments", "incompatible constructor arguments")
@@ -51,6 +52,8 @@ def _signatures(fn):
 
 def _fits(value, type_name):
     """Whether pybind11 would convert value to type_name (None when the type is not one of the plain ones)."""
+    if type_name.startswith("spp._spp."):  # a bound class: spp.System, spp.Solution, ...
+        return type(value).__name__ == type_name.rsplit(".", 1)[-1]
     if type_name == "float":
         return isinstance(value, numbers.Real) or hasattr(value, "__float__") and not isinstance(value, (str, bytes))
     if type_name == "int":
@@ -71,8 +74,40 @@ def _explain(label, signatures, args, kwargs):
             if name in given and _fits(given[name], type_name) is False:
                 value = repr(given[name])
                 value = value if len(value) <= 60 else value[:60] + "..."
-                return f"{label}: argument {name} must be {type_name}, got {type(given[name]).__name__} {value}"
+                shown = "spp." + type_name.rsplit(".", 1)[-1] if type_name.startswith("spp._spp.") else type_name
+                return f"{label}: argument {name} must be {shown}, got {type(given[name]).__name__} {value}"
     return None
+
+
+def _complex(value):
+    try:
+        import numpy
+        return bool(numpy.iscomplexobj(value))
+    except Exception:  # not array-like: pybind11 refuses it, named by _explain
+        return False
+
+
+def _prepared(label, signatures, args, kwargs):
+    """The arguments as the binding takes them, before the call (a single signature only): a path object for a str
+    (pathlib.Path: load_result(Path(...)) was refused), and a bool refused where a number is expected (g0=True,
+    spp.chain(True) were taken as 1)."""
+    if len(signatures) != 1:
+        return args, kwargs
+    params = signatures[0]
+    args = list(args)
+    for i, (name, type_name) in enumerate(params):
+        where = (args, i) if i < len(args) else (kwargs, name) if name in kwargs else None
+        if where is None:
+            continue
+        value = where[0][where[1]]
+        if type_name == "str" and isinstance(value, os.PathLike):
+            where[0][where[1]] = os.fspath(value)
+        elif type_name in ("float", "int") and (isinstance(value, bool) or type(value).__name__ == "bool_"):
+            raise TypeError(f"{label}: argument {name} must be {type_name}, got bool {value!r}")
+        elif type_name.startswith("numpy.ndarray[numpy.float64") and _complex(value):
+            # (numpy would keep the real part with a mere ComplexWarning, as System already refuses)
+            raise ValueError(f"{label}: argument {name} must be real, got a complex array")
+    return tuple(args), kwargs
 
 
 def named_type_errors(fn, label):
@@ -81,6 +116,7 @@ def named_type_errors(fn, label):
 
     @functools.wraps(fn)
     def call(*args, **kwargs):
+        args, kwargs = _prepared(label, signatures, args, kwargs)
         try:
             return fn(*args, **kwargs)
         except TypeError as e:
@@ -102,6 +138,7 @@ def named_constructor_type_errors(cls):
     signatures = _signatures(init)
 
     def __init__(self, *args, **kwargs):
+        args, kwargs = _prepared(f"spp.{cls.__name__}", signatures, args, kwargs)
         try:
             init(self, *args, **kwargs)
         except TypeError as e:

@@ -553,3 +553,36 @@ def test_continue_branch_follows_the_branch_through_one_solution():
     assert pts[:, 0].min() < 4.9 < pts[:, 0].max()  # followed both ways
     with pytest.raises(ValueError, match="continue_branch: expected mu in the range"):
         spp.continue_branch(ps, 20.0, sol, t1_max=8, t2_max=3)
+
+
+def test_second_attack_bools_paths_counts_classes_and_complex(tmp_path):
+    import pathlib
+    s = spp.two_dof()
+    with pytest.raises(TypeError, match=r"^solve: option t1_max must be float like its default 0.0, got bool True"):
+        spp.solve(s, t1_max=True, t2_max=3)
+    with pytest.raises(TypeError, match=r"^spp.chain: argument n must be int, got bool True$"):
+        spp.chain(True)
+    with pytest.raises(TypeError, match=r"^spp.System: argument g0 must be float, got bool True$"):
+        spp.System(np.eye(2), np.eye(2), [0.0, 1.0], True)
+    assert spp.solve(s, t1_max=3, t2_max=3, max_cells=1e7).status == "success"  # a whole float is a count
+    with pytest.raises(TypeError, match=r"^spp.fundamental_box: argument .* must be spp.System, got NoneType None$"):
+        spp.fundamental_box(None)
+    r = spp.solve(s, t1_max=3, t2_max=3)
+    path = tmp_path / "r.json"
+    path.write_text(r.to_json(s))
+    assert len(spp.load_result(path).solutions) == len(r.solutions)  # a pathlib.Path is a path
+    sys_path = pathlib.Path(SRC) / "examples" / "chain5.json"
+    assert spp.System.from_json(sys_path).n == 5
+    with pytest.raises(ValueError, match=r"^spp.simulate: argument x0 must be real, got a complex array$"):
+        spp.simulate(s, np.zeros(2, complex), np.zeros(2), 1.0)
+
+
+def test_continue_branch_refuses_a_solution_outside_the_window_or_of_another_symmetry():
+    ps = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                              np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 1.0, "k2", 1.0, 10.0)
+    sols = spp.solve(ps.at(4.9), t1_max=8, t2_max=3).solutions
+    far = max(sols, key=lambda x: x.t1)
+    with pytest.raises(ValueError, match="continue_branch: the solution at .* is outside the window"):
+        spp.continue_branch(ps, 4.9, far, t1_max=0.5 * far.t1, t2_max=3)
+    with pytest.raises(ValueError, match="expected a solution of symmetry point"):
+        spp.continue_branch(ps, 4.9, sols[0], t1_max=8, t2_max=3, symmetry="point")

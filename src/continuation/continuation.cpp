@@ -700,6 +700,14 @@ ContinuationResult continue_branch(const ParametricSystem& ps, double mu, const 
   res.t1_max = options.t1_max;
   res.t2_max = options.t2_max;
   std::tie(res.t1_min, res.t2_min) = window_lower_ends(ps, options);
+  if (!(solution.t1() > res.t1_min && solution.t1() <= res.t1_max && solution.t2() > res.t2_min &&
+        solution.t2() <= res.t2_max)) {
+    std::ostringstream os;
+    os << "continue_branch: the solution at (t1, t2) = (" << solution.t1() << ", " << solution.t2()
+       << ") is outside the window (" << res.t1_min << ", " << res.t1_max << "] x (" << res.t2_min << ", "
+       << res.t2_max << "]: expected t1_max and t2_max that hold it";
+    detail::invalid(os.str());
+  }
   Tracer tr(ps, options, res.t1_min, res.t2_min);
   // the solution's null vector in this modal basis (refuses an orbit of another system), then the point corrected
   // onto the branch at fixed mu: the hyperplane of the corrector is mu = const

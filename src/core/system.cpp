@@ -131,6 +131,19 @@ System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g
        << " underflows (below the normal doubles): rescale w and g0 by one factor";
     detail::invalid(os.str());
   }
+  // The orbits scale with g0 and their energies with g0^2 |K|: beyond ~1e200 (or below 1e-200) an energy, a squared
+  // norm or a stability product overflows (underflows) to inf/NaN or 0 (g0 = 1e155 gave a wrong spectral radius and
+  // "stable" with status success; g0 = 1e-250 zero energies; found by an independent attack). Refused, with the
+  // remedy: the same system in other units.
+  constexpr double kMaxEnergyScale = 1e200;
+  const double energy_scale = g0_ * g0_ * K_.cwiseAbs().maxCoeff();
+  if (g0 != 0.0 && std::isfinite(g0_) && !(energy_scale >= 1.0 / kMaxEnergyScale && energy_scale <= kMaxEnergyScale)) {
+    std::ostringstream os;
+    os << "system: the energy scale (g0 / |w|)^2 max|K| = " << energy_scale << " (g0 / |w| = " << g0_
+       << ") is outside [1e-200, 1e200], where energies and stability products stay within double precision: "
+          "expected the system in units where g0 and K are nearer 1 (e.g. lengths in mm instead of m)";
+    detail::invalid(os.str());
+  }
 }
 
 System System::normalized(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, double input_norm,

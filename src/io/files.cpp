@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstring>
 
 #include <filesystem>
 #include <fstream>
@@ -47,7 +48,34 @@ std::string read_file(const std::string& path) {
   return text;
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
+std::string output_file(const std::string& path, const std::string& what) {
+  const std::string shown = io::shorten(path, io::kQuotedPathChars);
+  auto refuse_system_dirs = [&](const std::string& p) {
+    for (const char* system_dir : {"/dev/", "/proc/"})
+      if (p.rfind(system_dir, 0) == 0)
+        invalid(what + ": \"" + shown + "\" is under " + std::string(system_dir, std::strlen(system_dir) - 1) +
+                " (a device or a process's file, such as a redirected /dev/stdout): expected an output file; write "
+                "it to a file, then copy it where it must go");
+  };
+  std::error_code ec;
+  refuse_system_dirs(fs::absolute(fs::path(path), ec).lexically_normal().string());
+  fs::path target(path);
+  if (fs::is_symlink(fs::symlink_status(target, ec))) {
+    target = fs::canonical(target, ec);
+    if (ec) invalid(what + ": \"" + shown + "\" is a symbolic link to a missing file: give the file's own path");
+    refuse_system_dirs(target.string());
+  }
+  // NAME_MAX of the usual file systems (ext4, xfs, btrfs, tmpfs): a longer name fails only at the final rename
+  constexpr size_t kMaxFileName = 255;
+  const std::string name = target.filename().string();
+  if (name.size() > kMaxFileName)
+    invalid(what + ": the file name \"" + io::shorten(name, 60) + "\" has " + std::to_string(name.size()) +
+            " bytes, more than the " + std::to_string(kMaxFileName) + " a file system allows");
+  return target.string();
+}
+
+void write_file_atomic(const std::string& given, const std::string& content) {
+  const std::string path = output_file(given, "cannot write \"" + io::shorten(given, io::kQuotedPathChars) + "\"");
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(dir))
@@ -58,7 +86,9 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   const fs::file_status st = fs::status(target, st_ec);
   if (fs::exists(st) && !fs::is_regular_file(st))
     invalid("cannot write \"" + path + "\": it exists and is not a regular file (a directory or a device)");
-  const fs::path tmp = dir / (".tmp." + target.filename().string() + "." + std::to_string(::getpid()));
+  // a short name (the target's may be up to 255 bytes), unique to this process and call
+  static std::atomic<unsigned> calls{0};
+  const fs::path tmp = dir / (".tmp.spp." + std::to_string(::getpid()) + "." + std::to_string(calls++));
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) invalid("cannot write \"" + path + "\": cannot create a temporary file in \"" + dir.string() + "\"");

@@ -42,22 +42,16 @@ void check_resolved_spectrum(const Eigen::VectorXd& omega2) {  // ascending
 }
 }  // namespace
 
-// (a function-try-block: the eigensolvers' n x n workspaces are what runs out first for a large n)
-ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) try : n_(system.n()) {
-  detail::SymmetricEigen ges = detail::generalized_symmetric_eigen(system.K(), system.M());
-  if (!ges.ok) detail::internal_error("modal form: the generalized eigenproblem K v = omega^2 M v did not converge");
-  check_resolved_spectrum(ges.values);
-  Eigen::VectorXd omega_all = ges.values.cwiseMax(0.0).cwiseSqrt();
-  Eigen::MatrixXd Phi_all = std::move(ges.vectors);  // M-normalised
-  const Eigen::VectorXd& w = system.w();
-
-  // Repeated frequencies: rotate each group (Householder) so that only its first mode couples to w.
-  const int n = n_;
+int align_repeated_frequencies(Eigen::VectorXd& omega, Eigen::MatrixXd& Phi, const Eigen::VectorXd& w,
+                               double repeat_tol) {
+  const int n = static_cast<int>(omega.size());
+  int groups = 0;
   for (int i = 0; i < n;) {
     int j = i + 1;
-    while (j < n && omega_all(j) - omega_all(i) <= repeat_tol * omega_all(j)) ++j;
+    while (j < n && omega(j) - omega(i) <= repeat_tol * omega(j)) ++j;
     if (j - i > 1) {
-      Eigen::MatrixXd V = Phi_all.middleCols(i, j - i);
+      // a Householder reflection of the group's shapes taking c = V^T w onto e1 |c|
+      Eigen::MatrixXd V = Phi.middleCols(i, j - i);
       Eigen::VectorXd c = V.transpose() * w;
       if (c.norm() > 0.0) {
         Eigen::VectorXd e = Eigen::VectorXd::Zero(j - i);
@@ -67,15 +61,28 @@ ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_
         if (v.norm() > kAligned * c.norm()) {
           v.normalize();
           Eigen::MatrixXd Hh = Eigen::MatrixXd::Identity(j - i, j - i) - 2.0 * v * v.transpose();
-          Phi_all.middleCols(i, j - i) = V * Hh;
+          Phi.middleCols(i, j - i) = V * Hh;
         }
       }
-      const double wmean = omega_all.segment(i, j - i).mean();
-      omega_all.segment(i, j - i).setConstant(wmean);
-      ++repeated_groups_;
+      omega.segment(i, j - i).setConstant(omega.segment(i, j - i).mean());
+      ++groups;
     }
     i = j;
   }
+  return groups;
+}
+
+// (a function-try-block: the eigensolvers' n x n workspaces are what runs out first for a large n)
+ModalForm::ModalForm(const System& system, double decoupling_tol, double repeat_tol) try : n_(system.n()) {
+  detail::SymmetricEigen ges = detail::generalized_symmetric_eigen(system.K(), system.M());
+  if (!ges.ok) detail::internal_error("modal form: the generalized eigenproblem K v = omega^2 M v did not converge");
+  check_resolved_spectrum(ges.values);
+  Eigen::VectorXd omega_all = ges.values.cwiseMax(0.0).cwiseSqrt();
+  Eigen::MatrixXd Phi_all = std::move(ges.vectors);  // M-normalised
+  const Eigen::VectorXd& w = system.w();
+
+  repeated_groups_ = align_repeated_frequencies(omega_all, Phi_all, w, repeat_tol);
+  const int n = n_;
 
   Eigen::VectorXd b = Phi_all.transpose() * w;  // |b|^2 = w^T M^{-1} w
   beta_ = b.norm();

@@ -8,6 +8,7 @@
 #include "spp/detail/internal_error.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
+#include "spp/modal/modal.hpp"
 
 namespace spp::modes {
 
@@ -44,6 +45,10 @@ KippModel::KippModel(const System& system) : system_(system) {
   if (!es.ok) detail::internal_error("KippModel: the generalized eigenproblem did not converge");
   omega_ = es.values.cwiseMax(0.0).cwiseSqrt();
   Phi_ = es.vectors;
+  // A repeated frequency: one mode of its group sees the obstacle, the others none (they start no family). Any
+  // basis of the eigenspace was taken before, and each mode with some of w started its own copy of one family,
+  // and orbits spread over the group were listed as families of zero-speed impacts (found by an independent attack).
+  align_repeated_frequencies(omega_, Phi_, system.w(), kRepeatedFrequency);
   b_ = Phi_.transpose() * system.w();
   // Orthonormal basis of b^perp: the last n - 1 columns of the Householder Q of b.
   const int n = system.n();

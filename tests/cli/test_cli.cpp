@@ -886,6 +886,63 @@ TEST(Cli, CountsReadAsTheHelpWritesThemAndRefusalsNameTheOptionAndFile) {
                                 "--at -1e+06: " + ps.string() + " at k2 = -1e+06 is no valid system: ", out);
 }
 
+// Found by a second independent attack: an output through a symbolic link replaced the link (as root, /dev/stdout
+// itself); a 300-byte file name failed only after the solve; `--t1-max ""` read as 0; a g0 = 0 solve's file, or a
+// result with g0 = 0, unsorted SPPs or a negative energy, was read as a result of spp solve.
+TEST(Cli, OutputsAreWrittenThroughLinksAndOddOnesRefusedBeforeTheWork) {
+  const fs::path target = dir() / "link_target.json", link = dir() / "link.json";
+  fs::remove(link);
+  std::ofstream(target) << "old";
+  fs::create_symlink(target, link);
+  const CliRun r = run("solve " + kChain + " --t1-max 3 --t2-max 3 --quiet --json " + link.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  std::ifstream in(target);
+  std::string first;
+  std::getline(in, first);
+  EXPECT_EQ(first, "{");
+  const fs::path out = dir() / "odd.json";
+  expect_refused_without_output("solve " + kChain + " --t1-max 3 --t2-max 3 --json /dev/stdout",
+                                "--json: \"/dev/stdout\" is under /dev", out);
+  const std::string long_name = (dir() / (std::string(300, 'a') + ".json")).string();
+  const CliRun l = run("solve " + kChain + " --t1-max 3 --t2-max 3 --json " + long_name);
+  EXPECT_EQ(l.code, 1);
+  EXPECT_NE(l.out.find("--json: the file name \"aaaa"), std::string::npos) << l.out;
+  EXPECT_EQ(l.out.find("spp: success"), std::string::npos) << "refused only after the solve: " << l.out;
+  expect_refused_without_output("solve " + kChain + " --t1-max \"\" --t2-max 3 --json " + out.string(),
+                                "--t1-max: expected a value, got an empty text", out);
+}
+
+TEST(Cli, ResultsThatNoSolveAtNonzeroGapWritesAreNamedAsSuch) {
+  const fs::path zg = dir() / "zg.json", csv = dir() / "zg.csv";
+  ASSERT_EQ(run("solve " + std::string(SPP_SOURCE_DIR) + "/examples/two_dof_zero_gap.json --t1-max 3 --t2-max 1 --json " +
+                zg.string())
+                .code,
+            0);
+  expect_refused_without_output("trajectory --result " + zg.string() + " --solution 0 --csv " + csv.string(),
+                                "this is the result of a g0 = 0 solve", csv);
+  const fs::path res = dir() / "g0res.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 6 --t2-max 6 --quiet --json " + res.string()).code, 0);
+  nlohmann::json j;
+  std::ifstream(res) >> j;
+  auto refused = [&](const nlohmann::json& bad, const std::string& message) {
+    const fs::path p = dir() / "g0bad.json";
+    std::ofstream(p) << bad.dump();
+    const CliRun v = run("verify " + p.string());
+    EXPECT_EQ(v.code, 1) << v.out;
+    EXPECT_NE(v.out.find(message), std::string::npos) << v.out;
+  };
+  nlohmann::json bad = j;
+  bad["system"]["g0"] = 0.0;
+  refused(bad, "field \"g0\" is 0, which no result of spp solve has");
+  bad = j;
+  std::swap(bad["solutions"][0], bad["solutions"][1]);
+  refused(bad, "expected the SPPs sorted by period");
+  bad = j;
+  bad["solutions"][0]["energy"] = -5;
+  refused(bad, "field \"energy\": expected a number >= 0, got -5");
+}
+
 TEST(Cli, SimulateStoppedAtItsEventLimitExits5WithThePartialTrajectory) {
   // README: exit 1 writes no output; the event limit wrote the CSV and exited 1 (found by an independent attack).
   // It is a partial result, like Ctrl-C's: exit 5, the CSV holds the trajectory up to the last event.

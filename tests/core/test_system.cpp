@@ -86,5 +86,16 @@ TEST(System, GapThatUnderflowsWhenDividedByNormWIsRefused) {
   expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1e200), 1e-200); }, "g0 / |w| = 1e-200 / 1e+200 underflows");
   expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1e10), 1e-300); }, "underflows");
   EXPECT_EQ(System(I2(), K2(), Eigen::Vector2d(0, -1e200), 0.0).g0(), 0.0);  // a zero gap stays a zero gap
-  EXPECT_NEAR(System(I2(), K2(), Eigen::Vector2d(0, -1e200), 1e-100).g0(), 1e-300, 1e-314);
+  // g0 / |w| = 1e-300 is a normal double, but energies ~ g0^2 |K| underflow: refused with the energy scale
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1e200), 1e-100); }, "the energy scale (g0 / |w|)^2 max|K|");
+}
+
+// Found by an independent attack: g0 = 1e155 passed every check, and solve reported success with wrong spectral radii
+// ("stable" for an unstable SPP): energies ~ g0^2 |K| overflowed. Within [1e-200, 1e200] the system is taken.
+TEST(System, EnergyScaleBeyondDoublesIsRefusedNamingTheRemedy) {
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1), 1e155); }, "expected the system in units where g0");
+  expect_error([] { System(I2(), 1e100 * K2(), Eigen::Vector2d(0, -1), 1e60); }, "is outside [1e-200, 1e200]");
+  expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, -1), 1e-120); }, "the energy scale");
+  EXPECT_NO_THROW(System(I2(), K2(), Eigen::Vector2d(0, -1), 1e90));
+  EXPECT_NO_THROW(System(I2(), K2(), Eigen::Vector2d(0, -1), 1e-90));
 }

@@ -18,7 +18,12 @@ inline constexpr const char* kMaxInputFileReason =
 /// The bytes of a regular file of at most kMaxInputFileBytes. Throws std::invalid_argument naming the file when it
 /// cannot be opened, is not a regular file (a device such as /dev/zero, a pipe) or is larger.
 std::string read_file(const std::string& path);
-/// Writes `content` to a temporary file in the target's directory and renames it over `path`. Throws
+/// The file an output path names: `path` itself, or the file a symbolic link there points to (written through, not
+/// replaced: a rename over the link replaced it, /dev/stdout included, found by an independent attack). Refuses,
+/// naming `what` (e.g. "--json"), a dangling link, a path under /dev or /proc (devices and a process's files: a
+/// redirected /dev/stdout is no output file), and a file name longer than the file system's 255 bytes.
+std::string output_file(const std::string& path, const std::string& what);
+/// Writes `content` to a temporary file in the target's directory and renames it over output_file(path). Throws
 /// std::invalid_argument naming the file (missing directory, write or rename failure); the target is then untouched.
 void write_file_atomic(const std::string& path, const std::string& content);
 /// Checks before any work that files can be written in directory `dir` ("" is the working directory): creates a

@@ -26,6 +26,18 @@ const char* to_string(Symmetry s);
 /// the result files and Python).
 std::optional<Symmetry> symmetry_named(std::string_view name);
 
+/// Two frequencies closer than this (relative) are one repeated frequency: the eigensolver's rounding on omega^2 is
+/// ~eps omega_max^2 (1e-16 relative at best), so a gap below 1e-9 is no gap a search could use.
+inline constexpr double kRepeatedFrequency = 1e-9;
+
+/// Repeated frequencies (groups within repeat_tol relative, omega ascending): each group's M-normalised shapes
+/// (columns of Phi) rotated by one reflection so that only the group's first couples to w (Phi^T w zero on the
+/// others), and its frequencies set to their mean. Any basis of a repeated eigenspace is one; this one makes the
+/// modes that never see the contact explicit (they are dropped, or reported as decoupled). Returns the number of
+/// groups. O(n g^2) for groups of size g. Used by ModalForm and by the k-IPP model (modes/kipp.hpp).
+int align_repeated_frequencies(Eigen::VectorXd& omega, Eigen::MatrixXd& Phi, const Eigen::VectorXd& w,
+                               double repeat_tol);
+
 class ModalForm {
  public:
   /// decoupling_tol: a mode with |u_k| below it is treated as not seeing the contact.
@@ -33,7 +45,7 @@ class ModalForm {
   /// Cost O(n^3) (two symmetric eigenproblems, ~1 s at n = 1000): build it once and pass it on.
   /// Throws std::invalid_argument when double precision cannot resolve the spectrum: omega_max / omega_min above
   /// ~6.7e4 (the slowest omega^2 would keep fewer than 6 digits), or omega^2 not positive and finite.
-  explicit ModalForm(const System& system, double decoupling_tol = 1e-10, double repeat_tol = 1e-9);
+  explicit ModalForm(const System& system, double decoupling_tol = 1e-10, double repeat_tol = kRepeatedFrequency);
 
   int n() const { return n_; }                               ///< dofs of the system
   int m() const { return static_cast<int>(omega_.size()); }  ///< modes that see the contact
