@@ -1,0 +1,196 @@
+#!/usr/bin/python3
+"""README's figures, re-run: each claim below names a README line (a regular expression whose groups are the figures
+it states), the command that produces them, and how the figure is read from that command's output. Every claim is
+checked; each one that no longer holds is named with its README line number, the stated and the measured value.
+Exit 0 when every figure holds, 1 otherwise (2 when a command fails or README no longer has the line).
+
+Usage: scripts/readme-check.sh [--readme README.md] [BUILD_DIR]   (default build/; runs build/spp from the repository root)
+Tolerances: counts and statuses exactly; (t1, t2), k2 and box edges to the digits README prints them with (relative
+1e-7, or half a unit of the last printed digit); times are never compared (they depend on the machine's load).
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# The commands, run once each in a temporary directory (files they write are read by the later ones); {spp} is the
+# executable, {ex} the examples directory.
+COMMANDS = {
+    "solve_a": "{spp} solve {ex}/chain5.json --t1-max 12 --t2-max 12 --admissible-only --json c5a.json",
+    "solve_all": "{spp} solve {ex}/chain5.json --t1-max 12 --t2-max 12 --json c5.json --quiet",
+    "rod": "{spp} solve {ex}/rod4.json --t1-max 12 --t2-max 12 --admissible-only",
+    "box": "{spp} solve {ex}/chain5.json --box",
+    "dry": "{spp} solve {ex}/chain5.json --t1-max 12 --t2-max 12 --dry-run",
+    "verify": "{spp} verify c5.json",
+    "verify_periods": "{spp} verify c5a.json --periods 100 --perturb 1e-6 --restitution 0.5",
+    "zero_gap": "{spp} solve {ex}/two_dof_zero_gap.json --t1-max 3 --t2-max 1",
+    "dry20": "{spp} generate chain --n 20 --out c20.json && {spp} solve c20.json --box --dry-run",
+    "modes": "{spp} modes {ex}/chain5.json --k 1..5 --energy-max 150",
+    "sweep": "{spp} generate two-dof --g0 1 --parameter k2 --range 1,10 --out k2.json && mkdir runs && "
+             "{spp} sweep k2.json --parameter k2 --values 1:10:0.25 --t1-max 8 --t2-max 8 --out-dir runs",
+}
+
+
+def summary(pattern, group=1):
+    """Group `group` of the first output match of `pattern`."""
+    def read(out, _group):
+        m = re.search(pattern, out, re.M)
+        return m.group(group) if m else None
+    return read
+
+
+def row(index, column):
+    """Column `column` (0-based, after '#') of the table row whose first field is `index`."""
+    def read(out, _group):
+        for line in out.splitlines():
+            f = line.split()
+            if len(f) > column and f[0] == str(index):
+                return f[column]
+        return None
+    return read
+
+
+def count(pattern):
+    """How many output lines match `pattern`."""
+    return lambda out, _group: str(len(re.findall(pattern, out, re.M)))
+
+
+# (README pattern with one group per stated figure, command, [reader per group], comparison per group)
+# comparison: "exact" (counts, statuses) or "digits" (as many significant digits as README prints).
+CLAIMS = [
+    # Quick start: setup.sh's solve (the summary line and the 7 rows)
+    (r"^spp: (\w+), (\d+) SPPs \((\d+) admissible\) in \(0\.0409278, 12\] x \(0\.0412908, 12\]; (\d+) rectangles, "
+     r"(\d+) curve pieces, (\d+) evaluations",
+     "solve_a",
+     [summary(r"^spp: (\w+), (\d+) SPPs \((\d+) admissible\).*?; (\d+) rectangles, (\d+) curve pieces, (\d+) "
+              r"evaluations", g) for g in range(1, 7)], ["exact"] * 6),
+] + [
+    (r"^   %d\s+(\S+)\s+(\S+)\s+(\S+)\s+yes\s+\S+\s+\S+\s+(\S+)\s+(yes|no)$" % i, "solve_a",
+     [row(i, 1), row(i, 2), row(i, 3), row(i, 7), row(i, 8)], ["digits", "digits", "digits", "digits", "exact"])
+    for i in range(7)
+] + [
+    (r"^Without `--admissible-only` the same window holds (\d+) potential SPPs", "solve_all",
+     [summary(r"^spp: \w+, (\d+) SPPs")], ["exact"]),
+    (r"^has (\d+) admissible SPPs in `\(0, 12\]\^2`, at `\(t1, t2\) = \((\S+), (\S+)\)` and `\((\S+), (\S+)\)`", "rod",
+     [summary(r"^spp: \w+, \d+ SPPs \((\d+) admissible\)"), row(0, 1), row(0, 2), row(1, 1), row(1, 2)],
+     ["exact", "digits", "digits", "digits", "digits"]),
+    (r"^   0\s+(5\.4\S+)\s+(\S+)\s+\S+\s+yes\s+\S+\s+\S+\s+(\S+)\s+(yes|no)$", "rod",
+     [row(0, 1), row(0, 2), row(0, 7), row(0, 8)], ["digits", "digits", "digits", "exact"]),
+    (r"^   1\s+(7\.2\S+)\s+(\S+)\s+\S+\s+yes\s+\S+\s+\S+\s+(\S+)\s+(yes|no)$", "rod",
+     [row(1, 1), row(1, 2), row(1, 7), row(1, 8)], ["digits", "digits", "digits", "exact"]),
+    # Fundamental box
+    (r"t1 <= (\S+),$", "box", [summary(r"t1 <= pi / omega_1 = (\S+),")], ["digits"]),
+    (r"^t2 <= (\S+), (\d+) potential SPPs, (\d+) admissible\.", "box",
+     [summary(r"t2 <= pi / d_1 = (\S+)$"), summary(r"^spp: \w+, (\d+) SPPs"),
+      summary(r"^spp: \w+, \d+ SPPs \((\d+) admissible\)")], ["digits", "exact", "exact"]),
+    # --dry-run
+    (r"of magnitude\), then stops and writes nothing: for the paper's chain in `\(0, 12\]\^2`, (\d+) cells", "dry",
+     [summary(r", (\d+) cells$")], ["exact"]),
+    (r"fundamental box \(`spp generate chain --n 20`, `--box`\), (\d+) (\d+) cells", "dry20",
+     [lambda out, g: (summary(r", (\d+) cells$")(out, 0) or "")[:-3], lambda out, g: (summary(r", (\d+) cells$")(out, 0)
+                                                                                       or "")[-3:]],
+     ["exact", "exact"]),
+    # Nonsmooth modes (the CLI runs what README's Python line runs)
+    (r"energy_max=150\)`: (\d+) families, (\d+) genuine, \S+ s, status `(\w+)`:$", "modes",
+     [summary(r"^spp modes: (\w+), (\d+) families \((\d+) genuine", g) for g in (2, 3, 1)], ["exact"] * 3),
+    (r"^(\d+) families stalled; markers", "modes", [summary(r" stalled (\d+)")], ["exact"]),
+    # Sweeps
+    (r"--values 1:10:0\.25 --t1-max 8 --t2-max 8 --out-dir runs   # (\d+) values", "sweep",
+     [summary(r"^sweep over k2: (\d+) values, \1 done")], ["exact"]),
+    # The verify block
+    (r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) disagree", "verify",
+     [summary(r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) "
+              r"disagree", g) for g in range(1, 6)], ["exact"] * 5),
+    (r"^The (\d+) inadmissible SPPs of the chain leave in all three ways", "verify",
+     [summary(r"(\d+) leave the orbit")], ["exact"]),
+    (r"^impact, (\d+) early releases, (\d+) missing onsets\)", "verify",
+     [count(r"release at t = .*before the end"), count(r"no contact onset at t = 0")], ["exact", "exact"]),
+    (r"lists them: (\d+)\nimpact, \d+ early releases", "verify", [count(r"impact at t = ")], ["exact"]),
+] + [
+    (r"^   %d\s+(\S+)\s+(\S+)\s+yes\s+\S+\s+(returns|leaves)\s+(\d+/\d+)\s" % i, "verify_periods",
+     [row(i, 1), row(i, 2), row(i, 5), row(i, 6)], ["digits", "digits", "exact", "exact"])
+    for i in range(7)
+] + [
+    (r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) disagree.*$"
+     r"(?![\s\S]*^verify: )", "verify_periods",
+     [summary(r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) "
+              r"disagree", g) for g in range(1, 6)], ["exact"] * 5),
+    (r"simulator from their own rounded initial state for only (\d+), (\d+) and (\d+) periods", "verify_periods",
+     [lambda out, g, i=i: (row(i, 6)(out, 0) or "").split("/")[0] for i in (0, 4, 6)], ["exact"] * 3),
+    # §6.1 zero gap
+    (r"^   0\s+(1\.6\S+)\s+(\S+)\s+(\S+)\s+\S+\s+(yes|no)\s", "zero_gap", [row(0, 1), row(0, 2), row(0, 3), row(0, 5)],
+     ["digits", "digits", "digits", "exact"]),
+    (r"^   1\s+(5\.7\S+)\s+(\S+)\s+(\S+)\s+\S+\s+(yes|no)\s", "zero_gap", [row(1, 1), row(1, 2), row(1, 3), row(1, 5)],
+     ["digits", "digits", "digits", "exact"]),
+]
+
+
+# Times: reported beside README's, never compared (they depend on the machine and its load).
+REPORTED = [
+    (r"^spp: success, 7 SPPs \(7 admissible\) in .* evaluations, (\S+) s$", "solve_a",
+     summary(r"^spp: \w+, 7 SPPs .* evaluations, (\S+) s$")),
+    (r"energy_max=150\)`: \d+ families, \d+ genuine, (\S+) s,", "modes", summary(r"corrector solves, (\S+) s$")),
+]
+
+
+def agrees(stated, measured, how):
+    if measured is None:
+        return False
+    if how == "exact":
+        return stated == measured
+    try:
+        s, m = float(stated), float(measured)
+    except ValueError:
+        return stated == measured
+    digits = len(re.sub(r"[^0-9]", "", stated.split("e")[0]).lstrip("0")) or 1
+    return abs(s - m) <= max(1e-7 * abs(s), 0.5 * 10 ** (-digits + 1) * abs(s) * 1.0000001)
+
+
+def main():
+    args = sys.argv[1:]
+    readme_path = os.path.join(ROOT, "README.md")
+    if len(args) >= 2 and args[0] == "--readme":  # another README (the script's own test: a changed figure is named)
+        readme_path, args = args[1], args[2:]
+    build = os.path.abspath(args[0] if args else os.path.join(ROOT, "build"))
+    spp = os.path.join(build, "spp")
+    readme = open(readme_path, encoding="utf-8").read()
+    name = os.path.relpath(readme_path)
+    lines = readme.splitlines()
+    outputs, failed = {}, 0
+    with tempfile.TemporaryDirectory(prefix="readme-check-") as tmp:
+        for key, cmd in COMMANDS.items():
+            text = cmd.format(spp=spp, ex=os.path.join(ROOT, "examples"))
+            r = subprocess.run(text, shell=True, cwd=tmp, capture_output=True, text=True, timeout=300)
+            if r.returncode not in (0, 3):
+                print(f"readme-check: command failed (exit {r.returncode}): {text}\n{r.stderr}", file=sys.stderr)
+                return 2
+            outputs[key] = r.stdout + r.stderr
+    checked = 0
+    for pattern, key, readers, hows in CLAIMS:
+        m = re.search(pattern, readme, re.M)
+        if not m:
+            print(f"{name}: no line matches the claim /{pattern}/ (README changed: update scripts/readme_check.py)")
+            failed += 1
+            continue
+        line_no = readme.count("\n", 0, m.start()) + 1
+        for g, (read, how) in enumerate(zip(readers, hows), start=1):
+            stated, measured = m.group(g), read(outputs[key], g)
+            checked += 1
+            if not agrees(stated, measured, how):
+                failed += 1
+                print(f"{name}:{line_no}: states {stated!r}, `{COMMANDS[key].format(spp='spp', ex='examples')}` "
+                      f"gives {measured!r}\n    {lines[line_no - 1].strip()[:160]}")
+    for pattern, key, read in REPORTED:
+        m = re.search(pattern, readme, re.M)
+        if m:
+            print(f"{name}:{readme.count(chr(10), 0, m.start()) + 1}: time {m.group(1)} s, this run "
+                  f"{read(outputs[key], 1)} s (times are not compared)")
+    print(f"readme-check: {checked} figures in {len(CLAIMS)} README lines, {failed} no longer hold")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
