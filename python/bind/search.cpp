@@ -10,6 +10,77 @@
 
 namespace spp::python {
 
+namespace {
+
+// A progress=... keyword of solve, nearest_spp or root_map (None, True/False, a callable), called from the C++ run
+// (which holds no GIL: it is taken here) about every 0.2 s. Ctrl-C (KeyboardInterrupt) stops the run and keeps what was
+// done; the user's callable may stop it too (by returning False) or raise. Lives in the binding's frame: the C++
+// options hold a lambda that refers to it (copying a py::object without the GIL would not be safe).
+struct ProgressHook {
+  py::object callable = py::none();
+  bool call = false, text = false, interrupted = false, shown = false, late = false;
+
+  ProgressHook(const py::object& progress, const std::string& where) : callable(progress) {
+    call = PyCallable_Check(progress.ptr()) != 0;
+    // True/False/None (numpy's bool too) or a callable: anything else was taken for its truth (progress=5)
+    if (!call && !progress.is_none() && !py::isinstance<py::bool_>(progress) &&
+        !py::isinstance(progress, py::module_::import("numpy").attr("bool_")))
+      throw py::type_error(where + ": progress must be True, False, None, a callable or \"bar\", got " +
+                           typed_repr(progress));
+    text = !call && truth(progress);
+  }
+  static bool truth(const py::object& v) {
+    const int t = PyObject_IsTrue(v.ptr());
+    if (t < 0) throw py::error_already_set();
+    return t != 0;
+  }
+  template <class P>
+  bool operator()(const P& p) {
+    const py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+      PyErr_Clear();
+      interrupted = true;
+      return false;
+    }
+    if (text && p.seconds >= 1.0) {
+      py::module_::import("sys").attr("stderr").attr("write")("\r  " + p.line() + "   ");
+      shown = true;
+    }
+    if (!call) return true;
+    const py::object r = callable(p);
+    return r.is_none() || truth(r);  // None continues; otherwise the value's truth
+  }
+  // After the run (GIL held): ends the text line; a Ctrl-C that came after the last report counts as one (`late`).
+  void finish() {
+    if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
+    if (PyErr_CheckSignals() != 0) {
+      if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+      PyErr_Clear();
+      late = !interrupted;
+      interrupted = true;
+    }
+  }
+  // The RuntimeWarning of an interrupted run (warnings turned into errors raise).
+  void warn(const std::string& message) const {
+    if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0) throw py::error_already_set();
+  }
+};
+
+// progress is not a field of the options (a callable): taken out of the keywords first.
+py::object take_progress(const py::kwargs& fields, py::dict& rest) {
+  py::object progress = py::none();
+  for (const auto& [key, value] : fields) {
+    if (py::str(key).cast<std::string>() == "progress")
+      progress = py::reinterpret_borrow<py::object>(value);
+    else
+      rest[key] = value;
+  }
+  return progress;
+}
+
+}  // namespace
+
 void bind_search(py::module_& m) {
   bind_outcome(m, "SolveStatus", {spp::SolveStatus::NotRun, spp::SolveStatus::Success, spp::SolveStatus::Incomplete},
                "SolveResult.status (and NearestSpp.search_status): success (every check of completeness passed) or "
@@ -283,14 +354,29 @@ void bind_search(py::module_& m) {
       "nearest_spp",
       [solve_options](const spp::System& s, double t1, double t2, double radius, const py::object& options,
                       const py::kwargs& fields) {
-        const spp::SolveOptions o = solve_options(options, fields, "nearest_spp");
-        py::gil_scoped_release release;
-        return spp::nearest_spp(s, t1, t2, radius, o);
+        py::dict rest;
+        const py::object progress = take_progress(fields, rest);
+        spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "nearest_spp");
+        ProgressHook hook(progress, "nearest_spp");
+        o.progress = [&hook](const spp::SolveProgress& p) { return hook(p); };
+        spp::NearestSpp r;
+        {
+          py::gil_scoped_release release;
+          r = spp::nearest_spp(s, t1, t2, radius, o);
+        }
+        hook.finish();
+        hook.warn(hook.late && r.search_status == spp::SolveStatus::Success
+                      ? std::string("Ctrl-C came after the search had finished: the result is complete")
+                      : std::string("nearest_spp interrupted (Ctrl-C): search_status incomplete, the nearest SPP of "
+                                    "the part of the window searched"));
+        return r;
       },
       "system"_a, "t1"_a, "t2"_a, "radius"_a = 0.05, "options"_a = py::none(),
       "The SPP nearest to a guess (t1, t2), e.g. read off the root map: the complete solver on the window "
       "(t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the nearest root. "
-      "found is False when that window holds none. Raises ValueError.");
+      "found is False when that window holds none. progress=True|f as for solve (f(SolveProgress) returning False "
+      "stops the search: search_status is then incomplete); Ctrl-C stops it too, keeping what was found, with a "
+      "RuntimeWarning. Raises ValueError.");
 
   py::class_<spp::RootMapCell>(m, "RootMapCell", "One rectangle between pole lines, sampled on its own grid")
       .def_readonly("t1", &spp::RootMapCell::t1, "(n1,) ascending")
@@ -303,7 +389,17 @@ void bind_search(py::module_& m) {
       .def_readonly("flight_poles", &spp::RootMap::flight_poles, "pole lines t1 = (k + 1/2) pi / omega_i")
       .def_readonly("contact_poles", &spp::RootMap::contact_poles, "pole lines t2 = (k + 1/2) pi / d_j")
       .def_readonly("cells", &spp::RootMap::cells)
-      .def_readonly("evaluations", &spp::RootMap::evaluations);
+      .def_readonly("evaluations", &spp::RootMap::evaluations)
+      .def_readonly("unsampled_cells", &spp::RootMap::unsampled_cells,
+                    "cells left out because progress (or Ctrl-C) stopped the map; 0: the whole window");
+  py::class_<spp::RootMapProgress>(m, "RootMapProgress",
+                                   "What a running root map reports to its progress callback (root_map(..., "
+                                   "progress=f)).")
+      .def_readonly("cells_done", &spp::RootMapProgress::cells_done, "cells sampled so far")
+      .def_readonly("cells_total", &spp::RootMapProgress::cells_total, "cells of the window")
+      .def_readonly("evaluations", &spp::RootMapProgress::evaluations, "grid points evaluated so far")
+      .def_readonly("seconds", &spp::RootMapProgress::seconds, "time since the map started")
+      .def("__repr__", [](const spp::RootMapProgress& p) { return "<spp.RootMapProgress " + p.line() + ">"; });
   py::class_<spp::RootMapOptions>(m, "RootMapOptions",
                                   "Options of root_map (the C++ RootMapOptions, field by field; root_map(system, "
                                   "t1_max, t2_max, options, **fields) also takes any field as a keyword)")
@@ -324,17 +420,33 @@ void bind_search(py::module_& m) {
       "root_map",
       [](const spp::System& s, std::optional<double> t1_max, std::optional<double> t2_max, const py::object& options,
          const py::kwargs& fields) {
-        spp::RootMapOptions o = with_fields<spp::RootMapOptions>(options, fields, "root_map", "RootMapOptions");
+        py::dict rest;
+        const py::object progress = take_progress(fields, rest);
+        spp::RootMapOptions o = with_fields<spp::RootMapOptions>(options, py::reinterpret_borrow<py::kwargs>(rest),
+                                                                 "root_map", "RootMapOptions");
         if (t1_max) o.t1_max = *t1_max;
         if (t2_max) o.t2_max = *t2_max;
         o.validate();
-        py::gil_scoped_release release;
-        return spp::root_map(s, o);
+        ProgressHook hook(progress, "root_map");
+        o.progress = [&hook](const spp::RootMapProgress& p) { return hook(p); };
+        spp::RootMap r;
+        {
+          py::gil_scoped_release release;
+          r = spp::root_map(s, o);
+        }
+        hook.finish();
+        hook.warn(r.unsampled_cells == 0
+                      ? std::string("Ctrl-C came after the map had finished: the map is complete")
+                      : "root_map interrupted (Ctrl-C): " + std::to_string(r.unsampled_cells) +
+                            " cell(s) not sampled; the map holds the cells sampled before (unsampled_cells > 0)");
+        return r;
       },
       "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
       "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4): "
       "root_map(system, t1_max, t2_max, t1_points=400, ...) or root_map(system, options=RootMapOptions) with any "
-      "field also as a keyword. Raises ValueError.");
+      "field also as a keyword. progress=True prints the cells sampled on stderr; progress=f calls f(RootMapProgress) "
+      "every 0.2 s (returning False stops the map: it holds the cells sampled, unsampled_cells counts the others). "
+      "Ctrl-C stops it too, keeping those cells, with a RuntimeWarning. Raises ValueError.");
 }
 
 }  // namespace spp::python

@@ -8,7 +8,7 @@ any of its fields as keywords. Arrays are numpy; invalid input raises ValueError
 from ._spp import __version__
 from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, ContinuationResult, ContinuationStatus,
                    ContinueOptions, Event, EventKind, NearestSpp, ParametricSystem, RootMap, RootMapCell,
-                   RootMapOptions, SimulateOptions, SimulationResult, SimulationStatus, Solution, SolveOptions,
+                   RootMapOptions, RootMapProgress, SimulateOptions, SimulationResult, SimulationStatus, Solution, SolveOptions,
                    SolveProgress, SolveResult, SolveStatus, SppCheck, Symmetry, System, Verdict,
                    VerifyOptions, VerifyResult, VerifyStatus, chain, continue_branches, fundamental_box, load_result,
                    modal_frequencies, nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
@@ -34,24 +34,43 @@ for _name, _value in list(globals().items()):
 _solve = _named_type_errors(_spp.solve, "spp.solve")
 
 
-def solve(system, options=None, progress=None, **fields):
+_nearest_spp = _named_type_errors(_spp.nearest_spp, "spp.nearest_spp")
+_root_map = _named_type_errors(_spp.root_map, "spp.root_map")
+
+
+def _with_progress(name, run, progress, *args, **fields):
+    """run(*args, progress=..., **fields) with progress="bar" drawn by spp._progress.Bar (named after `name`)."""
     if isinstance(progress, str):
         if progress != "bar":
-            raise ValueError(f"solve: progress must be True, False, None, a callable or \"bar\", got {progress!r}")
-        with _Bar() as bar:
-            return _solve(system, options, progress=bar, **fields)
+            raise ValueError(f"{name}: progress must be True, False, None, a callable or \"bar\", got {progress!r}")
+        with _Bar(desc=f"spp {name}") as bar:
+            return run(*args, progress=bar, **fields)
     if progress is None:
-        return _solve(system, options, **fields)
-    return _solve(system, options, progress=progress, **fields)
+        return run(*args, **fields)
+    return run(*args, progress=progress, **fields)
+
+
+def solve(system, options=None, progress=None, **fields):
+    return _with_progress("solve", _solve, progress, system, options, **fields)
+
+
+def nearest_spp(system, t1, t2, radius=0.05, options=None, progress=None, **fields):
+    return _with_progress("nearest_spp", _nearest_spp, progress, system, t1, t2, radius, options, **fields)
+
+
+def root_map(system, t1_max=None, t2_max=None, options=None, progress=None, **fields):
+    return _with_progress("root_map", _root_map, progress, system, t1_max, t2_max, options, **fields)
 
 
 solve.__doc__ = _spp.solve.__doc__ + (
     "\n\nprogress=\"bar\": a progress bar (tqdm's, a widget in Jupyter, when python3-tqdm is installed; else a "
     "text bar on stderr): cells traced / cells of the window, SPP candidates so far, ETA.")
+nearest_spp.__doc__ = _spp.nearest_spp.__doc__ + "\n\nprogress=\"bar\": a progress bar as solve's."
+root_map.__doc__ = _spp.root_map.__doc__ + "\n\nprogress=\"bar\": a progress bar (cells sampled / cells, ETA)."
 
 __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Event", "SimulateOptions",
            "SimulationResult", "SppCheck", "VerifyOptions", "VerifyResult", "RootMap", "RootMapCell",
-           "RootMapOptions", "chain", "rod_with_slip", "two_dof", "solve", "simulate", "verify", "load_result",
+           "RootMapOptions", "RootMapProgress", "chain", "rod_with_slip", "two_dof", "solve", "simulate", "verify", "load_result",
            "root_map", "ParametricSystem", "continue_branches", "ContinueOptions", "Branch", "BranchEvent",
            "BranchPoint", "ContinuationResult", "continue_branch", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",

@@ -3,6 +3,7 @@ frequency-energy plot of the SPPs found. Each function draws into the axes it is
 panels of spp_figure) or into a new figure, returns the Figure and, given a path, saves it (the suffix picks PNG, SVG
 or PDF). Importing this module leaves matplotlib's backend alone, so figures show inline in Jupyter and with
 plt.show(); `python3 -m spp plot` (headless) selects Agg itself."""
+import warnings
 import numpy as np
 
 import matplotlib.pyplot as plt
@@ -197,8 +198,12 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
     touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that 4-tuple);
     points: grid points per axis; ax: axes to draw into (default a new figure)."""
     w = _window(window)
-    rm = root_map(system, w["t1_max"], w["t2_max"], t1_min=w["t1_min"], t2_min=w["t2_min"], t1_points=points,
-                  t2_points=points)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted map's warning: raised below instead
+        rm = root_map(system, w["t1_max"], w["t2_max"], t1_min=w["t1_min"], t2_min=w["t2_min"], t1_points=points,
+                      t2_points=points)
+    if rm.unsampled_cells:  # Ctrl-C: no figure of part of the window
+        raise KeyboardInterrupt(f"root map interrupted: {rm.unsampled_cells} cell(s) not sampled")
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
     for p in rm.flight_poles:
         ax.axvline(p, color="0.8", lw=0.5, zorder=0)

@@ -333,6 +333,66 @@ def test_progress_reports_and_ctrl_c_keeps_what_was_found():
     assert spp.solve(s, t1_max=12, t2_max=12, progress=lambda p: "go on").status == "success"
 
 
+def test_root_map_and_nearest_spp_report_progress_and_stop_early():
+    import signal
+    import threading
+    import warnings
+
+    s = chain5()
+    # root_map: reported at least once (the end: every cell), the map unchanged by it
+    reports = []
+    rm = spp.root_map(s, 8, 8, t1_points=100, t2_points=100, progress=reports.append)
+    assert reports and reports[-1].cells_done == reports[-1].cells_total == len(rm.cells)
+    assert rm.unsampled_cells == 0 and reports[-1].evaluations == rm.evaluations
+    assert rm.evaluations == spp.root_map(s, 8, 8, t1_points=100, t2_points=100).evaluations
+    # a callable that returns False stops it (a map of seconds, stopped at its first report): the cells sampled are
+    # kept, the others counted
+    calls = []
+    big = spp.root_map(s, 40, 40, t1_points=3000, t2_points=3000, progress=lambda p: calls.append(p) or False)
+    assert len(calls) == 1 and big.unsampled_cells > 0
+    assert len(big.cells) + big.unsampled_cells == calls[0].cells_total and len(big.cells) == calls[0].cells_done
+    assert "cells" in repr(calls[0])
+    # Ctrl-C stops it the same way, with a RuntimeWarning
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        big = spp.root_map(s, 40, 40, t1_points=3000, t2_points=3000)
+    timer.join()
+    assert big.unsampled_cells > 0 and any("interrupted" in str(w.message) for w in caught)
+    with pytest.raises(ZeroDivisionError):
+        spp.root_map(s, 8, 8, t1_points=100, t2_points=100, progress=lambda p: 1 / 0)
+    with pytest.raises(TypeError, match="root_map: progress must be"):
+        spp.root_map(s, 8, 8, progress=5)
+    # nearest_spp runs a small solve: its progress is solve's; False stops it and search_status says incomplete
+    reports = []
+    near = spp.nearest_spp(s, 3.2, 0.53, progress=reports.append)
+    assert near.found and near.search_status == "success" and reports
+    assert reports[-1].cells_done == reports[-1].cells_total
+    chain20 = spp.System(np.eye(20), 2 * np.eye(20) - np.eye(20, k=1) - np.eye(20, k=-1), np.eye(20)[-1], 1.0)
+    t1, t2 = spp.fundamental_box(chain20)
+    calls = []
+    near = spp.nearest_spp(chain20, t1 / 2, t2 / 2, radius=0.9, progress=lambda p: calls.append(p) or False)
+    assert calls and calls[0].cells_done < calls[0].cells_total and near.search_status == "incomplete"
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        near = spp.nearest_spp(chain20, t1 / 2, t2 / 2, radius=0.9)
+    timer.join()
+    assert near.search_status == "incomplete" and any("interrupted" in str(w.message) for w in caught)
+
+
+def test_root_map_progress_bar(capsys, monkeypatch):
+    s = chain5()
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)  # the text bar: its end is always drawn
+    rm = spp.root_map(s, 8, 8, t1_points=100, t2_points=100, progress="bar")
+    err = capsys.readouterr().err
+    assert "spp root_map" in err and f"{len(rm.cells)}/{len(rm.cells)} cells" in err and "candidates" not in err
+    with pytest.raises(ValueError, match="root_map: progress must be"):
+        spp.root_map(s, 8, 8, progress="tqdm")
+
+
 def test_progress_bar_shows_cells_and_candidates(capsys, monkeypatch):
     s = chain5()
     r = spp.solve(s, t1_max=12, t2_max=12, progress="bar")

@@ -1,7 +1,9 @@
 #include "spp/search/root_map.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "search/tolerances.hpp"
 #include "spp/detail/invalid.hpp"
@@ -25,6 +27,18 @@ void RootMapOptions::validate() const {
     detail::invalid_option(where, "min_cell_points", min_cell_points, "in [2, 10000]");
   if (!(pole_margin >= 0.0 && pole_margin < 0.25))
     detail::invalid_option(where, "pole_margin", pole_margin, "in [0, 0.25)");
+}
+
+std::string RootMapProgress::line() const {
+  std::ostringstream os;
+  os << "cells " << cells_done << " / " << cells_total;
+  if (cells_total > 0) os << " (" << 100 * cells_done / cells_total << "%)";
+  os << ", " << evaluations << " points, " << std::fixed;
+  os.precision(1);
+  os << seconds << " s";
+  if (cells_done > 0 && cells_done < cells_total)
+    os << ", ~" << std::max(1.0, std::round(seconds / cells_done * (cells_total - cells_done))) << " s left";
+  return os.str();
 }
 
 namespace {
@@ -94,6 +108,22 @@ RootMap root_map(const ModalForm& modal, const RootMapOptions& options) {
   auto is_pole = [](const std::vector<double>& poles, double t) {
     return std::find(poles.begin(), poles.end(), t) != poles.end();
   };
+  // Progress: reported between rows, about every 0.2 s, and once at the end; a false answer stops the map there (the
+  // cell being sampled is dropped, the cells done are kept).
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last_report = start;
+  const long cells_total = static_cast<long>(rows.size() * cols.size());
+  auto report = [&](long evaluations) {
+    RootMapProgress p;
+    p.cells_done = static_cast<long>(map.cells.size());
+    p.cells_total = cells_total;
+    p.evaluations = evaluations;
+    p.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    last_report = Clock::now();
+    return options.progress(p);
+  };
+  constexpr std::chrono::milliseconds kReportEvery{200};
   for (const auto& [b2, e2] : rows) {
     const Eigen::VectorXd t2 =
         cell_grid(b2, e2, is_pole(map.contact_poles, b2), is_pole(map.contact_poles, e2), options, step2);
@@ -104,6 +134,11 @@ RootMap root_map(const ModalForm& modal, const RootMapOptions& options) {
       cell.symmetric.resize(t2.size(), cell.t1.size());
       cell.onset.resize(t2.size(), cell.t1.size());
       for (Eigen::Index i = 0; i < t2.size(); ++i) {
+        if (options.progress && Clock::now() - last_report >= kReportEvery &&
+            !report(map.evaluations + i * cell.t1.size())) {
+          map.unsampled_cells = cells_total - static_cast<long>(map.cells.size());
+          return map;
+        }
         const Eigen::MatrixXd C = eq->contact_part(t2(i));
         for (Eigen::Index j = 0; j < cell.t1.size(); ++j) {
           Eigen::MatrixXd H = C;
@@ -116,6 +151,7 @@ RootMap root_map(const ModalForm& modal, const RootMapOptions& options) {
       map.cells.push_back(std::move(cell));
     }
   }
+  if (options.progress) report(map.evaluations);  // the end: its answer changes nothing
   return map;
 }
 

@@ -129,3 +129,51 @@ TEST(RootMap, RefusesBadOptions) {
   o.t2_max = -1.0;
   EXPECT_THROW(root_map(chain5(), o), std::invalid_argument);
 }
+
+TEST(RootMap, ProgressThatReturnsFalseStopsTheMapAndTheResultSaysSo) {
+  // A map of millions of points (seconds): the first report (after 0.2 s) answers false, the map stops there with the
+  // cells sampled so far, and unsampled_cells counts the rest.
+  const ModalForm modal(chain5());
+  RootMapOptions o;
+  o.t1_max = o.t2_max = 40.0;
+  o.t1_points = o.t2_points = 3000;
+  int calls = 0;
+  RootMapProgress seen;
+  o.progress = [&](const RootMapProgress& p) {
+    ++calls;
+    seen = p;
+    return false;
+  };
+  const RootMap map = root_map(modal, o);
+  EXPECT_EQ(calls, 1);
+  const long total = static_cast<long>((map.flight_poles.size() + 1) * (map.contact_poles.size() + 1));
+  EXPECT_EQ(seen.cells_total, total);
+  EXPECT_GT(map.unsampled_cells, 0);
+  EXPECT_EQ(static_cast<long>(map.cells.size()) + map.unsampled_cells, total);
+  EXPECT_EQ(static_cast<long>(map.cells.size()), seen.cells_done);
+  EXPECT_NE(seen.line().find(" / " + std::to_string(total)), std::string::npos) << seen.line();
+}
+
+TEST(RootMapProgress, IsReportedAtLeastOnceAndChangesNothing) {
+  const ModalForm modal(chain5());
+  RootMapOptions o;
+  o.t1_max = o.t2_max = 8.0;
+  o.t1_points = o.t2_points = 100;
+  const RootMap plain = root_map(modal, o);
+  int calls = 0;
+  RootMapProgress last;
+  o.progress = [&](const RootMapProgress& p) {
+    ++calls;
+    EXPECT_LE(p.cells_done, p.cells_total);
+    last = p;
+    return true;
+  };
+  const RootMap map = root_map(modal, o);
+  EXPECT_GE(calls, 1);
+  EXPECT_EQ(last.cells_done, last.cells_total);  // the last report: the end
+  EXPECT_EQ(last.evaluations, map.evaluations);
+  EXPECT_EQ(map.unsampled_cells, 0);
+  ASSERT_EQ(map.cells.size(), plain.cells.size());
+  EXPECT_EQ(map.evaluations, plain.evaluations);
+  EXPECT_EQ(map.cells.back().symmetric, plain.cells.back().symmetric);
+}
