@@ -16,6 +16,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -1361,6 +1362,121 @@ TEST(Cli, SweepValueMessagesNameWhatIsWrong) {
   refused("0:1e308:1e-300", "expected at most 1000000 values (each is a solve and a file), got about inf");
   refused("nan", "value #1 (position 0) is not finite: expected a finite number, got nan");
   refused("1,2,inf", "value #3 (position 2) is not finite: expected a finite number, got inf");
+}
+
+// ---- issue 13: one documented exit code per kind of failure, and each is what the code returns ----
+
+namespace {
+
+// The exit codes documented in `text` (README's "Exit codes" paragraph or spp --help's footer): the numbers that open
+// it or follow a "; ", each with what follows up to the next "; " (e.g. "3 spp verify: a simulation disagrees ...").
+std::map<int, std::string> documented_exit_codes(const std::string& text) {
+  std::map<int, std::string> codes;
+  const std::regex code(R"((?:^|: |; )(\d+) ([^;]*))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), code); it != std::sregex_iterator(); ++it)
+    codes[std::stoi((*it)[1])] = (*it)[2];
+  return codes;
+}
+
+}  // namespace
+
+TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
+  // The audit (issue 13), exit paths of every subcommand: main maps a usage error (CLI11's ParseError) and every
+  // exception (invalid input, out of memory, a failed run, an internal error) to 1, --help and --version to 0; then
+  // solve returns 0 (also when incomplete) or 130 (Ctrl-C, what was found written); verify 0 or 3 (a simulation
+  // disagrees); sweep 0 or 4 (an item failed); simulate 0 or 5 (stopped at --max-events); continue, modes,
+  // trajectory, generate and reduce 0; plot and animate are python3 -m spp, which returns 0 or 1 (its errors,
+  // python/spp/__main__.py). Any other subcommand stopped by Ctrl-C ends by the signal (a shell reports 130).
+  // The documentation: spp --help's footer and README's "Exit codes" name the same codes, each once, and no other.
+  const CliRun help = run("--help");
+  ASSERT_EQ(help.code, 0) << help.out;
+  const std::string footer = help.out.substr(help.out.find("Exit codes") + std::string("Exit codes").size());
+  const std::string readme = slurp(fs::path(SPP_SOURCE_DIR) / "README.md");
+  const size_t at = readme.find("**Exit codes**");
+  ASSERT_NE(at, std::string::npos);
+  const std::string paragraph = readme.substr(at, readme.find("In Python", at) - at);
+  const std::map<int, std::string> in_help = documented_exit_codes(footer),
+                                   in_readme = documented_exit_codes(paragraph);
+  const std::map<int, std::string> expected_owner = {{0, "success"}, {1, "invalid input"}, {3, "verify"},
+                                                     {4, "sweep"},   {5, "simulate"},      {130, "solve"}};
+  for (const auto* doc : {&in_help, &in_readme}) {
+    std::set<int> codes;
+    for (const auto& [c, what] : *doc) codes.insert(c);
+    EXPECT_EQ(codes, (std::set<int>{0, 1, 3, 4, 5, 130})) << (doc == &in_help ? footer : paragraph);
+    for (const auto& [c, owner] : expected_owner)
+      if (doc->count(c)) EXPECT_NE(doc->at(c).find(owner), std::string::npos) << c << ": " << doc->at(c);
+  }
+
+  // One run per (subcommand, code) pair.
+  const fs::path res = dir() / "exit_res.json", flipped = dir() / "exit_flipped.json", csv = dir() / "exit.csv";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 4 --t2-max 1 --quiet --json " + res.string()).code, 0);
+  nlohmann::json r = read_json(res);  // 2 SPPs: #0 inadmissible, #1 admissible
+  ASSERT_EQ(r.at("solutions").size(), 2u);
+  r["solutions"][0]["admissible"] = !r["solutions"][0]["admissible"].get<bool>();  // verify must disagree
+  std::ofstream(flipped) << r.dump();
+  const std::string par = parametric_two_dof();
+  const fs::path bar = dir() / "exit_bar.json", chain20 = dir() / "exit_chain20.json";
+  ASSERT_EQ(run("generate bar --n 60 --out " + bar.string()).code, 0);
+  ASSERT_EQ(run("generate chain --n 20 --out " + chain20.string()).code, 0);
+  const std::string out = " --out " + (dir() / "exit_out").string();
+  struct Case {
+    std::string sub;
+    int code;
+    std::string args, launcher;
+  };
+  const std::vector<Case> cases = {
+      {"solve", 0, kChain + " --t1-max 4 --t2-max 1 --quiet", ""},
+      {"solve", 0, kChain + " --t1-max 4 --t2-max 1 --no-certify-steps --quiet", ""},  // status incomplete: still 0
+      {"solve", 1, kChain + " --t1-max -1 --t2-max 1", ""},
+      {"solve", 130, chain20.string() + " --box --quiet", "timeout --foreground --preserve-status -s INT 2 "},
+      {"continue", 0, par + " --t1-max 3 --t2-max 1 --quiet", ""},
+      {"continue", 1, kChain + " --t1-max 3 --t2-max 1", ""},  // no parameter
+      {"modes", 0, kChain + " --k 1 --energy-max 1", ""},
+      {"modes", 1, kChain + " --k 0 --energy-max 1", ""},
+      {"trajectory", 0, "--result " + res.string() + " --solution 1 --csv " + csv.string(), ""},
+      {"trajectory", 1, "--result " + res.string() + " --solution 9 --csv " + csv.string(), ""},
+      {"simulate", 0, kChain + " --x0 0,0,0,0,0 --v0 0,0,0,0,0.1 --duration 1 --csv " + csv.string(), ""},
+      {"simulate", 1, kChain + " --x0 0,0,0,0,0 --v0 0,0,0,0,0.1 --duration -1 --csv " + csv.string(), ""},
+      {"simulate", 5,
+       kChain + " --x0 0,0,0,0,0 --v0 0.3,-0.2,0.5,0.1,0.9 --duration 1000 --restitution 0.5 --max-events 10 --csv " +
+           csv.string(),
+       ""},
+      {"verify", 0, res.string(), ""},
+      {"verify", 1, kChain, ""},  // a system file, not a result
+      {"verify", 3, flipped.string(), ""},
+      {"plot", 0, res.string() + " --root-map-points 0 --formats png --solutions 1" + out, ""},
+      {"plot", 1, res.string() + " --formats bmp" + out, ""},
+      {"animate", 0, res.string() + " --frames 2 --dpi 20 --out " + (dir() / "exit.gif").string(), ""},
+      {"animate", 1, res.string() + " --out " + (dir() / "exit.txt").string(), ""},
+      {"generate", 0, "chain --n 3 --out " + (dir() / "exit_gen.json").string(), ""},
+      {"generate", 1, "chain --n 0 --out " + (dir() / "exit_gen.json").string(), ""},
+      {"reduce", 0, bar.string() + " --modes 2 --out " + (dir() / "exit_red.json").string(), ""},
+      {"reduce", 1, bar.string() + " --modes 0 --out " + (dir() / "exit_red.json").string(), ""},
+      {"sweep", 0, par + " --parameter k2 --values 1,2 --out-dir " + fresh_dir("exit_sweep0").string() + kSweepWindow,
+       ""},
+      {"sweep", 1, par + " --parameter k2 --values abc --out-dir " + fresh_dir("exit_sweep1").string() + kSweepWindow,
+       ""},
+      {"sweep", 4,
+       par + " --parameter k2 --values 1,-0.9 --out-dir " + fresh_dir("exit_sweep4").string() + kSweepWindow, ""},
+  };
+  std::set<std::pair<std::string, int>> covered;
+  for (const Case& c : cases) {
+    const CliRun e = run(c.sub + " " + c.args, c.launcher);
+    EXPECT_EQ(e.code, c.code) << "spp " << c.sub << " " << c.args << "\n" << e.out;
+    covered.insert({c.sub, c.code});
+  }
+  // Every subcommand: a usage error exits 1, --help 0; and the documented pairs are all driven above.
+  for (const char* sub : {"solve", "continue", "modes", "trajectory", "simulate", "verify", "plot", "animate",
+                          "generate", "reduce", "sweep"}) {
+    EXPECT_EQ(run(std::string(sub) + " --no-such-option").code, 1) << sub;
+    EXPECT_EQ(run(std::string(sub) + " --help").code, 0) << sub;
+    EXPECT_TRUE(covered.count({sub, 0}) && covered.count({sub, 1})) << sub;
+  }
+  for (const auto& [sub, code] :
+       std::vector<std::pair<std::string, int>>{{"verify", 3}, {"sweep", 4}, {"simulate", 5}, {"solve", 130}})
+    EXPECT_TRUE(covered.count({sub, code})) << sub << " " << code;
+  EXPECT_EQ(run("").code, 1);  // no subcommand: a usage error
+  EXPECT_EQ(run("--version").code, 0);
 }
 
 #ifdef SPP_MPI_CLI
