@@ -260,71 +260,24 @@ void bind_search(py::module_& m) {
   m.def(
       "solve",
       [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
-        // progress is not a SolveOptions field (a callable): taken out of the keywords first
         py::dict rest;
-        py::object progress = py::none();
-        for (const auto& [key, value] : fields) {
-          if (py::str(key).cast<std::string>() == "progress")
-            progress = py::reinterpret_borrow<py::object>(value);
-          else
-            rest[key] = value;
-        }
+        const py::object progress = take_progress(fields, rest);
         spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "solve");
         o.validate();
-        // a callable is called; anything else is taken for its truth (True, numpy.True_: the text line)
-        const bool call = PyCallable_Check(progress.ptr()) != 0;
-        // True/False/None (numpy's bool too) or a callable: anything else was taken for its truth (progress=5)
-        if (!call && !progress.is_none() && !py::isinstance<py::bool_>(progress) &&
-            !py::isinstance(progress, py::module_::import("numpy").attr("bool_")))
-          throw py::type_error("solve: progress must be True, False, None, a callable or \"bar\", got " +
-                               typed_repr(progress));
-        auto truth = [](const py::object& v) {
-          const int t = PyObject_IsTrue(v.ptr());
-          if (t < 0) throw py::error_already_set();
-          return t != 0;
-        };
-        const bool text = !call && truth(progress);
-        bool interrupted = false, shown = false;
-        // Called from this thread every 0.2 s (spp::SolveOptions::progress): Ctrl-C (KeyboardInterrupt) stops the
-        // search and keeps what was found; the user's callable may stop it too (by returning False) or raise.
-        o.progress = [&](const spp::SolveProgress& p) {
-          const py::gil_scoped_acquire gil;
-          if (PyErr_CheckSignals() != 0) {
-            if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
-            PyErr_Clear();
-            interrupted = true;
-            return false;
-          }
-          if (text && p.seconds >= 1.0) {
-            py::module_::import("sys").attr("stderr").attr("write")("\r  " + p.line() + "   ");
-            shown = true;
-          }
-          if (!call) return true;
-          const py::object r = progress(p);
-          return r.is_none() || truth(r);  // None continues; otherwise the value's truth
-        };
+        ProgressHook hook(progress, "solve");
+        o.progress = [&hook](const spp::SolveProgress& p) { return hook(p); };
         spp::SolveResult r;
         {
           py::gil_scoped_release release;
           r = spp::solve(s, o);
         }
-        if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
         // a Ctrl-C that came after the last report (while the roots were polished): the result is complete, so it
         // is returned, not lost to a KeyboardInterrupt at the next line
-        bool late = false;
-        if (PyErr_CheckSignals() != 0) {
-          if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
-          PyErr_Clear();
-          late = !interrupted;
-          interrupted = true;
-        }
-        const std::string message =
-            late && r.stats.unsearched_cells == 0
-                ? std::string("Ctrl-C came after the search had finished: the result is complete")
-                : "solve interrupted (Ctrl-C): " + std::to_string(r.stats.unsearched_cells) +
-                      " cell(s) not searched; the result holds what was found before (status incomplete)";
-        if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0)
-          throw py::error_already_set();  // warnings turned into errors
+        hook.finish();
+        hook.warn(hook.late && r.stats.unsearched_cells == 0
+                      ? std::string("Ctrl-C came after the search had finished: the result is complete")
+                      : "solve interrupted (Ctrl-C): " + std::to_string(r.stats.unsearched_cells) +
+                            " cell(s) not searched; the result holds what was found before (status incomplete)");
         py::object result = py::cast(std::move(r));
         result.attr("system") = s;
         return result;
