@@ -49,7 +49,9 @@ def _plot(a):
 
     try:
         if a.root_map_points:
-            save(plot.root_map_figure(system, spps, window, points=a.root_map_points), "root_map")
+            # the root map is the long part (a 20-dof box: 10^5 points): its progress line on a terminal
+            save(plot.root_map_figure(system, spps, window, points=a.root_map_points,
+                                      progress=sys.stderr.isatty()), "root_map")
         save(plot.frequency_energy_figure(spps), "frequency_energy")
         for k in chosen:
             save(plot.spp_figure(system, spps[k]), f"spp_{k}")

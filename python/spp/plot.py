@@ -191,17 +191,18 @@ def _merged_cells(rm):
     return t1, t2, merged[0], merged[1]
 
 
-def root_map_figure(system, solutions, window, points=400, path=None, ax=None):
+def root_map_figure(system, solutions, window, points=400, path=None, ax=None, progress=None):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
     anything with t1, t2, admissible) marked, potential open, admissible filled. An SPP is where a dashed curve
     touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that 4-tuple);
-    points: grid points per axis; ax: axes to draw into (default a new figure)."""
+    points: grid points per axis; ax: axes to draw into (default a new figure); progress: spp.root_map's (True: a
+    line on stderr, a callable: called with RootMapProgress; Ctrl-C raises KeyboardInterrupt, no figure drawn)."""
     w = _window(window)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted map's warning: raised below instead
         rm = root_map(system, w["t1_max"], w["t2_max"], t1_min=w["t1_min"], t2_min=w["t2_min"], t1_points=points,
-                      t2_points=points)
+                      t2_points=points, progress=progress)
     if rm.unsampled_cells:  # Ctrl-C: no figure of part of the window
         raise KeyboardInterrupt(f"root map interrupted: {rm.unsampled_cells} cell(s) not sampled")
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))

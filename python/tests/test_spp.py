@@ -391,6 +391,12 @@ def test_root_map_progress_bar(capsys, monkeypatch):
     assert "spp root_map" in err and f"{len(rm.cells)}/{len(rm.cells)} cells" in err and "candidates" not in err
     with pytest.raises(ValueError, match="root_map: progress must be"):
         spp.root_map(s, 8, 8, progress="tqdm")
+    # the figure passes its progress on (spp plot: a line on a terminal)
+    from spp import plot as spp_plot
+    calls = []
+    spp_plot.root_map_figure(s, [], {"t1_min": 0, "t1_max": 8, "t2_min": 0, "t2_max": 8}, points=50,
+                             progress=calls.append)
+    assert calls and calls[-1].cells_done == calls[-1].cells_total
 
 
 def test_progress_bar_shows_cells_and_candidates(capsys, monkeypatch):
