@@ -4,7 +4,7 @@ it states), the command that produces them, and how the figure is read from that
 checked; each one that no longer holds is named with its README line number, the stated and the measured value.
 Exit 0 when every figure holds, 1 otherwise (2 when a command fails or README no longer has the line).
 
-Usage: scripts/readme-check.sh [--readme README.md] [BUILD_DIR]   (default build/; runs build/spp from the repository root)
+Usage: scripts/readme-check.sh [--readme README.md] [BUILD_DIR]   (default build/: runs BUILD_DIR/spp)
 Tolerances: counts and statuses exactly; (t1, t2), k2 and box edges to the digits README prints them with (relative
 1e-7, or half a unit of the last printed digit); times are never compared (they depend on the machine's load).
 """
@@ -29,6 +29,7 @@ COMMANDS = {
     "zero_gap": "{spp} solve {ex}/two_dof_zero_gap.json --t1-max 3 --t2-max 1",
     "dry20": "{spp} generate chain --n 20 --out c20.json && {spp} solve c20.json --box --dry-run",
     "modes": "{spp} modes {ex}/chain5.json --k 1..5 --energy-max 150",
+    "ctest": "ctest --test-dir {build} -N",
     "sweep": "{spp} generate two-dof --g0 1 --parameter k2 --range 1,10 --out k2.json && mkdir runs && "
              "{spp} sweep k2.json --parameter k2 --values 1:10:0.25 --t1-max 8 --t2-max 8 --out-dir runs",
 }
@@ -101,7 +102,8 @@ CLAIMS = [
     (r"--values 1:10:0\.25 --t1-max 8 --t2-max 8 --out-dir runs   # (\d+) values", "sweep",
      [summary(r"^sweep over k2: (\d+) values, \1 done")], ["exact"]),
     # The verify block
-    (r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) disagree", "verify",
+    (r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) disagree",
+     "verify",
      [summary(r"^verify: (\w+), (\d+) SPPs, (\d+) return to their initial state, (\d+) leave the orbit; (\d+) "
               r"disagree", g) for g in range(1, 6)], ["exact"] * 5),
     (r"^The (\d+) inadmissible SPPs of the chain leave in all three ways", "verify",
@@ -128,8 +130,10 @@ CLAIMS = [
 ]
 
 
-# Times: reported beside README's, never compared (they depend on the machine and its load).
+# Reported beside README's, never compared: times (they depend on the machine and its load), and the number of CTest
+# tests (it depends on which targets the build tree holds: a partial build lists fewer).
 REPORTED = [
+    (r"runs (\d+) CTest tests", "ctest", summary(r"^Total Tests: (\d+)")),
     (r"^spp: success, 7 SPPs \(7 admissible\) in .* evaluations, (\S+) s$", "solve_a",
      summary(r"^spp: \w+, 7 SPPs .* evaluations, (\S+) s$")),
     (r"energy_max=150\)`: \d+ families, \d+ genuine, (\S+) s,", "modes", summary(r"corrector solves, (\S+) s$")),
@@ -162,7 +166,7 @@ def main():
     outputs, failed = {}, 0
     with tempfile.TemporaryDirectory(prefix="readme-check-") as tmp:
         for key, cmd in COMMANDS.items():
-            text = cmd.format(spp=spp, ex=os.path.join(ROOT, "examples"))
+            text = cmd.format(spp=spp, ex=os.path.join(ROOT, "examples"), build=build)
             r = subprocess.run(text, shell=True, cwd=tmp, capture_output=True, text=True, timeout=300)
             if r.returncode not in (0, 3):
                 print(f"readme-check: command failed (exit {r.returncode}): {text}\n{r.stderr}", file=sys.stderr)
@@ -181,13 +185,14 @@ def main():
             checked += 1
             if not agrees(stated, measured, how):
                 failed += 1
-                print(f"{name}:{line_no}: states {stated!r}, `{COMMANDS[key].format(spp='spp', ex='examples')}` "
-                      f"gives {measured!r}\n    {lines[line_no - 1].strip()[:160]}")
+                shown = COMMANDS[key].format(spp="spp", ex="examples", build="build")
+                print(f"{name}:{line_no}: states {stated!r}, `{shown}` gives {measured!r}\n"
+                      f"    {lines[line_no - 1].strip()[:160]}")
     for pattern, key, read in REPORTED:
         m = re.search(pattern, readme, re.M)
         if m:
-            print(f"{name}:{readme.count(chr(10), 0, m.start()) + 1}: time {m.group(1)} s, this run "
-                  f"{read(outputs[key], 1)} s (times are not compared)")
+            print(f"{name}:{readme.count(chr(10), 0, m.start()) + 1}: reported, not compared: README {m.group(1)}, this run "
+                  f"{read(outputs[key], 1)} ({m.group(0)[:60]!r})")
     print(f"readme-check: {checked} figures in {len(CLAIMS)} README lines, {failed} no longer hold")
     return 1 if failed else 0
 
