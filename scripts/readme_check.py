@@ -191,8 +191,9 @@ def main():
     for pattern, key, read in REPORTED:
         m = re.search(pattern, readme, re.M)
         if m:
-            print(f"{name}:{readme.count(chr(10), 0, m.start()) + 1}: reported, not compared: README {m.group(1)}, this run "
-                  f"{read(outputs[key], 1)} ({m.group(0)[:60]!r})")
+            line_no = readme.count("\n", 0, m.start()) + 1
+            print(f"{name}:{line_no}: reported, not compared: README {m.group(1)}, this run {read(outputs[key], 1)} "
+                  f"({m.group(0)[:60]!r})")
     print(f"readme-check: {checked} figures in {len(CLAIMS)} README lines, {failed} no longer hold")
     return 1 if failed else 0
 
