@@ -72,16 +72,20 @@ std::string mismatch(const System& sys, const SolveOptions& opt, const System& s
   const bool certified = res.stats.certified_steps > 0;
   const bool uncertified_only = res.stats.certified_steps == 0 && res.stats.uncertified_steps > 0;
   if (certified && !opt.certify_steps)
-    return "a result solved with certified steps (without --no-certify-steps), not with --no-certify-steps";
+    return "a result solved with certified steps (certify_steps on, the default), not with certify_steps off as "
+           "this sweep asks (--no-certify-steps, certify_steps=False)";
   if (uncertified_only && opt.certify_steps)
-    return "a result solved without certified steps (--no-certify-steps), not with certify_steps";
+    return "a result solved without certified steps (certify_steps off: --no-certify-steps, certify_steps=False), "
+           "not with certify_steps on as this sweep asks";
   const bool dropped = res.stats.roots > static_cast<long>(res.solutions.size());
   const bool kept_inadmissible =
       std::any_of(res.solutions.begin(), res.solutions.end(), [](const Solution& s) { return !s.admissible(); });
   if (dropped && !opt.admissible_only)
-    return "a result solved with --admissible-only (non-admissible SPPs dropped), not without it";
+    return "a result solved with admissible_only on (--admissible-only, admissible_only=True: non-admissible SPPs "
+           "dropped), not with it off as this sweep asks";
   if (kept_inadmissible && opt.admissible_only)
-    return "a result solved without --admissible-only (non-admissible SPPs kept), not with it";
+    return "a result solved with admissible_only off (non-admissible SPPs kept), not with it on as this sweep asks "
+           "(--admissible-only, admissible_only=True)";
   // the window as solve() reports it: lower ends filled in (0 = automatic) and raised to the axis bands
   const ModalForm md(sys);
   const auto [auto1, auto2] = default_lower_ends(md, opt.t1_max, opt.t2_max);
@@ -158,6 +162,15 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
 Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string& out_dir) {
   require_out_dir(out_dir);
   if (files.empty()) detail::invalid("sweep: no system file given");
+  // one parametric file and no parameter: a usage error, before any solve (it was one failed item, exit 4)
+  if (files.size() == 1 && file_declares_parameter(files.front())) {
+    const ParametricSystem ps = load_parametric_system(files.front());
+    detail::invalid("sweep: " + io::shorten(files.front(), 200) + " declares the parameter \"" +
+                    ps.parameter().name + "\" (a parametric system): expected its values to sweep, e.g. --parameter " +
+                    ps.parameter().name + " --values " + shortest(ps.parameter().min) + ":" +
+                    shortest(ps.parameter().max) + ":STEP (Python: parameter=\"" + ps.parameter().name +
+                    "\", values=[...])");
+  }
   Sweep s;
   s.out_dir_ = out_dir;
   for (size_t i = 0; i < files.size(); ++i)

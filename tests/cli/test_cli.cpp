@@ -1180,6 +1180,21 @@ TEST(Cli, SweepRefusesBadInputAndWritesNoTable) {
   refused(sys + " --parameter k2 --values 1,2 --out-dir " + out.string() + " --csv " + sys, "a file this run reads");
 }
 
+TEST(Cli, SweepOfOneParametricFileWithoutItsParameterIsAUsageError) {
+  // found by an independent attack: one failed item, exit 4 and a table written, with no word of --parameter
+  const fs::path sys = dir() / "sweep_noparam.json", out = dir() / "sweep_noparam_out";
+  ASSERT_EQ(run("generate two-dof --parameter k2 --range 1,10 --out " + sys.string()).code, 0);
+  fs::remove_all(out);
+  fs::create_directories(out);
+  const CliRun r = run("sweep " + sys.string() + " --t1-max 2 --t2-max 2 --out-dir " + out.string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("declares the parameter \"k2\" (a parametric system): expected its values to sweep, e.g. "
+                       "--parameter k2 --values 1:10:STEP"),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(fs::is_empty(out));
+}
+
 TEST(Cli, SweepWithAFailingValueExits4AndWritesTheOthers) {
   const std::string sys = parametric_two_dof();
   const fs::path out = fresh_dir("sweep_failing");
@@ -1403,8 +1418,11 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
     std::set<int> codes;
     for (const auto& [c, what] : *doc) codes.insert(c);
     EXPECT_EQ(codes, (std::set<int>{0, 1, 3, 4, 5, 130})) << (doc == &in_help ? footer : paragraph);
-    for (const auto& [c, owner] : expected_owner)
-      if (doc->count(c)) EXPECT_NE(doc->at(c).find(owner), std::string::npos) << c << ": " << doc->at(c);
+    for (const auto& [c, owner] : expected_owner) {
+      if (doc->count(c)) {
+        EXPECT_NE(doc->at(c).find(owner), std::string::npos) << c << ": " << doc->at(c);
+      }
+    }
   }
 
   // One run per (subcommand, code) pair.

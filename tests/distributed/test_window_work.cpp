@@ -302,7 +302,7 @@ TEST(Sweep, CheckSweepOutputsRefusesAResumeOfAnotherWindowOrOptionsBeforeAnySolv
   if (inadmissible) {
     SolveOptions admissible = sweep_window();
     admissible.admissible_only = true;
-    refused(admissible, "without --admissible-only");
+    refused(admissible, "with admissible_only off (non-admissible SPPs kept), not with it on");
   }
   // an out-dir that is a file; a value outside the declared range [1, 10] is noted
   EXPECT_THROW((void)Sweep::over_values(file, "k2", {1.5}, file), std::invalid_argument);
