@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "spp/detail/dense_products.hpp"
+#include "spp/detail/tridiagonal.hpp"
 
 namespace spp::search {
 
@@ -170,6 +172,32 @@ Eigen::VectorXd BorderedForm::extend(const Eigen::VectorXd& b, double t1, double
   for (size_t p = 0; p < contact_modes_.size(); ++p)
     x(m_ + nf + p) = lam(nf + p) * eq_.modal().G().col(contact_modes_[p]).dot(b);
   return x;
+}
+
+int BorderedForm::positive_border_values(double t1, double t2) const {
+  return static_cast<int>((border_values(t1, t2).array() > 0.0).count());
+}
+
+BorderedEigen bordered_eigenpair(const BorderedForm& bf, double t1, double t2, int k) {
+  BorderedEigen r;
+  const Eigen::VectorXd lam = bf.border_values(t1, t2);
+  if (!lam.allFinite()) return r;
+  const int kb = k + static_cast<int>((lam.array() > 0.0).count());
+  const detail::SymmetricTridiagonal T(bf.matrix(t1, t2));
+  if (k < 0 || kb >= T.size()) return r;
+  r.lam = T.eigenvalue(kb);
+  r.scale = T.norm_bound();
+  r.error = 8.0 * T.size() * std::numeric_limits<double>::epsilon() * r.scale;
+  const Eigen::VectorXd x = T.eigenvector(r.lam);
+  const int m = bf.size() - bf.bordered();
+  const double head = x.head(m).norm();
+  if (!(head > 0) || !x.allFinite()) return r;
+  r.b = x.head(m) / head;
+  const Eigen::VectorXd y = bf.Gx().transpose() * x;
+  r.l1 = bf.flight().d1(t1).dot(x.cwiseProduct(x));
+  r.l2 = bf.contact().d1(t2).dot(y.cwiseProduct(y));
+  r.ok = r.l1 >= 0 && r.l2 >= 0;
+  return r;
 }
 
 }  // namespace spp::search

@@ -72,6 +72,8 @@ class BorderedForm {
   Eigen::VectorXd border_values(double t1, double t2) const;
   /// [b; Lambda U^T b], the null vector of B for a null vector b of H at (t1, t2).
   Eigen::VectorXd extend(const Eigen::VectorXd& b, double t1, double t2) const;
+  /// Number of positive border values at (t1, t2): B's count of negative eigenvalues exceeds H's by it (Haynsworth).
+  int positive_border_values(double t1, double t2) const;
 
  private:
   const EquationSet& eq_;
@@ -82,5 +84,22 @@ class BorderedForm {
   Eigen::MatrixXd Gx_, K0_;
   Eigen::VectorXd c_;
 };
+
+/// Eigenvalue k of H read in the bordered form (docs/modal-form.md §3c): lambda_{k + p}(B) at (t1, t2), p the number
+/// of positive border values. By Haynsworth's inertia additivity it has the sign of lambda_k(H) and vanishes with it,
+/// and on a zero curve of det H its vector is H's null vector extended, x = [b; nu] / |[b; nu]|. Next to a pole line
+/// H's normwise error bound (8 m eps |H|, |H| ~ 1 / distance) is 1e6-1e9 times the gap of the slowest modes of a
+/// clustered chain, while B's entries, hence its error, stay O(1): a root placed in B is placed to B's accuracy.
+struct BorderedEigen {
+  bool ok = false;      ///< false: no eigenvalue k + p, or a border value is not finite (use H)
+  double lam = 0;       ///< lambda_{k + p}(B), with the sign of lambda_k(H)
+  double error = 0;     ///< absolute error bound of the computed eigenvalues of B (8 (m + nb) eps |B|)
+  double scale = 0;     ///< a bound of |B|_2 (Gershgorin)
+  double l1 = 0, l2 = 0;  ///< x^T dB/dt1 x and x^T dB/dt2 x (>= 0: B grows with t1 and t2)
+  Eigen::VectorXd b;    ///< x's first m entries, normalised (H's unit null vector where lam = 0)
+};
+/// The above for curve k (0-based, ascending) of H. Cost: one Householder tridiagonalisation of the (m + nb)-square B
+/// (~4/3 (m + nb)^3), bisection for one eigenvalue and inverse iteration for its vector; O(m^2) memory.
+BorderedEigen bordered_eigenpair(const BorderedForm& bf, double t1, double t2, int k);
 
 }  // namespace spp::search

@@ -69,6 +69,8 @@ class CellTracer::Impl {
     Vec b;
     std::shared_ptr<const HPoint> at;  // H at (t1, t2), for the bordered solve of point()
     int k = 0;
+    // placed in the bordered form (segment_root): lam is B's, and `bordered` holds its distance estimate to the curve
+    BorderedOffset bordered;
   };
   Pair eigenpair(double t1, double t2, int k) {
     const std::shared_ptr<const HPoint> T = ev_.at(t1, t2);
@@ -116,7 +118,8 @@ class CellTracer::Impl {
       // Far above rounding (next to a pole line, where H's eigenvalue error grows like 1 / distance): the same
       // distances from the bordered form, whose error stays at its O(1) scale; the smaller estimate is kept.
       if (p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
-        const BorderedOffset bo = bordered_offset(eq_, q.t1, q.t2);
+        // (a point placed in the bordered form brings its own estimate: no second eigendecomposition)
+        const BorderedOffset bo = q.bordered.valid ? q.bordered : bordered_offset(eq_, q.t1, q.t2);
         if (bo.valid) {
           const double via[3] = {bo.lam_err / (bo.l1 + bo.l2), bo.lam_err / bo.l1, bo.lam_err / bo.l2};
           for (int i = 0; i < 3; ++i)
@@ -155,27 +158,72 @@ class CellTracer::Impl {
   // (rtsafe's) move the roots of ordinary pieces by rounding-level amounts and changed the outcome of fragile pieces
   // next to pole lines both ways; this one leaves every root that converges within kNewtonSteps as it was.
   // It stops at the rounding level of lambda_k (rel_ftol times the largest |eigenvalue|).
+  // With certify_steps, a segment whose first point H cannot place (the distance to the curve that H's eigenvalue
+  // error bound allows exceeds kPosErrBordered, as next to a pole line) is solved in the bordered form of the
+  // segment's box instead (bordered_eigenpair: the same sign and zero, B's O(1) error): a root placed by H there was
+  // off the curve by up to 65 in t on the 300-dof chain (|H| ~ 1e10, 1e-10 from a pole line), which no step
+  // certificate could take as an end.
   Pair segment_root(double t1a, double t2a, double dt1, double dt2, double lo, double hi, double guess, int k,
                     double rel_ftol) {
     double x = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
     Pair e;
     const double xtol = kSegmentRootXtol * (std::abs(lo) + std::abs(hi));
+    std::unique_ptr<BorderedForm> bf;  // set once H could not place the first point
     for (int it = 0; it < kSegmentRootIterations; ++it) {
-      e = eigenpair(t1a + x * dt1, t2a + x * dt2, k);
+      const double t1 = t1a + x * dt1, t2 = t2a + x * dt2;
+      if (bf) {
+        e = bordered_pair(*bf, t1, t2, k);
+        if (!e.bordered.valid) bf.reset();  // (B's eigenvalue or slopes unusable here: H as before)
+      }
+      if (!bf) e = eigenpair(t1, t2, k);
+      auto [l1, l2] = bf ? std::pair{e.bordered.l1, e.bordered.l2} : grads(e.b, e.t1, e.t2);
+      if (it == 0 && opt_.certify_steps &&
+          (std::abs(e.lam) + e.at->eigen_error()) / (l1 + l2) > kPosErrBordered * std::max(t1, t2)) {
+        const double s1 = t1a + lo * dt1, s2 = t1a + hi * dt1, u1 = t2a + lo * dt2, u2 = t2a + hi * dt2;
+        bf = std::make_unique<BorderedForm>(eq_, std::min(s1, s2), std::max(s1, s2), std::min(u1, u2),
+                                            std::max(u1, u2));
+        Pair eb;
+        if (bf->valid() && bf->bordered() > 0) eb = bordered_pair(*bf, t1, t2, k);
+        if (eb.bordered.valid) {
+          e = eb;
+          l1 = e.bordered.l1;
+          l2 = e.bordered.l2;
+        } else {
+          bf.reset();
+        }
+      }
       const double f = e.lam;
       if (std::abs(f) <= rel_ftol * e.scale) break;
       if (f < 0)
         lo = x;
       else
         hi = x;
-      const auto [l1, l2] = grads(e.b, e.t1, e.t2);
       const double df = dt1 * l1 + dt2 * l2;
       double next = df != 0.0 ? x - f / df : 0.5 * (lo + hi);
       if (!(next > lo && next < hi) || (it >= kNewtonSteps && it % 2 == 0)) next = 0.5 * (lo + hi);
       if (hi - lo <= xtol || next == x) break;
       x = next;
     }
+    if (bf) e.at = ev_.at(e.t1, e.t2);  // H at the root, for point()
     return e;
+  }
+
+  // Curve k's eigenpair at (t1, t2) read in the bordered form bf (bordered_eigenpair): lam and scale are B's, b is H's
+  // null vector where lam = 0; `bordered` carries B's distance estimate to the curve for point(), valid only where B's
+  // eigenvalue and slopes are usable. H itself is not evaluated (segment_root does, at the root).
+  Pair bordered_pair(const BorderedForm& bf, double t1, double t2, int k) {
+    const BorderedEigen be = bordered_eigenpair(bf, t1, t2, k);
+    ++st_.evaluations;
+    Pair p;
+    p.t1 = t1;
+    p.t2 = t2;
+    p.k = k;
+    if (!be.ok || !(be.l1 + be.l2 > 0)) return p;
+    p.lam = be.lam;
+    p.scale = be.scale;
+    p.b = be.b;
+    p.bordered = {true, std::abs(be.lam) + be.error, be.l1, be.l2};
+    return p;
   }
 
   // Root of lambda_k on the edge from (t1a, t2a) to (t1b, t2b), with lambda_k = fa <= 0 and fb > 0 there.

@@ -226,6 +226,98 @@ TEST(BorderedForm, SameNullVectorsShiftedInertiaAndMonotoneThroughThePole) {
   }
 }
 
+namespace {
+// lambda_k of H(t1, t2) in long double (H formed from the modal form's double omega, d, G, taken as exact): the
+// reference for the bordered eigenpairs next to a pole line, where H's double eigenvalues are off by 8 m eps |H|.
+using MatL = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+MatL h_long(const ModalForm& md, long double t1, long double t2) {
+  const Eigen::Index m = md.m();
+  MatL G = md.G().cast<long double>(), H = MatL::Zero(m, m);
+  Eigen::Matrix<long double, Eigen::Dynamic, 1> e(md.d().size());
+  for (Eigen::Index j = 0; j < e.size(); ++j) {
+    const long double dj = md.d()(j);
+    e(j) = dj * std::tan(dj * t2);
+  }
+  H = G * e.asDiagonal() * G.transpose();
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const long double w = md.omega()(i);
+    H(i, i) += w * std::tan(w * t1);
+  }
+  return H;
+}
+}  // namespace
+
+TEST(BorderedEigen, PlacesRootsNextToClusteredPoleLinesWhereHCannot) {
+  // Two flight modes of nearly equal frequencies (10 and 10 (1 + 1e-5), tests/data/near_coincident7.json) put two pole
+  // lines 1.6e-6 apart, as the top modes of a long chain do. On vertical lines 1e-8 and 1e-11 right of the first,
+  // bordered_eigenpair gives lambda_k(H)'s sign wherever a long double reference proves it, and its zeros are H's (to
+  // B's own error over the slope), while H's double error bound there allows a position error 1e3 times larger.
+  // (Mutation-checked: with p off by one, or b's eigenvalue index k instead of k + p, the signs disagree.)
+  const ModalForm md(load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json"));
+  const auto eq = make_equations(md, Symmetry::Axial);
+  const Eigen::Index m = md.m();
+  Eigen::Index fast = -1;
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (Eigen::Index j = 0; j < m; ++j)
+      if (md.omega()(i) > md.omega()(j) && md.omega()(i) < md.omega()(j) * (1 + 1e-4)) fast = i;
+  ASSERT_GE(fast, 0);
+  const double P = M_PI / (2.0 * md.omega()(fast));
+  // a contact pole interval around t2 = 0.2, kept 1e-3 of its width off both poles
+  const std::vector<double> cp = tangent_poles(md.d(), 0.15, 0.25);
+  double lo2 = 0.15, hi2 = 0.25;
+  for (double p : cp) {
+    if (p <= 0.2) lo2 = std::max(lo2, p);
+    if (p > 0.2) hi2 = std::min(hi2, p);
+  }
+  const double w2 = hi2 - lo2;
+  lo2 += 1e-3 * w2;
+  hi2 -= 1e-3 * w2;
+  int roots = 0;
+  for (const double dist : {1e-8, 1e-11}) {
+    const double t1 = P + dist;
+    const search::BorderedForm bf(*eq, t1, t1, lo2, hi2);
+    ASSERT_GE(bf.bordered(), 2) << dist;  // both nearly equal flight modes
+    auto lam_ref = [&](double t2, int k) {
+      Eigen::SelfAdjointEigenSolver<MatL> es(h_long(md, t1, t2), Eigen::EigenvaluesOnly);
+      return es.eigenvalues()(k);
+    };
+    const int n = 200;
+    for (int k = 0; k < m; ++k) {
+      double prev_t2 = lo2, prev = search::bordered_eigenpair(bf, lo2, lo2, k).lam;
+      for (int i = 0; i <= n; ++i) {
+        const double t2 = lo2 + (hi2 - lo2) * i / n;
+        const search::BorderedEigen be = search::bordered_eigenpair(bf, t1, t2, k);
+        ASSERT_TRUE(be.ok) << dist << " " << k << " " << t2;
+        // the sign of lambda_k(H), where the long double reference is well away from its rounding (1e-15 |H|)
+        const long double ref = lam_ref(t2, k);
+        const long double href = h_long(md, t1, t2).cwiseAbs().maxCoeff();
+        if (std::abs(ref) > 1e-15L * href && std::abs(be.lam) > be.error)
+          EXPECT_EQ(be.lam > 0, ref > 0) << dist << " k " << k << " t2 " << t2;
+        if (i > 0 && (prev > 0) != (be.lam > 0) && std::abs(prev) > 0) {
+          // a zero of curve k between prev_t2 and t2: bisection on B, and on the long double H
+          double a = prev_t2, b = t2, ar = prev_t2, br = t2;
+          for (int it = 0; it < 80; ++it) {
+            const double c = 0.5 * (a + b), cr = 0.5 * (ar + br);
+            ((search::bordered_eigenpair(bf, t1, c, k).lam > 0) == (be.lam > 0) ? b : a) = c;
+            ((lam_ref(cr, k) > 0) == (be.lam > 0) ? br : ar) = cr;
+          }
+          const search::BorderedEigen at = search::bordered_eigenpair(bf, t1, a, k);
+          ASSERT_TRUE(at.ok);
+          const double allowed = 4.0 * (std::abs(at.lam) + at.error) / at.l2 + 1e-15;
+          EXPECT_LT(std::abs(a - ar), allowed) << dist << " k " << k;
+          // H's own double error bound there, over the same slope: the position H could give
+          const double h_allowed = 8.0 * m * std::numeric_limits<double>::epsilon() * eq->H(t1, a).norm() / at.l2;
+          EXPECT_GT(h_allowed, 1e3 * allowed) << dist << " k " << k;
+          ++roots;
+        }
+        prev = be.lam;
+        prev_t2 = t2;
+      }
+    }
+  }
+  EXPECT_GE(roots, 2);
+}
+
 TEST(SpectralBounds, ContainTheSampledOnsetFunctionAndItsDerivative) {
   // Property: on random steps of random curves in random cells (the paper's chain and a stiff 5-dof system with
   // stiffness spread 1e5; H and H_T, point symmetry's, whose every contact mode is bordered), g = zhat^T b and dg/ds
