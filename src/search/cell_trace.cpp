@@ -177,8 +177,8 @@ class CellTracer::Impl {
       }
       if (!bf) e = eigenpair(t1, t2, k);
       auto [l1, l2] = bf ? std::pair{e.bordered.l1, e.bordered.l2} : grads(e.b, e.t1, e.t2);
-      if (it == 0 && opt_.certify_steps &&
-          (std::abs(e.lam) + e.at->eigen_error()) / (l1 + l2) > kPosErrBordered * std::max(t1, t2)) {
+      // (H's error bound alone, over the slope: the distance to the curve within which H cannot place the root)
+      if (it == 0 && opt_.certify_steps && e.at->eigen_error() / (l1 + l2) > kPosErrBordered * std::max(t1, t2)) {
         const double s1 = t1a + lo * dt1, s2 = t1a + hi * dt1, u1 = t2a + lo * dt2, u2 = t2a + hi * dt2;
         bf = std::make_unique<BorderedForm>(eq_, std::min(s1, s2), std::max(s1, s2), std::min(u1, u2),
                                             std::max(u1, u2));

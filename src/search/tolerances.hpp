@@ -78,7 +78,9 @@ inline constexpr double kOnsetRootXtol = 1e-15;
 /// (up to 4 times): far beyond the eigenvalue rounding that made the count uncertain, far inside the pole margin.
 inline constexpr double kCornerMove = 1e-9;
 /// A trace point's relative position error (of max(t1, t2)) beyond which the bordered form estimates it instead of
-/// H's eigenvalue bound (next to a pole line H's bound overestimates by |H|, see cell_trace.cpp).
+/// H's eigenvalue bound (next to a pole line H's bound overestimates by |H|, see cell_trace.cpp); with certify_steps,
+/// also the error at a 1-D root's first point beyond which the root is solved in the bordered form
+/// (cell_trace.cpp segment_root): there H cannot place it closer than this, B can.
 inline constexpr double kPosErrBordered = 1e-8;
 /// When a piece's proof budget runs out, the midpoint trace restarts from at least this fraction of the piece.
 inline constexpr double kFallbackStep = 1e-3;
