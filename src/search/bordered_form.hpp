@@ -91,12 +91,12 @@ class BorderedForm {
 /// H's normwise error bound (8 m eps |H|, |H| ~ 1 / distance) is 1e6-1e9 times the gap of the slowest modes of a
 /// clustered chain, while B's entries, hence its error, stay O(1): a root placed in B is placed to B's accuracy.
 struct BorderedEigen {
-  bool ok = false;      ///< false: no eigenvalue k + p, or a border value is not finite (use H)
-  double lam = 0;       ///< lambda_{k + p}(B), with the sign of lambda_k(H)
-  double error = 0;     ///< absolute error bound of the computed eigenvalues of B (8 (m + nb) eps |B|)
-  double scale = 0;     ///< a bound of |B|_2 (Gershgorin)
+  bool ok = false;        ///< false: no eigenvalue k + p, or a border value is not finite (use H)
+  double lam = 0;         ///< lambda_{k + p}(B), with the sign of lambda_k(H)
+  double error = 0;       ///< absolute error bound of the computed eigenvalues of B (8 (m + nb) eps |B|)
+  double scale = 0;       ///< a bound of |B|_2 (Gershgorin)
   double l1 = 0, l2 = 0;  ///< x^T dB/dt1 x and x^T dB/dt2 x (>= 0: B grows with t1 and t2)
-  Eigen::VectorXd b;    ///< x's first m entries, normalised (H's unit null vector where lam = 0)
+  Eigen::VectorXd b;      ///< x's first m entries, normalised (H's unit null vector where lam = 0)
 };
 /// The above for curve k (0-based, ascending) of H. Cost: one Householder tridiagonalisation of the (m + nb)-square B
 /// (~4/3 (m + nb)^3), bisection for one eigenvalue and inverse iteration for its vector; O(m^2) memory.

@@ -180,8 +180,8 @@ class CellTracer::Impl {
       // (H's error bound alone, over the slope: the distance to the curve within which H cannot place the root)
       if (it == 0 && opt_.certify_steps && e.at->eigen_error() / (l1 + l2) > kPosErrBordered * std::max(t1, t2)) {
         const double s1 = t1a + lo * dt1, s2 = t1a + hi * dt1, u1 = t2a + lo * dt2, u2 = t2a + hi * dt2;
-        bf = std::make_unique<BorderedForm>(eq_, std::min(s1, s2), std::max(s1, s2), std::min(u1, u2),
-                                            std::max(u1, u2));
+        bf =
+            std::make_unique<BorderedForm>(eq_, std::min(s1, s2), std::max(s1, s2), std::min(u1, u2), std::max(u1, u2));
         Pair eb;
         if (bf->valid() && bf->bordered() > 0) eb = bordered_pair(*bf, t1, t2, k);
         if (eb.bordered.valid) {
