@@ -183,16 +183,34 @@ BorderedEigen bordered_eigenpair(const BorderedForm& bf, double t1, double t2, i
   const Eigen::VectorXd lam = bf.border_values(t1, t2);
   if (!lam.allFinite()) return r;
   const int kb = k + static_cast<int>((lam.array() > 0.0).count());
-  const detail::SymmetricTridiagonal T(bf.matrix(t1, t2));
+  // B balanced by the congruence D B D, D = diag(1, ..., 1, c_q ...) (the same inertia, Schur complement and null
+  // vectors up to D): border coordinate q of phase a tan(w t - pi/2) scaled by c_q = 1 / a, so that its entry
+  // -c_q^2 / phase = tan(w t - pi/2) / a and its coupling c_q g have H's own scale (omega tan, or tan / omega).
+  // Unbalanced, scaling K by f scales H' by sqrt(f) and the border block by 1 / sqrt(f): B's error bound eps |B| then
+  // swamps the eigenvalue that carries lambda_k(H) (scale invariance lost: chain5 with K x 1e16 left 26 sign changes
+  // unpolished).
+  const int m = bf.size() - bf.bordered();
+  Eigen::VectorXd D = Eigen::VectorXd::Ones(bf.size());
+  const auto balance = [](const PhaseFamily& ph, Eigen::Index k) {
+    return ph.amp(k) > 0 && !ph.reciprocal(k) && !ph.linear(k) ? 1.0 / ph.amp(k) : 1.0;
+  };
+  for (int q = m; q < bf.size(); ++q)  // flight border coordinates (the contact ones have the zero phase there)
+    if (bf.flight().amp(q) != 0.0) D(q) = balance(bf.flight(), q);
+  for (Eigen::Index col = 0; col < bf.contact().size(); ++col)  // contact border columns: a unit entry below m
+    for (int q = m; q < bf.size(); ++q)
+      if (bf.Gx()(q, col) != 0.0) D(q) = balance(bf.contact(), col);
+  const Eigen::MatrixXd Bs = D.asDiagonal() * bf.matrix(t1, t2) * D.asDiagonal();
+  const detail::SymmetricTridiagonal T(Bs);
   if (k < 0 || kb >= T.size()) return r;
   r.lam = T.eigenvalue(kb);
   r.scale = T.norm_bound();
   r.error = 8.0 * T.size() * std::numeric_limits<double>::epsilon() * r.scale;
-  const Eigen::VectorXd x = T.eigenvector(r.lam);
-  const int m = bf.size() - bf.bordered();
-  const double head = x.head(m).norm();
-  if (!(head > 0) || !x.allFinite()) return r;
-  r.b = x.head(m) / head;
+  const Eigen::VectorXd xs = T.eigenvector(r.lam);
+  const double head = xs.head(m).norm();
+  if (!(head > 0) || !xs.allFinite()) return r;
+  r.b = xs.head(m) / head;
+  // slopes of D B D along its unit vector xs: those of B along x = D xs
+  const Eigen::VectorXd x = D.cwiseProduct(xs);
   const Eigen::VectorXd y = bf.Gx().transpose() * x;
   r.l1 = bf.flight().d1(t1).dot(x.cwiseProduct(x));
   r.l2 = bf.contact().d1(t2).dot(y.cwiseProduct(y));

@@ -649,3 +649,32 @@ TEST(CertifiedSearch, ProvesTheRodWindow) {
   o.t2_max = 20;
   EXPECT_EQ(expect_certified_with_default_roots(s, o).solutions.size(), 76u);
 }
+
+TEST(BorderedEigen, ScalingTimeScalesTheBorderedEigenpairAsH) {
+  // Bug (583ef30..92db2da): B's border block -1/f scaled like 1 / sqrt(s) when K was scaled by s, while H' scaled like
+  // sqrt(s); B's error bound (eps |B|) then swamped the eigenvalue carrying lambda_k(H), and chain5 with K x 1e16 left
+  // 26 sign changes unpolished (K x 1e24, 1e-16: not finished in 100 s). Balanced, B at (t1, t2) / sqrt(s) is
+  // sqrt(s) times B at (t1, t2): the same eigenvalue over |B|, error over |B|, null vector and slopes over |B|.
+  const System s0 = chain5();
+  const ModalForm md0(s0);
+  const double P = M_PI / (2.0 * md0.omega().maxCoeff());
+  for (const double f : {1e-16, 1e16}) {
+    const double r = std::sqrt(f);
+    const ModalForm md1(System(s0.M(), f * s0.K(), s0.w(), s0.g0()));
+    const auto eq0 = make_equations(md0, Symmetry::Axial), eq1 = make_equations(md1, Symmetry::Axial);
+    const double t1 = P * (1 + 1e-9), lo2 = 0.3, hi2 = 0.35;
+    const search::BorderedForm b0(*eq0, t1, t1, lo2, hi2), b1(*eq1, t1 / r, t1 / r, lo2 / r, hi2 / r);
+    ASSERT_GE(b0.bordered(), 1);
+    ASSERT_EQ(b0.key(), b1.key());
+    for (int k = 0; k < md0.m(); ++k)
+      for (const double t2 : {lo2, 0.5 * (lo2 + hi2), hi2}) {
+        const search::BorderedEigen e0 = search::bordered_eigenpair(b0, t1, t2, k);
+        const search::BorderedEigen e1 = search::bordered_eigenpair(b1, t1 / r, t2 / r, k);
+        ASSERT_TRUE(e0.ok && e1.ok) << f << " " << k;
+        EXPECT_NEAR(e1.lam / e1.scale, e0.lam / e0.scale, 1e-12) << f << " " << k << " " << t2;
+        EXPECT_NEAR(e1.error / e1.scale, e0.error / e0.scale, 1e-20) << f << " " << k;
+        EXPECT_NEAR(std::abs(e1.b.dot(e0.b)), 1.0, 1e-9) << f << " " << k;
+        EXPECT_NEAR(e1.l1 / (r * e1.scale), e0.l1 / e0.scale, 1e-9 * (1 + e0.l1 / e0.scale)) << f << " " << k;
+      }
+  }
+}
