@@ -74,7 +74,12 @@ class CellTracer::Impl {
   };
   Pair eigenpair(double t1, double t2, int k) {
     const std::shared_ptr<const HPoint> T = ev_.at(t1, t2);
-    Pair p{t1, t2, T->eigenvalue(k), T->norm_bound(), Vec(), T};
+    Pair p;
+    p.t1 = t1;
+    p.t2 = t2;
+    p.lam = T->eigenvalue(k);
+    p.scale = T->norm_bound();
+    p.at = T;
     p.b = T->eigenvector(p.lam);
     p.k = k;
     return p;

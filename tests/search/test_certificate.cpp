@@ -291,8 +291,9 @@ TEST(BorderedEigen, PlacesRootsNextToClusteredPoleLinesWhereHCannot) {
         // the sign of lambda_k(H), where the long double reference is well away from its rounding (1e-15 |H|)
         const long double ref = lam_ref(t2, k);
         const long double href = h_long(md, t1, t2).cwiseAbs().maxCoeff();
-        if (std::abs(ref) > 1e-15L * href && std::abs(be.lam) > be.error)
+        if (std::abs(ref) > 1e-15L * href && std::abs(be.lam) > be.error) {
           EXPECT_EQ(be.lam > 0, ref > 0) << dist << " k " << k << " t2 " << t2;
+        }
         if (i > 0 && (prev > 0) != (be.lam > 0) && std::abs(prev) > 0) {
           // a zero of curve k between prev_t2 and t2: bisection on B, and on the long double H
           double a = prev_t2, b = t2, ar = prev_t2, br = t2;
