@@ -86,9 +86,12 @@ void write_file_atomic(const std::string& given, const std::string& content) {
   const fs::file_status st = fs::status(target, st_ec);
   if (fs::exists(st) && !fs::is_regular_file(st))
     invalid("cannot write \"" + path + "\": it exists and is not a regular file (a directory or a device)");
-  // a short name (the target's may be up to 255 bytes), unique to this process and call
+  // a short name (the target's may be up to 255 bytes), unique to this process and call; the salt tells apart
+  // processes of one MPI run on two hosts that share a pid and write into one shared directory (a sweep's items)
   static std::atomic<unsigned> calls{0};
-  const fs::path tmp = dir / (".tmp.spp." + std::to_string(::getpid()) + "." + std::to_string(calls++));
+  static const unsigned salt = std::random_device{}();
+  const fs::path tmp = dir / (".tmp.spp." + std::to_string(::getpid()) + "." + std::to_string(salt) + "." +
+                              std::to_string(calls++));
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) invalid("cannot write \"" + path + "\": cannot create a temporary file in \"" + dir.string() + "\"");
