@@ -115,6 +115,7 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("verdict", [](const spp::SppCheck& c) { return outcome(c.verdict); })
       .def_readonly("consistent", &spp::SppCheck::consistent)
       .def_readonly("return_errors", &spp::SppCheck::return_errors)
+      .def_readonly("potential_return_error", &spp::SppCheck::potential_return_error)
       .def_readonly("periods_followed", &spp::SppCheck::periods_followed)
       .def_readonly("departure_time", &spp::SppCheck::departure_time)
       .def_readonly("departure", &spp::SppCheck::departure)
@@ -143,6 +144,8 @@ void bind_simulation(py::module_& m) {
                      "an admissible SPP must come back to this relative error after one period")
       .def_readwrite("follow_tol", &spp::VerifyOptions::follow_tol,
                      "later periods count as followed while the return error stays below this")
+      .def_readwrite("potential_return_tol", &spp::VerifyOptions::potential_return_tol,
+                     "every SPP must come back to this relative error along its potential orbit (events ignored)")
       .def_readwrite("event_time_tol", &spp::VerifyOptions::event_time_tol,
                      "relative to the period: events within it of the expected times match")
       .def("validate", &spp::VerifyOptions::validate, "Raises ValueError naming the first invalid field.")

@@ -67,6 +67,8 @@ def test_verify_agrees_with_the_solver():
     v = spp.verify(s, r)
     assert v.all_consistent()
     assert (v.returned, v.left) == (7, 57)
+    # every SPP, admissible or not, comes back along its potential orbit (x0, v0 are the orbit at t1, t2)
+    assert max(c.potential_return_error for c in v.checks) < 1e-12
 
 
 def test_verify_refuses_a_result_of_another_system():

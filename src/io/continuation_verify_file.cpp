@@ -90,6 +90,7 @@ json verify_to_json(const VerifyResult& r) {
               {"contact_onsets", c.contact_onsets},
               {"releases", c.releases}};
     o["periods_followed"] = c.periods_followed;
+    if (std::isfinite(c.potential_return_error)) o["potential_return_error"] = c.potential_return_error;
     if (!c.departure.empty()) o["departure"] = {{"t", c.departure_time}, {"what", c.departure}};
     if (!c.perturbed_distances.empty()) {
       o["perturbed_distances"] = c.perturbed_distances;

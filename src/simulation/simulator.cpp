@@ -174,6 +174,24 @@ Simulator::Simulator(const System& system) : system_(system) {
   contact_.weights = (force_row_ * contact_.Phi).transpose();
 }
 
+std::pair<Eigen::VectorXd, Eigen::VectorXd> Simulator::follow_contact_then_flight(const Eigen::VectorXd& x0,
+                                                                                 const Eigen::VectorXd& v0,
+                                                                                 double contact_time,
+                                                                                 double flight_time) const {
+  if (x0.size() != system_.n() || v0.size() != system_.n() || !(contact_time >= 0.0) || !(flight_time >= 0.0)) {
+    std::ostringstream os;
+    os << "follow_contact_then_flight: expected x0 and v0 of size " << system_.n()
+       << " and durations >= 0, got sizes " << x0.size() << " and " << v0.size() << ", durations " << contact_time
+       << " and " << flight_time;
+    detail::invalid(os.str());
+  }
+  Eigen::VectorXd x, v;
+  state_at(contact_, modal_state(contact_, system_.M(), x0, v0), contact_time, x, v);
+  Eigen::VectorXd xf, vf;
+  state_at(flight_, modal_state(flight_, system_.M(), x, v), flight_time, xf, vf);
+  return {xf, vf};
+}
+
 double Simulator::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
   return 0.5 * v.dot(system_.M() * v) + 0.5 * x.dot(system_.K() * x);
 }

@@ -155,6 +155,7 @@ void VerifyOptions::validate() const {
   if (!(restitution >= 0.0 && restitution <= 1.0)) bad("restitution", restitution, "in [0, 1]");
   if (!(return_tol > 0.0)) bad("return_tol", return_tol, "> 0");
   if (!(follow_tol >= return_tol)) bad("follow_tol", follow_tol, ">= return_tol");
+  if (!(potential_return_tol >= return_tol)) bad("potential_return_tol", potential_return_tol, ">= return_tol");
   if (!(event_time_tol > 0.0 && event_time_tol < 0.1)) bad("event_time_tol", event_time_tol, "in (0, 0.1)");
 }
 
@@ -209,6 +210,10 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     for (const Sample& s : r.samples)
       if (s.t > 0.0) chk.return_errors.push_back((stack(s.x, s.v) - X0).norm() / X0.norm());
     compare_events(r, c, opt.periods, opt.event_time_tol * T, chk);
+    if (c.orbit.symmetry == Symmetry::Axial) {
+      const auto [xT, vT] = sim.follow_contact_then_flight(c.x0(), c.v0(), 2.0 * c.t2(), 2.0 * c.t1());
+      chk.potential_return_error = (stack(xT, vT) - X0).norm() / X0.norm();
+    }
     // Verdict on the first period: its events all match and it comes back within return_tol. Later departures
     // (rounding errors growing on an unstable SPP) are reported, not counted against the solver.
     const bool first_period_events_ok = chk.departure.empty() || chk.departure_time + opt.event_time_tol * T >= T;
@@ -225,6 +230,12 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     }
     chk.verdict = returns ? Verdict::Returns : Verdict::Leaves;
     chk.consistent = returns == c.admissible();
+    if (chk.potential_return_error > opt.potential_return_tol) {  // NaN (not checked) passes
+      chk.consistent = false;
+      chk.departure = "x0, v0 are not the SPP at (t1, t2): its own contact and flight flows (2 t2, then 2 t1) come "
+                      "back " + fmt(chk.potential_return_error) + " away (an edited result, or another system's)" +
+                      (chk.departure.empty() ? "" : "; and " + chk.departure);
+    }
     if (returns && opt.perturbation > 0.0) {
       // perturb the mid-flight state (the gap is largest there), follow the distance to the orbit
       SimulateOptions om;

@@ -107,6 +107,37 @@ TEST(Verify, AnSppMislabelledAdmissibleMakesTheResultInconsistent) {
   EXPECT_FALSE(r.all_consistent());
 }
 
+TEST(Verify, AnInadmissibleSppWhoseStateWasEditedIsInconsistent) {
+  // Found by an independent attack: x0 of an inadmissible SPP edited in the result file still "left" as expected, so
+  // spp verify said success. Its potential orbit (contact flow 2 t2, flight 2 t1, events ignored) now must return.
+  auto spps = spps_of(chain5(), 12.0, 12.0);
+  VerifyResult clean = verify(chain5(), spps, VerifyOptions{});
+  ASSERT_EQ(clean.status, VerifyStatus::Success) << clean.brief_report();
+  for (const SppCheck& c : clean.checks) {
+    ASSERT_TRUE(std::isfinite(c.potential_return_error));
+    EXPECT_LT(c.potential_return_error, 1e-12) << c.spp.t1() << ", " << c.spp.t2();
+  }
+  const auto leaving = std::find_if(spps.begin(), spps.end(), [](const Solution& c) { return !c.admissible(); });
+  ASSERT_NE(leaving, spps.end());
+  leaving->orbit.x0(0) += 1e-3 * leaving->orbit.x0.norm();
+  const VerifyResult r = verify(chain5(), spps, VerifyOptions{});
+  EXPECT_EQ(r.status, VerifyStatus::Inconsistent) << r.brief_report();
+  EXPECT_EQ(r.inconsistent, 1);
+  const SppCheck& c = r.checks[static_cast<size_t>(leaving - spps.begin())];
+  EXPECT_EQ(c.verdict, Verdict::Leaves);
+  EXPECT_FALSE(c.consistent);
+  EXPECT_GT(c.potential_return_error, 1e-6);
+  EXPECT_NE(c.departure.find("not the SPP at (t1, t2)"), std::string::npos) << c.departure;
+}
+
+TEST(Verify, FollowingContactThenFlightRefusesWrongSizesAndNegativeTimes) {
+  const Simulator sim(chain5());
+  const Eigen::VectorXd x = Eigen::VectorXd::Zero(5), short_x = Eigen::VectorXd::Zero(4);
+  EXPECT_THROW(sim.follow_contact_then_flight(short_x, x, 1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(sim.follow_contact_then_flight(x, x, -1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(sim.follow_contact_then_flight(x, x, 1.0, std::nan("")), std::invalid_argument);
+}
+
 TEST(Verify, ACandidateTheSimulatorRefusesIsNamedByItsIndex) {
   // Found by an independent review: a result whose solution 0 had x0[0] = 1e308 hung spp verify; with t1 = 1e308,
   // the message said "simulate: duration must be finite" without naming the solution.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "spp/core/system.hpp"
@@ -86,6 +87,14 @@ class Simulator {
   /// Throws std::invalid_argument if the sizes are wrong, a value is not finite or the initial state penetrates the
   /// obstacle.
   SimulationResult run(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const SimulateOptions& options) const;
+
+  /// The state reached from (x0, v0) by the contact flow (obstacle held, x0 projected on it) for `contact_time`, then
+  /// the free flight for `flight_time`, every event ignored: the potential orbit of an SPP (paper §3), which an
+  /// inadmissible SPP follows although the simulator cannot. Both durations >= 0. Cost O(n^2).
+  std::pair<Eigen::VectorXd, Eigen::VectorXd> follow_contact_then_flight(const Eigen::VectorXd& x0,
+                                                                        const Eigen::VectorXd& v0,
+                                                                        double contact_time,
+                                                                        double flight_time) const;
 
   const System& system() const { return system_; }
   double energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
