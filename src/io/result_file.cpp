@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -90,6 +91,53 @@ void check_solution_values(const json& o, const std::string& at) {
                 describe(f));
       }
     }
+}
+
+// The orbit block (modal coordinates of one SPP, orbit/orbit.hpp): a, c, p0, p0dot of one length m, the modes that
+// see the contact (1 <= m <= n), a closure ratio in [0, 1] and the SPP's energy (the same number as its "energy").
+// Each read silently before (found by an independent attack).
+void check_orbit_block(const Reader& ob, const Orbit& b, long n, double energy, double solution_energy) {
+  const Eigen::Index m = b.p0.size();
+  if (m < 1 || (n >= 0 && m > n) || b.a.size() != m || b.c.size() != m || b.p0dot.size() != m)
+    invalid(ob.where + ": expected a, c, p0, p0dot of one length between 1 and the system's " +
+            (n >= 0 ? std::to_string(n) : std::string("n")) + " dofs, got " + std::to_string(b.a.size()) + ", " +
+            std::to_string(b.c.size()) + ", " + std::to_string(m) + " and " + std::to_string(b.p0dot.size()));
+  for (const auto& [key, v] : {std::pair<const char*, const Eigen::VectorXd*>{"a", &b.a}, {"c", &b.c},
+                               {"p0", &b.p0}, {"p0dot", &b.p0dot}})
+    if (!v->allFinite()) invalid(ob.where + ": field \"" + key + "\": expected finite numbers");
+  if (!(b.closure_ratio >= 0.0 && b.closure_ratio <= 1.0 + kSameToRounding))
+    invalid(ob.where + ": field \"closure_ratio\": expected a number in [0, 1], got " + num(b.closure_ratio));
+  if (!(std::abs(energy - solution_energy) <= kSameToRounding * std::abs(solution_energy)))
+    invalid(ob.where + ": field \"energy\" must be the SPP's \"energy\" " + num(solution_energy) + ", got " +
+            num(energy));
+}
+
+// The stability fields (stability/floquet.hpp): 2n multipliers; spectral_radius their largest modulus once the two
+// structural 1s are set aside, >= 0; stability_margin = 1 - spectral_radius. A radius beside an empty list, or a margin
+// that contradicts it, was read silently before (found by an independent attack).
+void check_floquet(const Reader& o, const Floquet& f, long n) {
+  const std::string at = o.where + ": field \"floquet_multipliers\"";
+  if (n >= 0 && static_cast<long>(f.multipliers.size()) != 2 * n)
+    invalid(at + ": expected 2n = " + std::to_string(2 * n) + " multipliers (the system's " + std::to_string(n) +
+            " dofs), got " + std::to_string(f.multipliers.size()));
+  for (const auto& z : f.multipliers)
+    if (!std::isfinite(z.real()) || !std::isfinite(z.imag())) invalid(at + ": expected finite numbers");
+  if (!(f.spectral_radius >= 0.0 && std::isfinite(f.spectral_radius)))
+    invalid(o.where + ": field \"spectral_radius\": expected a finite number >= 0, got " + num(f.spectral_radius));
+  std::vector<std::complex<double>> rest = f.multipliers;  // set aside the two closest to 1
+  for (int k = 0; k < 2 && !rest.empty(); ++k)
+    rest.erase(std::min_element(rest.begin(), rest.end(), [](const auto& p, const auto& q) {
+      return std::abs(p - 1.0) < std::abs(q - 1.0);
+    }));
+  double rho = 0.0;
+  for (const auto& z : rest) rho = std::max(rho, std::abs(z));
+  const double tol = kSameToRounding * std::max(1.0, rho);
+  if (!(std::abs(rho - f.spectral_radius) <= tol))
+    invalid(o.where + ": field \"spectral_radius\" must be the largest modulus of \"floquet_multipliers\" but the "
+                      "two structural 1s, " + num(rho) + ", got " + num(f.spectral_radius));
+  if (!(std::abs(f.margin - (1.0 - f.spectral_radius)) <= tol))
+    invalid(o.where + ": field \"stability_margin\" must be 1 - spectral_radius = " + num(1.0 - f.spectral_radius) +
+            ", got " + num(f.margin));
 }
 
 // What the solver's status means (search/solver.cpp, finalize: "success" exactly when no warning and no uncertified
@@ -388,6 +436,7 @@ SolveResult result_from_json(const json& r, const std::string& where) {
       b.p0dot = ob.vector("p0dot");
       b.closure_ratio = ob.number("closure_ratio");
       b.energy = ob.number("energy");
+      check_orbit_block(ob, b, n, x.energy(), o.number("energy"));
     } else {  // files written before the orbit block: in_modal_basis rebuilds the modal coordinates from x0, v0
       b.closure_ratio = std::numeric_limits<double>::quiet_NaN();
       b.energy = o.number("energy");
@@ -406,6 +455,7 @@ SolveResult result_from_json(const json& r, const std::string& where) {
       x.floquet.margin = o.number("stability_margin");
       x.floquet.stable = x.floquet.spectral_radius < 1.0;
       x.floquet.structure_residual = o.number("floquet_structure_residual");
+      check_floquet(o, x.floquet, n);
       if (o.boolean("stable") != x.stable())
         invalid(o.where + ": field \"stable\" must be admissible and spectral_radius < 1, got " +
                 (o.boolean("stable") ? "true" : "false"));

@@ -24,6 +24,19 @@ std::string name_field(const json& j, const std::string& where) {
   for (const char* k : {"name", "description"})
     if (j.contains(k) && !j.at(k).is_string())
       invalid(where + ": field \"" + k + "\" must be a string, got " + describe(j.at(k)));
+  // control characters (a NUL cut the name short in every table and figure title; found by an independent attack),
+  // except tabs and line breaks in the description
+  for (const char* k : {"name", "description"}) {
+    if (!j.contains(k)) continue;
+    const std::string t = j.at(k).get<std::string>();
+    const bool text = std::string(k) == "description";
+    for (size_t i = 0; i < t.size(); ++i) {
+      const auto c = static_cast<unsigned char>(t[i]);
+      if ((c < 0x20 && !(text && (c == '\t' || c == '\n' || c == '\r'))) || c == 0x7f)
+        invalid(where + ": field \"" + k + "\": expected printable text, got the control character " +
+                std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i));
+    }
+  }
   return j.contains("name") ? j.at("name").get<std::string>() : "";
 }
 

@@ -478,6 +478,33 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   j = good;
   j["system"]["w_normalized"] = !good["system"]["w_normalized"].get<bool>();
   expect_refused(j, "field \"system\": field \"w_normalized\" must be ");
+  // the orbit block and the stability fields (found by an independent attack: each read silently before)
+  ASSERT_TRUE(good["solutions"][0].contains("orbit"));
+  ASSERT_TRUE(good["solutions"][0].contains("floquet_multipliers"));
+  j = good;
+  j["solutions"][0]["orbit"]["p0"].erase(0);
+  expect_refused(j, "field \"solutions\"[0]: field \"orbit\": expected a, c, p0, p0dot of one length between 1 and");
+  j = good;
+  j["solutions"][0]["orbit"]["energy"] = 2.0 * good["solutions"][0]["energy"].get<double>();
+  expect_refused(j, "field \"solutions\"[0]: field \"orbit\": field \"energy\" must be the SPP's \"energy\"");
+  j = good;
+  j["solutions"][0]["orbit"]["closure_ratio"] = -0.5;
+  expect_refused(j, "field \"solutions\"[0]: field \"orbit\": field \"closure_ratio\": expected a number in [0, 1]");
+  j = good;
+  j["solutions"][0]["floquet_multipliers"] = io::json::array();
+  expect_refused(j, "field \"solutions\"[0]: field \"floquet_multipliers\": expected 2n = 6 multipliers");
+  j = good;
+  j["solutions"][0]["spectral_radius"] = 0.5 * good["solutions"][0]["spectral_radius"].get<double>();
+  expect_refused(j, "field \"solutions\"[0]: field \"spectral_radius\" must be the largest modulus");
+  j = good;
+  j["solutions"][0]["stability_margin"] = 7.0;
+  expect_refused(j, "field \"solutions\"[0]: field \"stability_margin\" must be 1 - spectral_radius");
+  j = good;
+  j["system"]["name"] = std::string("chain\0three", 11);
+  expect_refused(j, "field \"system\": field \"name\": expected printable text, got the control character 0 at byte 5");
+  j = good;
+  j["system"]["description"] = "two lines\nand a tab\t";
+  EXPECT_EQ(refusal(j), "(accepted)");
 }
 
 TEST(Io, MatrixMarketOfAnotherSizeThanWIsRefusedBeforeItIsAllocated) {
