@@ -610,6 +610,22 @@ TEST(Io, MatrixMarketHexadecimalNumberIsRefused) {
                       "bad entry \"1 1 0x1p1\"");
 }
 
+TEST(Io, MatrixMarketIndicesAndCountsAreWholeNumbersAsWritten) {
+  // "2.0" and "2e0" were read as 2 in the size line and in entries (through a double; found by an independent attack)
+  const fs::path d = tmpdir();
+  for (const char* size : {"2.0 2 2", "2 2e0 2", "2 2 2.5"}) {
+    write(d / "sz.mtx", std::string("%%MatrixMarket matrix coordinate real general\n") + size + "\n1 1 1\n2 2 1\n");
+    expect_load_refused(R"({"M": {"matrix_market": "sz.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                        std::string("bad size line \"") + size + "\"");
+  }
+  write(d / "ix.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2.0 2 1\n");
+  expect_load_refused(R"({"M": {"matrix_market": "ix.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "bad entry \"2.0 2 1\"");
+  write(d / "ok.mtx", "%%MatrixMarket matrix coordinate real general\n+2 2 2\n1 1 1\n2 2 1\n");
+  write(d / "ok.json", R"({"M": {"matrix_market": "ok.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})");
+  EXPECT_EQ(load_system((d / "ok.json").string()).n(), 2);
+}
+
 TEST(Io, SparseSystemRoundTripsThroughMatrixMarketFiles) {
   // write_sparse_system: M and K as symmetric coordinate files beside the JSON, 17 digits: read back bit for bit by the
   // sparse loader, and by the dense one (small n)
