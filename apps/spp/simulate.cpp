@@ -57,7 +57,8 @@ Subcommand add_simulate(CLI::App& app) {
   s->add_option("--restitution", a->options.restitution, "Newton's coefficient e in [0, 1] (default 0)");
   s->add_option("--csv", a->csv, "output CSV: t, x1..xn, v1..vn, gap, force, contact")->required();
   s->add_option("--events", a->events, "output CSV of the impacts, contact onsets and releases");
-  s->add_option("--samples-per-unit", a->per_unit, "rows per unit of time (default 100; 0: only t = 0, the events and t = T), plus one per event");
+  s->add_option("--samples-per-unit", a->per_unit,
+                "rows per unit of time (default 100; 0: only t = 0, the events and t = T), plus one per event");
   s->add_option("--max-events", a->options.max_events, "stop after this many events (default 1e7)")
       ->transform(whole_number(1, kMaxCount));
   return {s, [a] { return run(*a); }};
