@@ -68,6 +68,9 @@ decltype(auto) naming_system_file(const std::string& path, F&& f) {
 /// A count option's check: "1e7" reads as 10000000 (as --help writes defaults), anything not a whole number in
 /// [min, max] is refused naming the option (CLI11 read "1e3" as an error and 1e20 as some long).
 CLI::Validator whole_number(double min, double max);
+/// Empty when `text` is a decimal number parse_number reads; else what is wrong with it ("expected a decimal number
+/// ..., got ..." or "... is beyond the range of a double ..."), for the messages of options and lists.
+std::string number_problem(const std::string& text);
 /// The largest count an option takes: every such count stays exact in a double.
 inline constexpr double kMaxCount = 1e15;
 

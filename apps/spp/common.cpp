@@ -69,6 +69,19 @@ std::optional<double> parse_number(const std::string& item) {
   return x;
 }
 
+std::string number_problem(const std::string& text) {
+  if (parse_number(text)) return "";
+  double x = 0.0;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, x);
+  if (ec == std::errc::result_out_of_range && ptr == end)
+    return "expected a number within the range of a double (magnitude 2.2e-308 to 1.8e308, or 0), got \"" +
+           quoted(text) + "\"";
+  return "expected a decimal number (as 2, 0.5 or 1e-3), got \"" + quoted(text) + "\"";
+}
+
 CLI::Validator whole_number(double min, double max) {
   std::ostringstream range;
   range << "a whole number from " << min << " to " << max;

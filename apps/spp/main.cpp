@@ -53,6 +53,10 @@ void refuse_empty_texts(CLI::App& app) {
       // every whole-number option reads counts as --help writes them (1e6; CLI11 said "Could not convert"); its own
       // range is checked by its options' validate()
       if (opt->get_type_name() == "INT") opt->transform(whole_number(-kMaxCount, kMaxCount));
+      // every real option decimal, as the lists and values are (CLI11 read `--t1-max 0x3` as 3; found by an
+      // independent attack); its own range is checked by its options' validate()
+      if (opt->get_type_name() == "FLOAT")
+        opt->check(CLI::Validator([](std::string& text) { return text.empty() ? "" : number_problem(text); }, ""));
     }
     refuse_empty_texts(*sub);
   }

@@ -1325,6 +1325,23 @@ TEST(Cli, EmptyOutputPathIsRefusedNamingTheOption) {
   }
 }
 
+TEST(Cli, RealOptionsAreDecimalNumbers) {
+  // CLI11 read --t1-max 0x3 as 3 and --duration 0x1p2 as 4 (found by an independent attack); every FLOAT option now
+  // reads what parse_number reads, as the lists and --values do
+  for (const auto& [args, opt, got] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"solve " + kChain + " --t1-max 0x3 --t2-max 1", "--t1-max", "expected a decimal number"},
+           {"solve " + kChain + " --t1-max 3 --t2-max 1e400", "--t2-max", "expected a number within the range of a double"},
+           {"simulate " + kChain + " --x0 0,0,0,0,0.5 --v0 0,0,0,0,0 --duration 0x1p2 --csv " +
+                (dir() / "hex.csv").string(),
+            "--duration", "expected a decimal number"}}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(opt + ": " + got), std::string::npos) << args << "\n" << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir() / "hex.csv"));
+  EXPECT_EQ(run("solve " + kChain + " --t1-max +3 --t2-max 1e0").code, 0);
+}
+
 TEST(Cli, SweepValuesAreTheDecimalsAUserExpects) {
   // 1:2:0.1 swept 1.7000000000000002 (1 + 7 x 0.1); 0.1:0.7:0.1 ended at 0.7000000000000001, past the stop; the CSV
   // printed 17 digits where the JSON and stderr printed 1.1
