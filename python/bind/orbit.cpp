@@ -54,6 +54,12 @@ void bind_orbit(py::module_& m) {
       [](const spp::System& s, double t1, double t2, int samples) {
         if (samples < 2)
           detail::invalid("trajectory: samples must be >= 2, got " + std::to_string(samples));
+        // the samples' arrays (t, gap, force and x, v of n each) are allocated at once: bounded like spp trajectory's
+        // CSV, named instead of a MemoryError or a swap storm (found by an independent attack)
+        constexpr double kMaxValues = 1e8;
+        if (static_cast<double>(samples) * (2.0 * static_cast<double>(s.n()) + 3.0) > kMaxValues)
+          detail::invalid("trajectory: samples x (2n + 3) must be at most 1e8 values (800 MB), got samples = " +
+                          std::to_string(samples) + " for n = " + std::to_string(s.n()));
         const spp::ModalForm md(s);
         spp::SolveOptions o;
         o.compute_return_error = false;

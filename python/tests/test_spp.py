@@ -83,6 +83,26 @@ def test_verify_refuses_a_result_of_another_system():
         spp.verify(s, r.solutions)
 
 
+def test_a_result_is_written_only_with_its_own_system():
+    # to_json(other_system) wrote one system beside another's SPPs (found by an independent attack)
+    s = chain5()
+    r = spp.solve(s, t1_max=6, t2_max=3)
+    assert len(r.solutions) > 0
+    with pytest.raises(ValueError, match="dofs, got 5 and 5: the result is another system's"):
+        r.to_json(spp.chain(4))
+    with pytest.raises(ValueError, match="not on this system's obstacle"):
+        r.to_json(spp.System(s.M, s.K, s.w, 2.0 * s.g0))
+    assert '"solutions"' in r.to_json(s)
+
+
+def test_trajectory_samples_are_bounded():
+    s = chain5()
+    t1, t2 = spp.solve(s, t1_max=6, t2_max=3).solutions[0].t1, spp.solve(s, t1_max=6, t2_max=3).solutions[0].t2
+    with pytest.raises(ValueError, match=r"samples x \(2n \+ 3\) must be at most 1e8 values"):
+        spp.trajectory(s, t1, t2, samples=10**8)
+    assert spp.trajectory(s, t1, t2, samples=11)["x"].shape == (11, 5)
+
+
 def test_generators():
     assert spp.chain(5).n == 5
     assert spp.rod_with_slip().n == 4

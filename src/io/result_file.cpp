@@ -93,6 +93,9 @@ void check_solution_values(const json& o, const std::string& at) {
     }
 }
 
+// An SPP's onset state is on the obstacle to rounding; a relative gap beyond this means another system's SPP.
+constexpr double kOnObstacle = 1e-8;
+
 // The orbit block (modal coordinates of one SPP, orbit/orbit.hpp): a, c, p0, p0dot of one length m, the modes that
 // see the contact (1 <= m <= n), a closure ratio in [0, 1] and the SPP's energy (the same number as its "energy").
 // Each read silently before (found by an independent attack).
@@ -307,6 +310,21 @@ void check_result(const json& r, const std::string& where) {
 }  // namespace
 
 json result_to_json(const System& s, const SolveResult& r) {
+  // the result must be this system's: a file that embeds one system beside another's SPPs would read back as nonsense
+  // (Python's to_json(system) wrote one, found by an independent attack). Each SPP's x0 has the system's size and,
+  // when axial, starts on this system's obstacle (gap 0 to rounding), O(n) per SPP.
+  for (size_t i = 0; i < r.solutions.size(); ++i) {
+    const Orbit& o = r.solutions[i].orbit;
+    const std::string at = "result_to_json: solution " + std::to_string(i);
+    if (o.x0.size() != s.n() || o.v0.size() != s.n())
+      invalid(at + ": expected x0 and v0 of the system's " + std::to_string(s.n()) + " dofs, got " +
+              std::to_string(o.x0.size()) + " and " + std::to_string(o.v0.size()) +
+              ": the result is another system's");
+    const double gap = s.w().dot(o.x0) + s.g0();
+    if (o.symmetry == Symmetry::Axial && !(std::abs(gap) <= kOnObstacle * (s.w().norm() * o.x0.norm() + std::abs(s.g0()))))
+      invalid(at + ": its x0 is not on this system's obstacle (gap " + num(gap) + ", expected 0): the result is "
+                   "another system's");
+  }
   json j;
   auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   j["system"] = embedded_system_to_json(s);
