@@ -7,7 +7,9 @@ animate RESULT.json --out FILE.gif|FILE.mp4 [--solution K]: one SPP over its per
 """
 import argparse
 import os
+import shutil
 import sys
+import tempfile
 
 import matplotlib
 
@@ -35,33 +37,46 @@ def _plot(a):
     system, spps, window = r.system, list(r.solutions), dict(t1_min=r.t1_min, t1_max=r.t1_max, t2_min=r.t2_min,
                                                                 t2_max=r.t2_max)
     chosen = _chosen(a.solutions, spps, a.result)
-    # created only now that every option and the result are read; removed again if this run made it and fails empty
+    # created only now that every option and the result are read; removed again if this run made it and fails. The
+    # figures are drawn into a staging directory inside it and moved in only once all are drawn: a failure half-way
+    # (a system the modal form refuses, Ctrl-C) leaves no part of a set behind, and earlier figures untouched
+    # (found by an independent attack).
     created = not os.path.exists(a.out)
     os.makedirs(a.out, exist_ok=True)
+    staging = tempfile.mkdtemp(prefix=".spp-plot-", dir=a.out)
     written = []
 
     def save(fig, name):
         for fmt in formats:
-            p = os.path.join(a.out, f"{name}.{fmt}")
+            p = os.path.join(staging, f"{name}.{fmt}")
             plot.save_atomic(fig, p)
             written.append(p)
         plt.close(fig)
 
     try:
-        if a.root_map_points:
-            # the root map is the long part (a 20-dof box: 10^5 points): its progress line on a terminal
-            save(plot.root_map_figure(system, spps, window, points=a.root_map_points,
-                                      progress=sys.stderr.isatty()), "root_map")
-        save(plot.frequency_energy_figure(spps), "frequency_energy")
-        for k in chosen:
-            save(plot.spp_figure(system, spps[k]), f"spp_{k}")
+        try:
+            if a.root_map_points:
+                # the root map is the long part (a 20-dof box: 10^5 points): its progress line on a terminal
+                save(plot.root_map_figure(system, spps, window, points=a.root_map_points,
+                                          progress=sys.stderr.isatty()), "root_map")
+            save(plot.frequency_energy_figure(spps), "frequency_energy")
+            for k in chosen:
+                save(plot.spp_figure(system, spps[k]), f"spp_{k}")
+        except ValueError as e:  # e.g. the modal form refusing the embedded system: name the file it came from
+            if str(e).startswith(a.result):
+                raise
+            raise ValueError(f"{a.result}: {e}") from None
+        for p in written:
+            os.replace(p, os.path.join(a.out, os.path.basename(p)))
     except BaseException:
-        if created and not written:
+        shutil.rmtree(staging, ignore_errors=True)
+        if created:
             try:
                 os.rmdir(a.out)
             except OSError:
                 pass
         raise
+    shutil.rmtree(staging, ignore_errors=True)
     print(f"wrote {len(written)} figures to {a.out}")
 
 

@@ -156,3 +156,38 @@ def test_plot_command_draws_the_chosen_solutions(tmp_path):
     assert main(["plot", str(res), "--out", str(tmp_path / "none"), "--solutions", "64"]) == 1  # (0..63)
     assert main(["plot", str(res), "--out", str(tmp_path / "none"), "--solutions", "1,x"]) == 1
     assert not (tmp_path / "none").exists()
+
+
+def test_plot_command_failing_half_way_leaves_no_partial_set(tmp_path, monkeypatch, capsys):
+    # a failure after some figures were drawn left them behind beside older ones (found by an independent attack):
+    # the figures are now staged and moved in only when all are drawn; the message names the result file
+    from spp.__main__ import main
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    res = tmp_path / "r.json"
+    res.write_text(r.to_json(s))
+    out = tmp_path / "figs"
+    out.mkdir()
+    (out / "spp_3.png").write_bytes(b"older figure")
+    drawn = []
+    real = plot.spp_figure
+
+    def failing(system, solution, **kw):
+        drawn.append(solution)
+        if len(drawn) == 2:
+            raise ValueError("K must be positive definite (a stand-in for a refusal half-way)")
+        return real(system, solution, **kw)
+
+    monkeypatch.setattr(plot, "spp_figure", failing)
+    code = main(["plot", str(res), "--out", str(out), "--solutions", "0,3", "--root-map-points", "0",
+                 "--formats", "png"])
+    assert code == 1
+    assert len(drawn) == 2
+    assert sorted(os.listdir(out)) == ["spp_3.png"]  # nothing new, no staging directory left
+    assert (out / "spp_3.png").read_bytes() == b"older figure"
+    assert f"{res}: K must be positive definite" in capsys.readouterr().err
+    fresh = tmp_path / "fresh"
+    drawn.clear()
+    assert main(["plot", str(res), "--out", str(fresh), "--solutions", "0,3", "--root-map-points", "0",
+                 "--formats", "png"]) == 1
+    assert not fresh.exists()
