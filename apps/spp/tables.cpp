@@ -7,21 +7,34 @@
 
 namespace spp::cli {
 
+namespace {
+// "yes" / "no" for a decided verdict, "undecided" (|rho - 1| within its rounding bound), "neutral" (decoupled modes
+// on the unit circle), "-" when not computed or not admissible (an inadmissible orbit's stability means nothing).
+const char* stability_cell(const Solution& x) {
+  if (std::isnan(x.floquet.spectral_radius) || !x.admissible()) return "-";
+  switch (x.floquet.verdict) {
+    case StabilityVerdict::Stable: return "yes";
+    case StabilityVerdict::Unstable: return "no";
+    case StabilityVerdict::Undecided: return "undecided";
+    case StabilityVerdict::Neutral: return "neutral";
+    case StabilityVerdict::NotComputed: break;
+  }
+  return "-";
+}
+}  // namespace
+
 std::string result_table(const SolveResult& r) {
   std::ostringstream os;
   os << std::setw(4) << "#" << std::setw(14) << "t1" << std::setw(14) << "t2" << std::setw(14) << "period"
      << std::setw(12) << "admissible" << std::setw(14) << "min_gap" << std::setw(14) << "min_force" << std::setw(12)
-     << "rho" << std::setw(8) << "stable"
+     << "rho" << std::setw(11) << "stable"
      << "\n";
   int i = 0;
   for (const Solution& x : r.solutions) {
     os << std::setw(4) << i++ << std::setprecision(8) << std::setw(14) << x.t1() << std::setw(14) << x.t2() << std::setw(14)
        << x.period() << std::setw(12) << (x.admissible() ? "yes" : "no") << std::setprecision(3) << std::setw(14)
        << x.min_gap() << std::setw(14) << x.min_force() << std::setprecision(6) << std::setw(12)
-       << x.floquet.spectral_radius << std::setw(8)
-       << (std::isnan(x.floquet.spectral_radius) || !x.admissible() ? "-"
-           : x.stable()                                           ? "yes"
-                                                                  : "no");
+       << x.floquet.spectral_radius << std::setw(11) << stability_cell(x);
     for (const auto& f : x.flags) os << "  [" << f << "]";
     os << "\n";
   }

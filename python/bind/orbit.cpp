@@ -39,7 +39,23 @@ void bind_orbit(py::module_& m) {
           "largest |multiplier| but the two structural 1s (NaN: not computed)")
       .def_property_readonly(
           "stability_margin", [](const spp::Solution& s) { return s.floquet.margin; }, "1 - spectral_radius")
-      .def_property_readonly("stable", &spp::Solution::stable, "admissible and spectral_radius < 1")
+      .def_property_readonly(
+          "spectral_radius_error", [](const spp::Solution& s) { return s.floquet.spectral_radius_error; },
+          "estimated rounding-error bound of spectral_radius (inf: defective leading multiplier; NaN: not computed "
+          "or read from a file written before it)")
+      .def_property_readonly(
+          "stability_verdict", [](const spp::Solution& s) { return outcome(s.floquet.verdict); },
+          "StabilityVerdict: stable / unstable when |spectral_radius - 1| exceeds spectral_radius_error, undecided "
+          "when not, neutral when modes that never see the contact put multipliers on the unit circle")
+      .def_property_readonly(
+          "leading_multipliers",
+          [](const spp::Solution& s) {
+            return Eigen::VectorXcd(Eigen::Map<const Eigen::VectorXcd>(
+                s.floquet.leading.data(), static_cast<Eigen::Index>(s.floquet.leading.size())));
+          },
+          "the coupled modes' multiplier of largest modulus (one real, or a conjugate pair); not in result files")
+      .def_property_readonly("stable", &spp::Solution::stable,
+                             "admissible and stability_verdict stable (proved up to the rounding bound)")
       .def_property_readonly(
           "x0", [](const spp::Solution& s) { return s.orbit.x0; }, "(n,) state at contact onset")
       .def_property_readonly(

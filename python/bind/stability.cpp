@@ -9,6 +9,10 @@
 namespace spp::python {
 
 void bind_stability(py::module_& m) {
+  bind_outcome(m, "StabilityVerdict",
+               {spp::StabilityVerdict::NotComputed, spp::StabilityVerdict::Stable, spp::StabilityVerdict::Unstable,
+                spp::StabilityVerdict::Undecided, spp::StabilityVerdict::Neutral},
+               "Solution.stability_verdict (docs/stability.md)");
   m.def(
       "monodromy",
       [](const spp::System& s, double t1, double t2) {

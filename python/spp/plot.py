@@ -255,7 +255,7 @@ def frequency_energy_figure(solutions, path=None, ax=None):
 def multipliers_figure(solutions, path=None, ax=None):
     """Floquet multipliers (docs/stability.md) of the admissible SPPs in the complex plane, with the unit circle:
     one colour per SPP, its index and spectral radius in the legend; filled markers for stable SPPs, open for
-    unstable ones. The two structural multipliers 1 and the two zeros are drawn too. solutions: Solution objects
+    the others (their verdict, unstable / undecided / neutral, in the legend). The two structural multipliers 1 and the two zeros are drawn too. solutions: Solution objects
     (with floquet_multipliers); ax: axes to draw into (default a new figure)."""
     sols = [(k, s) for k, s in enumerate(solutions) if s.admissible and len(s.floquet_multipliers)]
     fig, ax, own = _axes(ax, (1.7 * COLUMN_WIDTH_IN, 1.1 * COLUMN_WIDTH_IN))
@@ -265,7 +265,8 @@ def multipliers_figure(solutions, path=None, ax=None):
         mu = np.asarray(s.floquet_multipliers)
         style = (dict(color=f"C{i % 10}") if s.stable else dict(facecolors="none", edgecolors=f"C{i % 10}"))
         ax.scatter(mu.real, mu.imag, s=18, lw=0.9, zorder=3, gid=f"spp_{k}",
-                   label=f"#{k}: $\\rho$ = {s.spectral_radius:.4f}" + ("" if s.stable else " (unstable)"), **style)
+                   label=f"#{k}: $\\rho$ = {s.spectral_radius:.4f}" + ("" if s.stable else f" ({s.stability_verdict})"),
+                   **style)
     ax.set_aspect("equal")
     ax.axhline(0, color="0.85", lw=0.5, zorder=0)
     ax.axvline(0, color="0.85", lw=0.5, zorder=0)

@@ -11,7 +11,7 @@ using io::num;
 
 std::string result_to_csv(const SolveResult& r) {
   std::ostringstream os;
-  os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error,spectral_radius,stable";
+  os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error,spectral_radius,stable,spectral_radius_error,stability_verdict";
   const int n = r.solutions.empty() ? 0 : static_cast<int>(r.solutions[0].orbit.x0.size());
   for (int i = 1; i <= n; ++i) os << ",x0_" << i;
   for (int i = 1; i <= n; ++i) os << ",v0_" << i;
@@ -19,7 +19,8 @@ std::string result_to_csv(const SolveResult& r) {
   for (const Solution& x : r.solutions) {
     os << num(x.t1()) << "," << num(x.t2()) << "," << num(x.period()) << "," << (x.admissible() ? 1 : 0) << ","
        << num(x.min_gap()) << "," << num(x.min_force()) << "," << num(x.energy()) << "," << num(x.residual) << ","
-       << num(x.return_error) << "," << num(x.floquet.spectral_radius) << "," << (x.stable() ? 1 : 0);
+       << num(x.return_error) << "," << num(x.floquet.spectral_radius) << "," << (x.stable() ? 1 : 0) << ","
+       << num(x.floquet.spectral_radius_error) << "," << to_string(x.floquet.verdict);
     for (int i = 0; i < n; ++i) os << "," << num(x.orbit.x0(i));
     for (int i = 0; i < n; ++i) os << "," << num(x.orbit.v0(i));
     os << "\n";

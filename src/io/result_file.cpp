@@ -61,6 +61,44 @@ std::vector<const char*> count_keys() {
   return keys;
 }
 
+// The stability verdict of a solution with multipliers, and its error bound. Files written before the bound have
+// neither: their verdict is the old one, spectral_radius < 1 (error NaN: unknown). Otherwise the verdict must be
+// the one the radius and the bound give (stability_verdict; "neutral" only with the decoupled modes' radius 1).
+void read_verdict(const Reader& o, Floquet& f) {
+  const bool has_error = o.o.contains("spectral_radius_error"), has_verdict = o.o.contains("stability_verdict");
+  if (has_error != has_verdict)
+    invalid(o.where + ": fields \"spectral_radius_error\" and \"stability_verdict\" go together, got only " +
+            (has_error ? "the first" : "the second"));
+  if (!has_verdict) {
+    f.spectral_radius_error = std::numeric_limits<double>::quiet_NaN();
+    f.verdict = f.spectral_radius < 1.0 ? StabilityVerdict::Stable : StabilityVerdict::Unstable;
+    return;
+  }
+  const json& e = o.at("spectral_radius_error");
+  if (e.is_null())
+    f.spectral_radius_error = std::numeric_limits<double>::infinity();
+  else if (e.is_number() && e.get<double>() >= 0.0 && std::isfinite(e.get<double>()))
+    f.spectral_radius_error = e.get<double>();
+  else
+    invalid(o.where + ": field \"spectral_radius_error\" must be a number >= 0 or null (unbounded), got " +
+            describe(e));
+  const std::string v = o.text("stability_verdict");
+  const StabilityVerdict all[] = {StabilityVerdict::Stable, StabilityVerdict::Unstable, StabilityVerdict::Undecided,
+                                  StabilityVerdict::Neutral};
+  const auto it = std::find_if(std::begin(all), std::end(all), [&](StabilityVerdict k) { return v == to_string(k); });
+  if (it == std::end(all))
+    invalid(o.where + ": field \"stability_verdict\" must be one of stable, unstable, undecided, neutral, got \"" +
+            v.substr(0, 40) + "\"");
+  f.verdict = *it;
+  const double rho = f.spectral_radius, err = f.spectral_radius_error;
+  const bool consistent = f.verdict == StabilityVerdict::Neutral ? rho == 1.0
+                                                                  : f.verdict == stability_verdict(rho, err, false);
+  if (!consistent)
+    invalid(o.where + ": field \"stability_verdict\" is \"" + v + "\" but spectral_radius " + num(rho) + " +- " +
+            num(err) + " gives \"" + to_string(stability_verdict(rho, err, false)) +
+            "\" (\"neutral\" needs spectral_radius 1 exactly)");
+}
+
 // One SPP's values that no solve leaves undefined (written as null they would read as NaN, found by an independent
 // review) and its flags (one of kSolutionFlags each).
 void check_solution_values(const json& o, const std::string& at) {
@@ -279,13 +317,14 @@ void check_result(const json& r, const std::string& where) {
       const std::string at = where + ": field \"solutions\"[" + std::to_string(i) + "]";
       const json& o = sols[i];
       if (!o.is_object()) invalid(at + " must be an object, got " + describe(o));
-      // (the last five: stability/floquet.hpp, absent from files written before it)
+      // (the last seven: stability/floquet.hpp, absent from files written before it; the last two from files written
+      // before the verdict's error bound)
       // clang-format off
       check_fields(o, {"t1", "t2", "period", "admissible", "min_gap", "min_force", "x0", "v0", "energy", "residual",
                        "return_error", "mid_flight_gap", "mid_contact_force", "onset_force_rate",
                        "admissibility_certified", "admissibility_ends_ok", "flags", "orbit", "obstacle_velocity",
                        "floquet_multipliers", "spectral_radius", "stability_margin", "stable",
-                       "floquet_structure_residual"}, at);
+                       "floquet_structure_residual", "spectral_radius_error", "stability_verdict"}, at);
       // clang-format on
       if (o.contains("orbit")) {
         if (!o.at("orbit").is_object())
@@ -377,6 +416,10 @@ json result_to_json(const System& s, const SolveResult& r) {
       o["stability_margin"] = x.floquet.margin;
       o["stable"] = x.stable();
       o["floquet_structure_residual"] = x.floquet.structure_residual;
+      // null: unbounded (a defective leading multiplier); NaN is not JSON
+      const double err = x.floquet.spectral_radius_error;
+      o["spectral_radius_error"] = std::isfinite(err) ? json(err) : json(nullptr);
+      o["stability_verdict"] = to_string(x.floquet.verdict);
     }
     sols.push_back(o);
   }
@@ -471,12 +514,13 @@ SolveResult result_from_json(const json& r, const std::string& where) {
       }
       x.floquet.spectral_radius = o.number("spectral_radius");
       x.floquet.margin = o.number("stability_margin");
-      x.floquet.stable = x.floquet.spectral_radius < 1.0;
       x.floquet.structure_residual = o.number("floquet_structure_residual");
       check_floquet(o, x.floquet, n);
+      read_verdict(o, x.floquet);
+      x.floquet.stable = x.floquet.verdict == StabilityVerdict::Stable;
       if (o.boolean("stable") != x.stable())
-        invalid(o.where + ": field \"stable\" must be admissible and spectral_radius < 1, got " +
-                (o.boolean("stable") ? "true" : "false"));
+        invalid(o.where + ": field \"stable\" must be admissible and stability_verdict \"stable\" (files without a "
+                "verdict: spectral_radius < 1), got " + (o.boolean("stable") ? "true" : "false"));
     }
     res.solutions.push_back(std::move(x));
   }

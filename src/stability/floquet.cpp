@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "spp/detail/invalid.hpp"
@@ -21,7 +22,8 @@ Orbit axial_in_basis(const ModalForm& md, const Orbit& orbit, const char* where)
 
 // The monodromy on the coupled modes, in energy-scaled modal coordinates y = (p, q') = (W q, q') (energy |y|^2 / 2;
 // the flight flow is a rotation per mode): Mono = F1(2 t1) F2(2 t2) Pi, from just before the onset.
-Eigen::MatrixXd coupled_monodromy(const ModalForm& md, const Orbit& orbit) {
+// forming_norm (if given): |F2|_F |Pi|_F, the size of the product whose rounding the estimate of floquet() bounds.
+Eigen::MatrixXd coupled_monodromy(const ModalForm& md, const Orbit& orbit, double* forming_norm = nullptr) {
   const int m = md.m();
   const Eigen::VectorXd& W = md.omega();
   const Eigen::VectorXd& u = md.u();
@@ -38,6 +40,7 @@ Eigen::MatrixXd coupled_monodromy(const ModalForm& md, const Orbit& orbit) {
   F2.bottomLeftCorner(m, m) = -(W.cwiseInverse().asDiagonal() * Ms);
   F2.bottomRightCorner(m, m) = W.cwiseInverse().asDiagonal() * C * W.asDiagonal();
   const Eigen::MatrixXd F2Pi = F2 * Pi;
+  if (forming_norm != nullptr) *forming_norm = F2.norm() * Pi.norm();
   // flight: a rotation of angle omega_k tf in each (p_k, q'_k)
   Eigen::MatrixXd mono(2 * m, 2 * m);
   for (int k = 0; k < m; ++k) {
@@ -54,7 +57,46 @@ bool by_modulus(const std::complex<double>& a, const std::complex<double>& b) {
   return std::arg(a) < std::arg(b);
 }
 
+// Estimated error bound of the largest modulus of R's eigenvalues (ev, right eigenvectors V) when R carries an
+// absolute error of 2-norm `eta`. First-order perturbation theory (Wilkinson; Golub & Van Loan §7.2.2): a simple
+// eigenvalue lambda_i moves by at most kappa_i |E|_2 + O(|E|^2), kappa_i = |x_i| |y_i| / |y_i^H x_i|, x_i and y_i its
+// right and left eigenvectors. The left ones are the rows of V^-1 (R = V D V^-1, so e_i^T V^-1 R = lambda_i e_i^T
+// V^-1, and y_i^H x_i = 1): kappa_i = |V e_i| |e_i^T V^-1|. The moduli move by no more than the eigenvalues, so the
+// largest modulus rho is off by at most max kappa_i eta over the eigenvalues that could be the largest (|lambda_i| +
+// kappa_i eta >= rho). A defective or nearly defective leading eigenvalue (V singular to working precision) gets an
+// infinite bound: no verdict near 1 rests on it.
+double largest_modulus_error(const Eigen::VectorXcd& ev, const Eigen::MatrixXcd& V, double eta, double rho) {
+  const Eigen::FullPivLU<Eigen::MatrixXcd> lu(V);
+  if (!lu.isInvertible()) return std::numeric_limits<double>::infinity();
+  const Eigen::MatrixXcd Vinv = lu.inverse();
+  double err = 0.0;
+  for (Eigen::Index i = 0; i < ev.size(); ++i) {
+    const double kappa = V.col(i).norm() * Vinv.row(i).norm();
+    if (!std::isfinite(kappa)) return std::numeric_limits<double>::infinity();
+    if (std::abs(ev(i)) + kappa * eta >= rho) err = std::max(err, kappa * eta);
+  }
+  return err;
+}
+
 }  // namespace
+
+const char* to_string(StabilityVerdict v) {
+  switch (v) {
+    case StabilityVerdict::NotComputed: return "not_computed";
+    case StabilityVerdict::Stable: return "stable";
+    case StabilityVerdict::Unstable: return "unstable";
+    case StabilityVerdict::Undecided: return "undecided";
+    case StabilityVerdict::Neutral: return "neutral";
+  }
+  return "?";
+}
+
+StabilityVerdict stability_verdict(double rho, double error, bool has_decoupled_modes) {
+  if (std::isnan(rho) || std::isnan(error)) return StabilityVerdict::NotComputed;
+  if (rho - error > 1.0) return StabilityVerdict::Unstable;
+  if (rho + error >= 1.0) return StabilityVerdict::Undecided;
+  return has_decoupled_modes ? StabilityVerdict::Neutral : StabilityVerdict::Stable;
+}
 
 Floquet floquet(const ModalForm& md, const Orbit& given) {
   const Orbit orbit = axial_in_basis(md, given, "floquet");
@@ -62,13 +104,16 @@ Floquet floquet(const ModalForm& md, const Orbit& given) {
   const Eigen::VectorXd& W = md.omega();
   Floquet res;
   const double T = orbit.period();
+  const bool decoupled = md.omega_decoupled().size() > 0;
   for (Eigen::Index k = 0; k < md.omega_decoupled().size(); ++k) {
     const double th = md.omega_decoupled()(k) * T;  // these modes never see the contact: a rotation
     res.multipliers.emplace_back(std::cos(th), std::sin(th));
     res.multipliers.emplace_back(std::cos(th), -std::sin(th));
   }
+  double rho = 0.0, rho_error = 0.0;  // of the coupled modes' multipliers but the two structural 1s
   if (m > 0) {
-    const Eigen::MatrixXd mono = coupled_monodromy(md, orbit);
+    double forming_norm = 0.0;
+    const Eigen::MatrixXd mono = coupled_monodromy(md, orbit, &forming_norm);
     // onset state y0 (= the energy gradient there) and flow direction f = y0' (flight and contact fields agree)
     Eigen::VectorXd y0(2 * m), f(2 * m);
     y0 << orbit.p0, orbit.p0dot.cwiseQuotient(W);
@@ -87,24 +132,39 @@ Floquet floquet(const ModalForm& md, const Orbit& given) {
     res.multipliers.emplace_back(1.0, 0.0);
     if (m > 1) {
       const Eigen::MatrixXd R = Q.transpose() * mono * Q;
-      const Eigen::EigenSolver<Eigen::MatrixXd> es(R, false);
+      const Eigen::EigenSolver<Eigen::MatrixXd> es(R, true);
       if (es.info() != Eigen::Success) {
         res.multipliers.clear();
         return res;  // NaN radius: not computed
       }
       const Eigen::VectorXcd ev = es.eigenvalues();
-      for (Eigen::Index i = 0; i < ev.size(); ++i) res.multipliers.push_back(ev(i));
+      Eigen::Index top = 0;
+      for (Eigen::Index i = 0; i < ev.size(); ++i) {
+        res.multipliers.push_back(ev(i));
+        if (std::abs(ev(i)) > std::abs(ev(top)) || (std::abs(ev(i)) == std::abs(ev(top)) && ev(i).imag() > 0))
+          top = i;
+      }
+      rho = std::abs(ev(top));
+      res.leading.push_back(ev(top));
+      if (ev(top).imag() != 0.0) res.leading.push_back(std::conj(ev(top)));  // real Schur form: exact pairs
+      // Backward error of R, estimated (absolute, 2-norm): (a) the computed monodromy's own error, at least what
+      // the structure residual shows (an exact Mono fixes f and y0 exactly; the orbit's error shows there too) and
+      // at least the rounding of forming F1 F2 Pi (unit roundoff times the dimension times |F2| |Pi|, F1 being a
+      // rotation); (b) the reduction Q^T Mono Q and the QR algorithm, backward stable: dimension times eps |R|.
+      const double eps = std::numeric_limits<double>::epsilon(), dim = 2.0 * m;
+      const double eta = std::max(res.structure_residual, dim * eps * forming_norm) + dim * eps * R.norm();
+      // (a NaN residual, from a degenerate orbit with f = 0, bounds nothing: unbounded, hence undecided near 1)
+      rho_error = std::isnan(eta) ? std::numeric_limits<double>::infinity()
+                                  : largest_modulus_error(ev, es.eigenvectors(), eta, rho);
     }
   }
-  // the spectral radius is over everything but the two structural 1s, found before sorting
-  double rho = 0.0;
-  const size_t structural = md.omega_decoupled().size() * 2;  // the two 1s follow the decoupled pairs
-  for (size_t i = 0; i < res.multipliers.size(); ++i)
-    if (m == 0 || i < structural || i >= structural + 2) rho = std::max(rho, std::abs(res.multipliers[i]));
   std::sort(res.multipliers.begin(), res.multipliers.end(), by_modulus);
-  res.spectral_radius = rho;
-  res.margin = 1.0 - rho;
-  res.stable = rho < 1.0;
+  // the decoupled modes' multipliers have modulus 1 exactly (cos^2 + sin^2 rounds to 1 +- eps: not taken from them)
+  res.spectral_radius = decoupled ? std::max(rho, 1.0) : rho;
+  res.spectral_radius_error = rho_error;
+  res.margin = 1.0 - res.spectral_radius;
+  res.verdict = stability_verdict(rho, rho_error, decoupled);
+  res.stable = res.verdict == StabilityVerdict::Stable;
   return res;
 }
 
@@ -144,8 +204,10 @@ Eigen::MatrixXd monodromy(const ModalForm& md, const Orbit& given) {
 std::string Floquet::brief_report() const {
   std::ostringstream os;
   if (std::isnan(spectral_radius)) return "stability not computed";
-  os << (stable ? "stable" : "unstable") << ", spectral radius " << spectral_radius << " (margin " << margin << "), "
-     << multipliers.size() << " multipliers";
+  os << to_string(verdict) << ", spectral radius " << spectral_radius << " +- " << std::setprecision(2)
+     << spectral_radius_error << std::setprecision(6) << " (margin " << margin << "), " << multipliers.size()
+     << " multipliers";
+  if (verdict == StabilityVerdict::Neutral) os << " (modes that never see the contact lie on the unit circle)";
   return os.str();
 }
 

@@ -305,3 +305,113 @@ TEST(Floquet, RefusesAPointSymmetricOrbit) {
   EXPECT_THROW(floquet(md, o), std::invalid_argument);
   EXPECT_THROW(monodromy(md, o), std::invalid_argument);
 }
+
+namespace {
+// The §5.2 chain with its last spring's stiffness k5 as the parameter (as in tests/continuation).
+System chain_k5(double k5) {
+  Eigen::MatrixXd K(5, 5);
+  K << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1 + k5, -k5, 0, 0, 0, -k5, k5;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  return System(Eigen::MatrixXd::Identity(5, 5), K, w, 1.0);
+}
+}  // namespace
+
+// The verdict's rounding bound (floquet.cpp): two computations of the same multipliers, in other units and
+// coordinates, differ by rounding only, and the bounds must cover that difference; they must also be small enough to
+// decide every SPP of these windows (none has |rho - 1| below 1e-5; the rod's #1 has rho = 1.000031).
+TEST(Floquet, RoundingBoundCoversTheRadiusAndDecidesClearCases) {
+  const System s = ref::random_system(4, 14);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd T(4, 4);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) T(i, j) = u(rng) + (i == j ? 2.0 : 0.0);
+  const double mass = 3.7, stiff = 0.21, length = 1e-3, time = std::sqrt(mass / stiff);
+  const System t(mass * T.transpose() * s.M() * T, stiff * T.transpose() * s.K() * T, T.transpose() * s.w(),
+                 length * s.g0());
+  const std::vector<Solution> a = admissible_spps(s), b = admissible_spps(t, 12.0 * time, 12.0 * time);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  int differ = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const Floquet &fa = a[i].floquet, &fb = b[i].floquet;
+    EXPECT_LE(std::abs(fa.spectral_radius - fb.spectral_radius), fa.spectral_radius_error + fb.spectral_radius_error)
+        << i << ": " << fa.brief_report() << " / " << fb.brief_report();
+    differ += fa.spectral_radius != fb.spectral_radius;
+    EXPECT_GT(fa.spectral_radius_error, 0.0);
+    EXPECT_LT(fa.spectral_radius_error, 1e-9) << fa.brief_report();
+    EXPECT_EQ(fa.verdict, fb.verdict) << i;
+  }
+  EXPECT_GT(differ, 0);  // (otherwise the comparison above checks nothing)
+  // the paper's examples: every verdict decided, stable exactly for chain #2, #3 and rod #0 (docs/stability.md §5)
+  const std::vector<Solution> chain5 = admissible_spps(chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0));
+  const std::vector<Solution> rod = admissible_spps(rod_with_slip(-0.25, 0.25));
+  ASSERT_EQ(chain5.size(), 7u);
+  ASSERT_EQ(rod.size(), 2u);
+  for (size_t i = 0; i < chain5.size(); ++i) {
+    const bool stable = i == 2 || i == 3;
+    EXPECT_EQ(chain5[i].floquet.verdict, stable ? StabilityVerdict::Stable : StabilityVerdict::Unstable)
+        << i << ": " << chain5[i].floquet.brief_report();
+    EXPECT_EQ(chain5[i].stable(), stable);
+  }
+  EXPECT_EQ(rod[0].floquet.verdict, StabilityVerdict::Stable) << rod[0].floquet.brief_report();
+  EXPECT_EQ(rod[1].floquet.verdict, StabilityVerdict::Unstable) << rod[1].floquet.brief_report();
+  EXPECT_LT(rod[1].floquet.spectral_radius_error, 1e-3 * (rod[1].floquet.spectral_radius - 1.0));
+}
+
+// Near a crossing of the unit circle the verdict must not guess. On the chain with k5 as parameter the SPP near
+// (5.707, 2.510) crosses at k5 = 0.983578 (tests/continuation): bisect k5 (independent Newton solves) on the sign of
+// rho - 1 until |rho - 1| is within the bound; there the verdict is Undecided and `stable` false, while 1e-6 away
+// it is decided, Stable on one side and Unstable on the other. A bisection that ends (k5 to 1 ulp) with |rho - 1|
+// above the bound means the bound does not cover the computed radius' rounding noise.
+TEST(Floquet, VerdictAtAUnitCircleCrossingIsUndecided) {
+  auto at = [](double k5) {
+    const SolutionAt s = solution_at(chain_k5(k5), 5.70695, 2.50976);
+    EXPECT_TRUE(s.found) << s.brief_report();
+    return s.solution.floquet;
+  };
+  double lo = 0.982, hi = 0.985;
+  const double f_lo = at(lo).spectral_radius - 1.0;
+  ASSERT_LT(f_lo * (at(hi).spectral_radius - 1.0), 0.0);
+  Floquet mid = at(0.5 * (lo + hi));
+  while (std::abs(mid.spectral_radius - 1.0) > mid.spectral_radius_error) {
+    const double m = 0.5 * (lo + hi);
+    ASSERT_TRUE(m > lo && m < hi) << "k5 to one ulp, rho - 1 = " << mid.spectral_radius - 1.0 << " still above "
+                                  << mid.spectral_radius_error;
+    ((mid.spectral_radius - 1.0) * f_lo > 0.0 ? lo : hi) = m;
+    mid = at(0.5 * (lo + hi));
+  }
+  const double k5 = 0.5 * (lo + hi);
+  EXPECT_NEAR(k5, 0.983578, 1e-6);
+  EXPECT_EQ(mid.verdict, StabilityVerdict::Undecided) << mid.brief_report();
+  EXPECT_FALSE(mid.stable);
+  const Floquet below = at(k5 - 1e-6), above = at(k5 + 1e-6);
+  EXPECT_EQ(below.verdict, f_lo < 0.0 ? StabilityVerdict::Stable : StabilityVerdict::Unstable) << below.brief_report();
+  EXPECT_EQ(above.verdict, f_lo < 0.0 ? StabilityVerdict::Unstable : StabilityVerdict::Stable) << above.brief_report();
+}
+
+// Modes that never see the contact give multipliers exactly on the unit circle: the chain's stable SPP #2 with an
+// uncoupled oscillator added (its own stiffness 1.7, no spring to the chain, w = 0 on it) is Neutral, not Stable,
+// with radius 1 exactly, and its coupled multipliers are the chain's.
+TEST(Floquet, DecoupledModesMakeAStableSppNeutral) {
+  const System c = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  Eigen::MatrixXd K6 = Eigen::MatrixXd::Zero(6, 6);
+  K6.topLeftCorner(5, 5) = c.K();
+  K6(5, 5) = 1.7;
+  Eigen::VectorXd w6 = Eigen::VectorXd::Zero(6);
+  w6.head(5) = c.w();
+  const System s(Eigen::MatrixXd::Identity(6, 6), K6, w6, c.g0());
+  ASSERT_EQ(ModalForm(s).omega_decoupled().size(), 1);
+  const SolutionAt alone = solution_at(c, 5.7246789, 2.4846695), with = solution_at(s, 5.7246789, 2.4846695);
+  ASSERT_TRUE(alone.found && with.found);
+  const Floquet &fa = alone.solution.floquet, &fw = with.solution.floquet;
+  EXPECT_EQ(fa.verdict, StabilityVerdict::Stable) << fa.brief_report();
+  EXPECT_EQ(fw.verdict, StabilityVerdict::Neutral) << fw.brief_report();
+  EXPECT_EQ(fw.spectral_radius, 1.0);
+  EXPECT_FALSE(fw.stable);
+  EXPECT_FALSE(with.solution.stable());
+  ASSERT_EQ(fw.leading.size(), 2u);
+  EXPECT_LT(std::abs(fw.leading[0] - fa.leading[0]), 1e-10);
+  EXPECT_NE(fw.brief_report().find("neutral"), std::string::npos);
+}

@@ -43,7 +43,8 @@ struct Solution {
   bool admissible() const { return admissibility.admissible; }
   double min_gap() const { return admissibility.min_gap; }      ///< smallest gap over the flight
   double min_force() const { return admissibility.min_force; }  ///< smallest force over the contact phase
-  /// Admissible and every multiplier but the two structural 1s inside the unit circle.
+  /// Admissible and every multiplier but the two structural 1s inside the unit circle, proved up to the rounding
+  /// bound (floquet.verdict == Stable; not when Undecided or Neutral).
   bool stable() const { return admissible() && floquet.stable; }
 };
 

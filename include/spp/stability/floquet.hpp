@@ -24,25 +24,51 @@
 
 namespace spp {
 
+/// What the computed multipliers prove about transversal linear stability (docs/stability.md §2, "The verdict").
+enum class StabilityVerdict {
+  NotComputed,  ///< no multipliers (the default; compute_stability off, point symmetry, eigensolver failure)
+  Stable,       ///< spectral_radius + spectral_radius_error < 1: every multiplier that decides is inside the circle
+  Unstable,     ///< spectral_radius - spectral_radius_error > 1: one is outside, whatever the rounding
+  Undecided,    ///< |spectral_radius - 1| <= spectral_radius_error: rounding cannot tell (a guess is not given)
+  /// The coupled multipliers are inside the circle (proved as for Stable), but modes that never see the contact
+  /// (ModalForm::omega_decoupled) give multipliers exp(+-i omega T) exactly on it: neutral, not asymptotically stable.
+  Neutral,
+};
+const char* to_string(StabilityVerdict v);
+
 struct Floquet {
   /// All 2n multipliers of the monodromy, sorted by modulus (then argument): the two structural ones equal to 1
   /// exactly (flow direction and energy), the two zeros of the onset's projection, and those of the reduced map.
   /// Modes that never see the contact (ModalForm::omega_decoupled) give exp(+-i omega T), of modulus 1.
   std::vector<std::complex<double>> multipliers;
-  /// Largest modulus over every multiplier but the two structural 1s (dimensionless). NaN: not computed.
+  /// The multiplier of largest modulus among those of the modes that see the contact (not the structural 1s), with
+  /// its conjugate when complex (one real or a conjugate pair, positive imaginary part first); empty for m <= 1 and
+  /// for solutions read from a result file (not written there: the multipliers are).
+  std::vector<std::complex<double>> leading;
+  /// Largest modulus over every multiplier but the two structural 1s (dimensionless), the decoupled modes' taken as
+  /// exactly 1. NaN: not computed.
   double spectral_radius = std::numeric_limits<double>::quiet_NaN();
-  /// 1 - spectral_radius: > 0 exactly when stable (linearly, orbitally, up to the energy direction).
+  /// Estimated bound on the rounding error of the coupled modes' largest modulus (first-order perturbation theory:
+  /// the monodromy's estimated backward error times the eigenvalue condition numbers, floquet.cpp). Infinite when
+  /// the leading multiplier is (numerically) defective. NaN: not computed, or read from a file written before it.
+  double spectral_radius_error = std::numeric_limits<double>::quiet_NaN();
+  /// 1 - spectral_radius.
   double margin = std::numeric_limits<double>::quiet_NaN();
-  /// spectral_radius < 1: transversal linear stability, NOT Lyapunov stability. The energy direction is neutral to
-  /// first order and impacts only dissipate: perturbed orbits of such SPPs were measured to leave after
-  /// ~C eps^(-1/3) periods (docs/stability.md §4), slowly instead of at the rate rho^k of an unstable SPP.
+  StabilityVerdict verdict = StabilityVerdict::NotComputed;
+  /// verdict == Stable: transversal linear stability proved up to rounding, NOT Lyapunov stability. The energy
+  /// direction is neutral to first order and impacts only dissipate: perturbed orbits of such SPPs were measured to
+  /// leave after ~C eps^(-1/3) periods (docs/stability.md §4), slowly instead of at the rate rho^k of an unstable SPP.
   bool stable = false;
   /// max(|Mono f - f| / |f|, |Mono^T y0 - y0| / |y0|) in energy-scaled modal coordinates: how well the two
   /// structural multipliers hold in the computed monodromy (rounding; a large value means a bad orbit).
   double structure_residual = std::numeric_limits<double>::quiet_NaN();
-  /// "stable, rho = 0.9858 (margin 0.0142)" / "unstable, ...": one line.
+  /// "stable, spectral radius 0.985756 +- 2.1e-14 (margin 0.0142), 10 multipliers" / "unstable, ..." / ...: one line.
   std::string brief_report() const;
 };
+
+/// The verdict for a coupled spectral radius `rho` with error bound `error` (>= 0, may be infinite), with or without
+/// modes that never see the contact (their multipliers lie on the unit circle).
+StabilityVerdict stability_verdict(double rho, double error, bool has_decoupled_modes);
 
 /// Floquet multipliers of an axially symmetric orbit (Symmetry::Axial) of `modal`'s system. Meaningful for admissible
 /// SPPs; for a potential one it is the linearisation of its (unphysical) orbit. Dimensionless and invariant under
