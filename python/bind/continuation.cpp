@@ -18,6 +18,11 @@ void bind_continuation(py::module_& m) {
                 spp::BranchEventKind::StabilityLost, spp::BranchEventKind::StabilityGained},
                "BranchEvent.kind");
 
+  bind_outcome(m, "MultiplierCrossing",
+               {spp::MultiplierCrossing::None, spp::MultiplierCrossing::PlusOne, spp::MultiplierCrossing::MinusOne,
+                spp::MultiplierCrossing::ComplexPair},
+               "BranchEvent.crossing");
+
   py::class_<spp::BranchPoint>(m, "BranchPoint")
       .def_readonly("mu", &spp::BranchPoint::mu)
       .def_readonly("t1", &spp::BranchPoint::t1)
@@ -34,7 +39,19 @@ void bind_continuation(py::module_& m) {
   py::class_<spp::BranchEvent>(m, "BranchEvent")
       .def_property_readonly("kind", [](const spp::BranchEvent& e) { return outcome(e.kind); })
       .def_readonly("at", &spp::BranchEvent::at)
-      .def_readonly("detail", &spp::BranchEvent::detail);
+      .def_readonly("detail", &spp::BranchEvent::detail)
+      .def_property_readonly(
+          "crossing", [](const spp::BranchEvent& e) { return outcome(e.crossing); },
+          "stability events: plus_one, minus_one (period doubling) or complex_pair (Neimark-Sacker); none otherwise")
+      .def_property_readonly(
+          "crossing_multipliers",
+          [](const spp::BranchEvent& e) {
+            return Eigen::VectorXcd(Eigen::Map<const Eigen::VectorXcd>(
+                e.crossing_multipliers.data(), static_cast<Eigen::Index>(e.crossing_multipliers.size())));
+          },
+          "the crossing multiplier(s) at the located event: one real or a conjugate pair")
+      .def_readonly("crossing_angle", &spp::BranchEvent::crossing_angle,
+                    "arg of the crossing multiplier in [0, pi]: 0 (+1), pi (-1), theta (pair); NaN otherwise");
   py::class_<spp::Branch>(m, "Branch")
       .def_readonly("points", &spp::Branch::points)
       .def_readonly("events", &spp::Branch::events)

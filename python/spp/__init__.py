@@ -15,6 +15,7 @@ from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, Continuati
 from ._spp import continue_branch  # the one branch through a given SPP
 from ._spp import ModeEvent, ModeFamily, ModePoint, ModesResult, modes  # k-IPP families (docs/modes.md)
 from ._spp import monodromy  # linearised one-period map under an impact law (docs/stability.md)
+from ._spp import MultiplierCrossing, StabilityVerdict  # the verdict with its rounding bound; crossing kinds
 from . import _spp
 from ._progress import Bar as _Bar
 from ._sweep import sweep  # one solve per parameter value or system file: mpi4py or a process pool
@@ -74,5 +75,5 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "root_map", "ParametricSystem", "continue_branches", "ContinueOptions", "Branch", "BranchEvent",
            "BranchPoint", "ContinuationResult", "continue_branch", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
-           "ContinuationStatus", "BranchEventKind", "monodromy", "modes", "ModesResult", "ModeFamily",
+           "ContinuationStatus", "BranchEventKind", "monodromy", "StabilityVerdict", "MultiplierCrossing", "modes", "ModesResult", "ModeFamily",
            "ModePoint", "ModeEvent", "sweep", "__version__"]

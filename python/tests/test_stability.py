@@ -30,7 +30,14 @@ def test_every_admissible_spp_carries_its_multipliers(chain):
         assert np.sum(np.abs(mu) < 1e-10) == 2  # the onset's projection
         assert np.sum(mu == 1.0) >= 2  # flow direction and energy
         assert sol.stability_margin == pytest.approx(1.0 - sol.spectral_radius, abs=0.0)
-        assert sol.stable == (sol.admissible and sol.spectral_radius < 1.0)
+        # the verdict (docs/stability.md §2): decided on every chain SPP, by a rounding bound far below |rho - 1|
+        assert sol.stability_verdict in (spp.StabilityVerdict.stable, spp.StabilityVerdict.unstable)
+        assert 0.0 < sol.spectral_radius_error < 1e-9
+        assert (sol.stability_verdict == "stable") == (sol.spectral_radius + sol.spectral_radius_error < 1.0)
+        assert sol.stable == (sol.admissible and sol.stability_verdict == "stable")
+        lead = sol.leading_multipliers
+        assert len(lead) in (1, 2) and abs(lead[0]) == sol.spectral_radius
+        assert len(lead) == 1 or lead[1] == np.conj(lead[0])
         mono, x0, v0, period = spp.monodromy(s, sol.t1, sol.t2)
         assert np.allclose(x0, sol.x0, atol=1e-10) and period == pytest.approx(sol.period)
         full = np.linalg.eigvals(mono)
@@ -56,9 +63,11 @@ def test_result_file_round_trip_and_switch(chain):
     for a, b in zip(r.solutions, back.solutions):
         assert np.array_equal(a.floquet_multipliers, b.floquet_multipliers)
         assert a.spectral_radius == b.spectral_radius and a.stable == b.stable
+        assert a.stability_verdict == b.stability_verdict and a.spectral_radius_error == b.spectral_radius_error
     off = spp.solve(s, t1_max=7, t2_max=1, admissible_only=True, compute_stability=False)
     assert off.solutions and math.isnan(off.solutions[0].spectral_radius)
     assert off.solutions[0].floquet_multipliers.size == 0 and not off.solutions[0].stable
+    assert off.solutions[0].stability_verdict is spp.StabilityVerdict.not_computed
 
 
 def test_figures_mark_stability(chain, tmp_path):
@@ -81,3 +90,36 @@ def test_figures_mark_stability(chain, tmp_path):
     want = np.array([(x.energy, 2 * np.pi / x.period) for x in r.solutions if x.stable])
     assert len(want) == 2 and np.allclose(np.sort(marked["stable"], axis=0), np.sort(want, axis=0))
     plt.close("all")
+
+
+def test_continuation_event_names_the_multiplier_that_crosses():
+    # the chain with k5 as parameter (tests/continuation): its SPP near (5.707, 2.510) gains stability at
+    # k5 = 0.983578 through +1; checked here on numpy's eigenvalues of the physical monodromy 1e-4 on either side
+    # (one real eigenvalue beyond 1 + 1e-6 on the unstable side, none on the stable one; the structural Jordan block
+    # at 1 splits by ~1e-8 only)
+    K0 = np.array([[2., -1, 0, 0, 0], [-1, 2, -1, 0, 0], [0, -1, 2, -1, 0], [0, 0, -1, 1, 0], [0, 0, 0, 0, 0]])
+    K1 = np.zeros((5, 5))
+    K1[3:, 3:] = [[1, -1], [-1, 1]]
+    w = np.array([0., 0, 0, 0, -1])
+    ps = spp.ParametricSystem(np.eye(5), np.zeros((0, 0)), K0, K1, w, np.zeros(0), 1.0, "k5", 0.9, 1.0)
+    sols = spp.solve(ps.at(0.98), t1_max=8, t2_max=3).solutions
+    sol = min(sols, key=lambda s: math.hypot(s.t1 - 5.703374, s.t2 - 2.514785))
+    r = spp.continue_branch(ps, 0.98, sol, t1_max=8, t2_max=3)
+    kinds = (spp.BranchEventKind.stability_lost, spp.BranchEventKind.stability_gained)
+    events = [e for e in r.branches[0].events if e.kind in kinds]
+    assert len(events) == 1
+    e = events[0]
+    assert all(x.crossing is spp.MultiplierCrossing.none for x in r.branches[0].events if x.kind not in kinds)
+    assert e.crossing is spp.MultiplierCrossing.plus_one and e.crossing_angle == 0.0
+    assert e.crossing_multipliers.shape == (1,) and abs(e.crossing_multipliers[0] - 1.0) < 1e-6
+    assert "through +1" in e.detail
+
+    def beyond(mu):
+        mono = spp.monodromy(ps.at(mu), e.at.t1, e.at.t2)[0]
+        ev = np.linalg.eigvals(mono)
+        return ev[np.abs(ev) > 1.0 + 1e-6]
+
+    out = [beyond(e.at.mu - 1e-4), beyond(e.at.mu + 1e-4)]
+    assert sorted(len(o) for o in out) == [0, 1]
+    z = max(out, key=len)[0]
+    assert abs(z.imag) < 1e-9 and z.real > 1.0

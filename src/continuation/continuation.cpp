@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <list>
 #include <map>
@@ -57,6 +58,16 @@ const char* to_string(BranchEventKind k) {
     case BranchEventKind::Stalled: return "stalled";
     case BranchEventKind::StabilityLost: return "stability_lost";
     case BranchEventKind::StabilityGained: return "stability_gained";
+  }
+  return "?";
+}
+
+const char* to_string(MultiplierCrossing c) {
+  switch (c) {
+    case MultiplierCrossing::None: return "none";
+    case MultiplierCrossing::PlusOne: return "plus_one";
+    case MultiplierCrossing::MinusOne: return "minus_one";
+    case MultiplierCrossing::ComplexPair: return "complex_pair";
   }
   return "?";
 }
@@ -300,6 +311,16 @@ class Tracer {
     return p;
   }
 
+  // The coupled modes' leading multiplier(s) at a branch point (Floquet::leading); empty where point() computes no
+  // spectral radius.
+  std::vector<std::complex<double>> leading_multipliers(const V3& y, const Eval& e) {
+    const Cached* cp = e.F.allFinite() ? try_at(mu(y)) : nullptr;
+    if (cp == nullptr || cp->modal.g0() == 0.0 || !cp->equations->can_be_admissible() ||
+        !gap_can_close(*cp->equations, t1(y), e.a))
+      return {};
+    return floquet(cp->modal, make_orbit(*cp->equations, t1(y), t2(y), e.a)).leading;
+  }
+
   // Zero-gap SPP at a located closure: its margin with the unit-energy orbit.
   void finish_closure(BranchPoint& p, const V3& y, const Eval& e) {
     const Cached& c = at(mu(y));
@@ -337,6 +358,31 @@ struct SeedCrossing {
   int seed = 0;
   double t1 = 0.0, t2 = 0.0;
 };
+
+// Which multiplier crosses at a located stability event, from the leading multiplier(s) there; the detail names it.
+void classify_crossing(BranchEvent& ev, std::vector<std::complex<double>> leading) {
+  std::ostringstream os;
+  os << std::setprecision(10) << "a Floquet multiplier crosses the unit circle";
+  if (leading.empty()) {
+    ev.detail = os.str() + " (multipliers not computed at the located point)";
+    return;
+  }
+  const std::complex<double> z = leading.front();
+  ev.crossing_angle = std::abs(std::arg(z));
+  if (leading.size() == 2) {
+    ev.crossing = MultiplierCrossing::ComplexPair;
+    os << ": a complex pair exp(+-i theta), theta = " << ev.crossing_angle << " (Neimark-Sacker), " << z.real()
+       << " +- " << std::abs(z.imag()) << "i";
+  } else if (z.real() > 0.0) {
+    ev.crossing = MultiplierCrossing::PlusOne;
+    os << " through +1 (real, " << z.real() << ")";
+  } else {
+    ev.crossing = MultiplierCrossing::MinusOne;
+    os << " through -1 (period doubling, " << z.real() << ")";
+  }
+  ev.crossing_multipliers = std::move(leading);
+  ev.detail = os.str();
+}
 
 // Follows one direction of a branch from a converged state until it stops.
 class BranchWalker {
@@ -513,9 +559,9 @@ class BranchWalker {
       Along x = locate(
           s, end_h, [](const Along& q) { return q.p.spectral_radius - 1.0; }, s.point.spectral_radius - 1.0);
       const bool lost = s.point.spectral_radius < 1.0;
-      found.push_back({(x.y - s.y).norm(),
-                       {lost ? BranchEventKind::StabilityLost : BranchEventKind::StabilityGained, x.p,
-                        "a Floquet multiplier crosses the unit circle"}});
+      BranchEvent ev{lost ? BranchEventKind::StabilityLost : BranchEventKind::StabilityGained, x.p, ""};
+      classify_crossing(ev, tr_.leading_multipliers(x.y, x.e));
+      found.push_back({(x.y - s.y).norm(), std::move(ev)});
     }
     std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.hp < b.hp; });
     for (Found& f : found) events.push_back(std::move(f.e));

@@ -68,6 +68,9 @@ SolveResult result_from_json(const json& result, const std::string& where);
 System result_system(const json& result, const std::string& where);
 
 json continuation_to_json(const ParametricSystem& system, const ContinuationResult& result);
+/// What continuation_to_json wrote (every field; `system` is the file's own, continuation_system).
+ContinuationResult continuation_from_json(const json& result, const std::string& where, const ParametricSystem& system);
+ParametricSystem continuation_system(const json& result, const std::string& where);
 json zero_gap_to_json(const ParametricSystem& system, const ContinuationResult& result);
 json verify_to_json(const VerifyResult& result);
 

@@ -343,6 +343,36 @@ TEST(Cli, PlotWritesOneFigurePerAdmissibleSpp) {
   EXPECT_NE(bad.out.find("expected a result of spp solve"), std::string::npos) << bad.out;
 }
 
+// spp continue's event line and JSON say how a multiplier crosses the unit circle (docs/stability.md §6): the
+// chain with k5 as parameter gains stability through +1 at k5 = 0.983578 (tests/continuation checks the kind against
+// the multipliers on either side).
+TEST(Cli, ContinueNamesTheMultiplierThatCrossesTheUnitCircle) {
+  const fs::path sys = dir() / "chain_k5.json", out = dir() / "chain_k5_cont.json";
+  ASSERT_EQ(run("generate chain --n 5 --parameter k5 --range 0.98,0.99 --out " + sys.string()).code, 0);
+  const CliRun c = run("continue " + sys.string() +
+                       " --t1-min 5 --t1-max 6.5 --t2-min 2 --t2-max 3 --seeds 2 --json " + out.string());
+  ASSERT_EQ(c.code, 0) << c.out;
+  EXPECT_NE(c.out.find("stability_gained"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("a Floquet multiplier crosses the unit circle through +1 (real, 1"), std::string::npos)
+      << c.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out));
+  int found = 0;
+  for (const auto& b : j.at("branches"))
+    for (const auto& e : b.at("events")) {
+      if (e.at("event") != "stability_gained" && e.at("event") != "stability_lost") {
+        EXPECT_FALSE(e.contains("crossing")) << e.dump();
+        continue;
+      }
+      ++found;
+      EXPECT_EQ(e.at("crossing"), "plus_one");
+      ASSERT_EQ(e.at("crossing_multipliers").size(), 1u);
+      EXPECT_NEAR(e.at("crossing_multipliers")[0][0].get<double>(), 1.0, 1e-6);
+      EXPECT_EQ(e.at("crossing_multipliers")[0][1].get<double>(), 0.0);
+      EXPECT_EQ(e.at("crossing_angle").get<double>(), 0.0);
+    }
+  EXPECT_EQ(found, 1) << c.out;
+}
+
 TEST(Cli, AnimateWritesAGifWithTheFramesAsked) {
   const fs::path res = dir() / "res_anim.json", gif = dir() / "spp.gif";
   ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --json " + res.string()).code, 0);

@@ -259,6 +259,84 @@ TEST(Continuation, StabilityChangesAreLocated) {
   EXPECT_GE(located, 1) << r.brief_report();
 }
 
+namespace {
+// The multipliers outside the unit circle at the SPP near (t1, t2) of ps.at(mu) (independent Newton and floquet();
+// the structural 1s are exactly 1 there and never outside).
+std::vector<std::complex<double>> outside_circle(const ParametricSystem& ps, double mu, double t1, double t2) {
+  const System sys = ps.at(mu);
+  const SolutionAt s = solution_at(sys, t1, t2);
+  EXPECT_TRUE(s.found) << s.brief_report();
+  std::vector<std::complex<double>> out;
+  if (s.found)
+    for (const auto& z : floquet(ModalForm(sys), s.solution.orbit).multipliers)
+      if (std::abs(z) > 1.0) out.push_back(z);
+  return out;
+}
+
+// Which multiplier crosses at a stability event, found without the event's classification: the multipliers
+// outside the circle 1e-6 before and after it in mu (none on the stable side; one real, or a conjugate pair, on the
+// other). Returns the kind found, and checks the event's multipliers and angle against it.
+MultiplierCrossing expect_crossing_as_the_multipliers_show(const ParametricSystem& ps, const BranchEvent& e) {
+  const auto below = outside_circle(ps, e.at.mu - 1e-6, e.at.t1, e.at.t2);
+  const auto above = outside_circle(ps, e.at.mu + 1e-6, e.at.t1, e.at.t2);
+  EXPECT_NE(below.empty(), above.empty()) << "k = " << e.at.mu << ": " << below.size() << " / " << above.size();
+  const auto& out = below.empty() ? above : below;
+  if (out.empty() || out.size() > 2) {
+    ADD_FAILURE() << "k = " << e.at.mu << ": " << out.size() << " multipliers outside";
+    return MultiplierCrossing::None;
+  }
+  MultiplierCrossing kind = MultiplierCrossing::ComplexPair;
+  if (out.size() == 1) {
+    EXPECT_EQ(out[0].imag(), 0.0);
+    kind = out[0].real() > 0.0 ? MultiplierCrossing::PlusOne : MultiplierCrossing::MinusOne;
+  } else {
+    EXPECT_EQ(out[0], std::conj(out[1]));
+  }
+  EXPECT_EQ(e.crossing, kind) << "k = " << e.at.mu << ": " << e.detail;
+  EXPECT_NEAR(e.crossing_angle, std::abs(std::arg(out[0])), 1e-4) << e.detail;
+  EXPECT_EQ(e.crossing_multipliers.size(), out.size()) << e.detail;
+  for (const auto& z : e.crossing_multipliers) EXPECT_NEAR(std::abs(z), 1.0, 1e-6) << e.detail;
+  EXPECT_NE(e.detail.find(kind == MultiplierCrossing::PlusOne    ? "through +1"
+                          : kind == MultiplierCrossing::MinusOne ? "through -1 (period doubling"
+                                                                 : "complex pair exp(+-i theta)"),
+            std::string::npos)
+      << e.detail;
+  return kind;
+}
+}  // namespace
+
+// A stability event says which multiplier crosses, checked against the multipliers on either side (independent
+// solves). The chain with k5 as parameter has all three kinds (found by a search over k1, k4, k5, m5 in [0.5, 2]):
+// its admissible SPP near (5.707, 2.510) gains stability through +1 at k5 = 0.983578 (a real multiplier, 1.0038 at
+// k5 = 0.9); the (inadmissible) branch near (2.437, 3.328) through a complex pair at k5 = 0.997211, theta = 3.101;
+// and the one near (2.416, 0.893) through -1 at k5 = 0.753447.
+TEST(Continuation, StabilityEventsNameTheMultiplierThatCrosses) {
+  struct Case {
+    double lo, hi, mu, t1, t2;
+    MultiplierCrossing expected;
+  };
+  const Case cases[] = {{0.9, 1.0, 0.9836, 5.70695, 2.50976, MultiplierCrossing::PlusOne},
+                        {0.9, 1.0, 0.9972, 2.437039, 3.327548, MultiplierCrossing::ComplexPair},
+                        {0.7, 0.8, 0.7534, 2.416482, 0.893344, MultiplierCrossing::MinusOne}};
+  for (const Case& c : cases) {
+    const ParametricSystem ps = paper_chain_k5(c.lo, c.hi);
+    const SolutionAt seed = solution_at(ps.at(c.mu), c.t1, c.t2);
+    ASSERT_TRUE(seed.found) << seed.brief_report();
+    ContinueOptions o;
+    o.t1_max = 8.0;
+    o.t2_max = 4.0;
+    const ContinuationResult r = continue_branch(ps, c.mu, seed.solution, o);
+    int seen = 0;
+    for (const BranchEvent& e : r.branches.at(0).events) {
+      const bool stability = e.kind == BranchEventKind::StabilityLost || e.kind == BranchEventKind::StabilityGained;
+      EXPECT_EQ(stability, e.crossing != MultiplierCrossing::None) << to_string(e.kind);
+      if (!stability) continue;
+      seen += expect_crossing_as_the_multipliers_show(ps, e) == c.expected;
+    }
+    EXPECT_GE(seen, 1) << "expected a " << to_string(c.expected) << " crossing on " << r.brief_report();
+  }
+}
+
 // K(k2) of eq. (6.1) is positive definite only for k2 > 0: with the range starting just above 0 and long steps, the
 // corrector, the tangent's differences and the range-end bisection try parameter values with no valid system. That
 // is an outcome of the step (it fails and is shortened), not an error of the run (Tracer::try_at).

@@ -173,6 +173,8 @@ void expect_same_result(const SolveResult& a, const SolveResult& b) {
       EXPECT_EQ(x.floquet.margin, y.floquet.margin) << at;
       EXPECT_EQ(x.floquet.structure_residual, y.floquet.structure_residual) << at;
       EXPECT_EQ(x.stable(), y.stable()) << at;
+      EXPECT_EQ(x.floquet.spectral_radius_error, y.floquet.spectral_radius_error) << at;
+      EXPECT_EQ(x.floquet.verdict, y.floquet.verdict) << at;
     }
     const Admissibility &p = x.admissibility, &q = y.admissibility;
     EXPECT_EQ(p.admissible, q.admissible) << at;
@@ -722,4 +724,173 @@ TEST(Io, SystemFileWithAResultsEmbeddedFieldsIsRefused) {
     expect_load_refused(std::string(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, ")") + field +
                             "\": 99}",
                         std::string("field \"") + field + "\" belongs to the system a result file embeds");
+}
+
+// The stability verdict and its rounding bound (stability/floquet.hpp): files written before them read with the old
+// verdict (spectral_radius < 1) and an unknown bound; a verdict that its radius and bound contradict, or one field
+// without the other, is refused.
+TEST(Io, StabilityVerdictReadsOldFilesAndRefusesContradictions) {
+  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 12.0;
+  o.admissible_only = true;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  ASSERT_EQ(good["solutions"].size(), 7u);
+  ASSERT_EQ(good["solutions"][2]["stability_verdict"], "stable");
+  ASSERT_EQ(good["solutions"][1]["stability_verdict"], "unstable");
+  auto refusal = [](const io::json& j) -> std::string {
+    try {
+      parse_result_file(j.dump(), "r.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(refusal(good), "(accepted)");
+  io::json old = good;
+  for (io::json& x : old["solutions"]) {
+    x.erase("spectral_radius_error");
+    x.erase("stability_verdict");
+  }
+  const SolveResult back = parse_result(old.dump(), "old.json");
+  EXPECT_EQ(back.solutions[2].floquet.verdict, StabilityVerdict::Stable);
+  EXPECT_TRUE(back.solutions[2].stable());
+  EXPECT_EQ(back.solutions[1].floquet.verdict, StabilityVerdict::Unstable);
+  EXPECT_TRUE(std::isnan(back.solutions[2].floquet.spectral_radius_error));
+  io::json j = good;
+  j["solutions"][1]["stability_verdict"] = "stable";  // rho = 1.0137
+  j["solutions"][1]["stable"] = true;
+  EXPECT_NE(refusal(j).find("r.json: field \"solutions\"[1]: field \"stability_verdict\" is \"stable\" but "
+                            "spectral_radius 1.01369"),
+            std::string::npos)
+      << refusal(j);
+  j = good;
+  j["solutions"][2]["spectral_radius_error"] = 0.02;  // rho = 0.9858: within 0.02 of 1, undecided
+  EXPECT_NE(refusal(j).find("gives \"undecided\""), std::string::npos) << refusal(j);
+  j["solutions"][2]["stability_verdict"] = "undecided";
+  EXPECT_NE(refusal(j).find("field \"stable\" must be admissible and stability_verdict \"stable\""),
+            std::string::npos)
+      << refusal(j);
+  j["solutions"][2]["stable"] = false;
+  EXPECT_EQ(refusal(j), "(accepted)");
+  EXPECT_EQ(parse_result(j.dump(), "r.json").solutions[2].floquet.verdict, StabilityVerdict::Undecided);
+  j = good;
+  j["solutions"][2]["stability_verdict"] = "neutral";
+  j["solutions"][2]["stable"] = false;
+  EXPECT_NE(refusal(j).find("(\"neutral\" needs spectral_radius 1 exactly)"), std::string::npos) << refusal(j);
+  j = good;
+  j["solutions"][2]["stability_verdict"] = "maybe";
+  EXPECT_NE(refusal(j).find("field \"stability_verdict\" must be one of stable, unstable, undecided, neutral"),
+            std::string::npos)
+      << refusal(j);
+  j = good;
+  j["solutions"][2].erase("stability_verdict");
+  EXPECT_NE(refusal(j).find("fields \"spectral_radius_error\" and \"stability_verdict\" go together"),
+            std::string::npos)
+      << refusal(j);
+  j = good;
+  j["solutions"][2]["spectral_radius_error"] = -1.0;
+  EXPECT_NE(refusal(j).find("field \"spectral_radius_error\" must be a number >= 0 or null"), std::string::npos)
+      << refusal(j);
+}
+
+namespace {
+void expect_same_point(const BranchPoint& a, const BranchPoint& b, const std::string& at) {
+  EXPECT_EQ(a.mu, b.mu) << at;
+  EXPECT_EQ(a.t1, b.t1) << at;
+  EXPECT_EQ(a.t2, b.t2) << at;
+  EXPECT_EQ(a.period, b.period) << at;
+  EXPECT_EQ(a.admissible, b.admissible) << at;
+  EXPECT_TRUE(a.margin == b.margin || (std::isnan(a.margin) && std::isnan(b.margin))) << at;
+  EXPECT_EQ(a.closure, b.closure) << at;
+  EXPECT_EQ(a.energy, b.energy) << at;
+  EXPECT_EQ(a.x0, b.x0) << at;
+  EXPECT_EQ(a.v0, b.v0) << at;
+  EXPECT_TRUE(a.spectral_radius == b.spectral_radius || (std::isnan(a.spectral_radius) && std::isnan(b.spectral_radius)))
+      << at;
+}
+}  // namespace
+
+// write, read, compare every field of a continuation: the chain's branch through its SPP near (5.707, 2.510) for k5 in
+// [0.9, 1], which loses or gains stability at k5 = 0.983578 (its crossing fields included); an edited crossing that
+// contradicts its multipliers is refused, and a file without the crossing fields (written before them) reads None.
+TEST(Io, ContinuationFileGivesBackTheResultThatWasWritten) {
+  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
+  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
+  K1(3, 3) = K1(4, 4) = 1;
+  K1(3, 4) = K1(4, 3) = -1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  const SolutionAt seed = solution_at(ps.at(0.98), 5.703374, 2.514785);
+  ASSERT_TRUE(seed.found) << seed.brief_report();
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  const ContinuationResult r = continue_branch(ps, 0.98, seed.solution, o);
+  ASSERT_EQ(r.branches.size(), 1u);
+  int stability_events = 0;
+  for (const BranchEvent& e : r.branches[0].events) stability_events += e.crossing != MultiplierCrossing::None;
+  ASSERT_GE(stability_events, 1) << r.brief_report();
+  const std::string text = continuation_json(ps, r);
+  const ContinuationFile back = parse_continuation_file(text, "c.json");
+  EXPECT_EQ(back.system.parameter().name, "k5");
+  EXPECT_EQ(back.result.status, r.status);
+  EXPECT_EQ(back.result.symmetry, r.symmetry);
+  EXPECT_EQ(back.result.t1_min, r.t1_min);
+  EXPECT_EQ(back.result.t2_max, r.t2_max);
+  EXPECT_EQ(back.result.warnings, r.warnings);
+  EXPECT_EQ(back.result.corrector_solves, r.corrector_solves);
+  EXPECT_EQ(back.result.seconds, r.seconds);
+  ASSERT_EQ(back.result.branches.size(), 1u);
+  const Branch &a = r.branches[0], &b = back.result.branches[0];
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (size_t i = 0; i < a.points.size(); ++i) expect_same_point(a.points[i], b.points[i], "point " + std::to_string(i));
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (size_t i = 0; i < a.events.size(); ++i) {
+    const std::string at = "event " + std::to_string(i);
+    expect_same_point(a.events[i].at, b.events[i].at, at);
+    EXPECT_EQ(a.events[i].kind, b.events[i].kind) << at;
+    EXPECT_EQ(a.events[i].detail, b.events[i].detail) << at;
+    EXPECT_EQ(a.events[i].crossing, b.events[i].crossing) << at;
+    EXPECT_EQ(a.events[i].crossing_multipliers, b.events[i].crossing_multipliers) << at;
+    EXPECT_TRUE(a.events[i].crossing_angle == b.events[i].crossing_angle ||
+                (std::isnan(a.events[i].crossing_angle) && std::isnan(b.events[i].crossing_angle)))
+        << at;
+  }
+  // edits: a crossing named against its multipliers, a crossing on another kind of event, a file from before
+  io::json j = io::json::parse(text);
+  size_t k = 0;
+  while (!j["branches"][0]["events"][k].contains("crossing")) ++k;
+  io::json& ev = j["branches"][0]["events"][k];
+  auto refusal = [](const io::json& x) -> std::string {
+    try {
+      parse_continuation_file(x.dump(), "c.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  const std::string kind = ev["crossing"];
+  ev["crossing"] = kind == "complex_pair" ? "plus_one" : "complex_pair";
+  EXPECT_NE(refusal(j).find("c.json: field \"branches\"[0]: field \"events\"[" + std::to_string(k) +
+                            "]: field \"crossing_multipliers\" must be "),
+            std::string::npos)
+      << refusal(j);
+  ev["crossing"] = kind;
+  ev["crossing_angle"] = 0.5 + ev["crossing_angle"].get<double>();
+  EXPECT_NE(refusal(j).find("field \"crossing_angle\" must be |arg| of the crossing multiplier"), std::string::npos)
+      << refusal(j);
+  ev["crossing_angle"] = ev["crossing_angle"].get<double>() - 0.5;
+  EXPECT_EQ(refusal(j), "(accepted)");
+  ev["event"] = "fold";
+  EXPECT_NE(refusal(j).find("field \"crossing\" belongs to stability events only, got it on a fold event"),
+            std::string::npos)
+      << refusal(j);
+  ev["event"] = "sideways";
+  EXPECT_NE(refusal(j).find("field \"event\" must be one of leaves_window, "), std::string::npos) << refusal(j);
+  for (const char* f : {"crossing", "crossing_multipliers", "crossing_angle"}) ev.erase(f);
+  ev["event"] = to_string(a.events[k].kind);
+  const ContinuationFile old = parse_continuation_file(j.dump(), "old.json");
+  EXPECT_EQ(old.result.branches[0].events[k].crossing, MultiplierCrossing::None);
 }

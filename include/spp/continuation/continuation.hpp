@@ -13,11 +13,13 @@
 //     fold in mu, admissibility lost or gained (admissibility_margin changes sign), and the gap closing at
 //     rest, u^T W^-1 p0 = 0: for g0 = 0 these are the SPPs of paper §6.1 (their scale is free: unit energy),
 //     for g0 != 0 the orbit's amplitude diverges there; a Floquet multiplier crossing the unit circle
-//     (spectral_radius - 1 changes sign, docs/stability.md).
+//     (spectral_radius - 1 changes sign, docs/stability.md), classified by the multiplier that crosses: +1, -1
+//     (period doubling) or a complex pair exp(+-i theta) (Neimark-Sacker).
 // Branches that exist only between two seed values (born and dying at folds in between) are not seen: raise
 // `seeds` to narrow that gap.
 
 #include <Eigen/Dense>
+#include <complex>
 #include <limits>
 #include <string>
 #include <vector>
@@ -73,10 +75,28 @@ struct BranchPoint {
   double spectral_radius = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// How a Floquet multiplier crosses the unit circle at a StabilityLost / StabilityGained event.
+enum class MultiplierCrossing {
+  None,         ///< not a stability event (or the multipliers could not be computed at the located point)
+  PlusOne,      ///< a real multiplier through +1
+  MinusOne,     ///< a real multiplier through -1: period doubling (flip)
+  ComplexPair,  ///< a conjugate pair through exp(+-i theta), 0 < theta < pi: Neimark-Sacker
+};
+const char* to_string(MultiplierCrossing c);
+
 struct BranchEvent {
   BranchEventKind kind = BranchEventKind::Stalled;
   BranchPoint at;
   std::string detail;
+  /// Stability events: which multiplier crosses. Classified at the located point by Floquet::leading (the coupled
+  /// modes' multiplier of largest modulus, i.e. the one whose modulus crosses 1 there): real (the eigensolver's real
+  /// Schur form gives real multipliers with imaginary part exactly 0) and positive or negative, or a pair.
+  MultiplierCrossing crossing = MultiplierCrossing::None;
+  /// The crossing multiplier(s) at the located point: one real, or a conjugate pair (positive imaginary part
+  /// first); moduli within the location's resolution of 1.
+  std::vector<std::complex<double>> crossing_multipliers = {};
+  /// arg of the crossing multiplier, in [0, pi] (rad): 0 for +1, pi for -1, theta for exp(+-i theta). NaN: None.
+  double crossing_angle = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Branch {
