@@ -62,8 +62,9 @@ void crossing_from_json(const Reader& o, BranchEvent& e) {
   if (e.kind != BranchEventKind::StabilityLost && e.kind != BranchEventKind::StabilityGained)
     invalid(o.where + ": field \"crossing\" belongs to stability events only, got it on a " + to_string(e.kind) +
             " event");
-  e.crossing = named(o, "crossing",
-                     std::array{MultiplierCrossing::PlusOne, MultiplierCrossing::MinusOne, MultiplierCrossing::ComplexPair});
+  e.crossing =
+      named(o, "crossing",
+            std::array{MultiplierCrossing::PlusOne, MultiplierCrossing::MinusOne, MultiplierCrossing::ComplexPair});
   const json& zs = o.at("crossing_multipliers");
   const std::string zw = o.where + ": field \"crossing_multipliers\"";
   if (!zs.is_array()) invalid(zw + " must be a list of [re, im] pairs, got " + describe(zs));

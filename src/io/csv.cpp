@@ -11,7 +11,8 @@ using io::num;
 
 std::string result_to_csv(const SolveResult& r) {
   std::ostringstream os;
-  os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error,spectral_radius,stable,spectral_radius_error,stability_verdict";
+  os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error,spectral_radius,stable,"
+        "spectral_radius_error,stability_verdict";
   const int n = r.solutions.empty() ? 0 : static_cast<int>(r.solutions[0].orbit.x0.size());
   for (int i = 1; i <= n; ++i) os << ",x0_" << i;
   for (int i = 1; i <= n; ++i) os << ",v0_" << i;

@@ -806,7 +806,8 @@ void expect_same_point(const BranchPoint& a, const BranchPoint& b, const std::st
   EXPECT_EQ(a.energy, b.energy) << at;
   EXPECT_EQ(a.x0, b.x0) << at;
   EXPECT_EQ(a.v0, b.v0) << at;
-  EXPECT_TRUE(a.spectral_radius == b.spectral_radius || (std::isnan(a.spectral_radius) && std::isnan(b.spectral_radius)))
+  EXPECT_TRUE(a.spectral_radius == b.spectral_radius ||
+              (std::isnan(a.spectral_radius) && std::isnan(b.spectral_radius)))
       << at;
 }
 }  // namespace
@@ -845,7 +846,8 @@ TEST(Io, ContinuationFileGivesBackTheResultThatWasWritten) {
   ASSERT_EQ(back.result.branches.size(), 1u);
   const Branch &a = r.branches[0], &b = back.result.branches[0];
   ASSERT_EQ(a.points.size(), b.points.size());
-  for (size_t i = 0; i < a.points.size(); ++i) expect_same_point(a.points[i], b.points[i], "point " + std::to_string(i));
+  for (size_t i = 0; i < a.points.size(); ++i)
+    expect_same_point(a.points[i], b.points[i], "point " + std::to_string(i));
   ASSERT_EQ(a.events.size(), b.events.size());
   for (size_t i = 0; i < a.events.size(); ++i) {
     const std::string at = "event " + std::to_string(i);

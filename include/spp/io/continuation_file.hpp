@@ -1,9 +1,9 @@
 #pragma once
 // Result files of spp continue: {"system", "symmetry", "window", "warnings", "stats", "branches": [{"points": [...],
 // "events": [...]}]}, each point {"<parameter>", "t1", "t2", "period", "closure", "energy", "x0", "v0", "margin",
-// "admissible", "spectral_radius"}, each event a point with "event", "detail" and, for stability_lost / stability_gained,
-// "crossing" ("plus_one", "minus_one", "complex_pair"), "crossing_multipliers" ([re, im] pairs) and "crossing_angle"
-// (rad, in [0, pi]); and of the zero-gap solve (g0 = 0, paper §6.1) as a solve result, each solution with
+// "admissible", "spectral_radius"}, each event a point with "event", "detail" and, for stability_lost /
+// stability_gained, "crossing" ("plus_one", "minus_one", "complex_pair"), "crossing_multipliers" ([re, im] pairs) and
+// "crossing_angle" (rad, in [0, pi]); and of the zero-gap solve (g0 = 0, paper §6.1) as a solve result, each solution with
 // "parameter": {"name", "value"}.
 // Cost: linear in the output (points x n numbers, ~20 characters each); times in the system's unit.
 
