@@ -346,19 +346,27 @@ OrbitSamples sample_orbit(const ModalForm& md, const Orbit& orbit, int samples) 
 
 double return_error(const System& sys, const Orbit& o) {
   const int n = sys.n();
-  // State (x, v / w) with w a frequency of the system (sqrt |M^-1 K|): both halves in the same units and the flows'
-  // generators balanced (entries ~ w, not 1 and w^2), so that the relative error does not depend on the time scale
-  // (with K scaled by 1e16, the unbalanced form gave return errors of 0.5 to 7 for exact roots).
-  const auto llt = sys.M().llt();
-  const Eigen::MatrixXd MK = llt.solve(sys.K());
-  const double w = std::sqrt(MK.norm());
+  // State (L^T x, L^T v / w), M = L L^T and w a frequency of the system (sqrt |L^-1 K L^-T|): mass-weighted, so that
+  // the relative error does not depend on the units of each dof (x = D x' in raw coordinates gave return errors up
+  // to 1e4, or NaN, for exact roots; found by an independent attack), both halves in the same units and the flows'
+  // generators balanced (entries ~ w, not 1 and w^2), so that it does not depend on the time scale either (with K
+  // scaled by 1e16, the unbalanced form gave 0.5 to 7).
+  const Eigen::LLT<Eigen::MatrixXd> llt(sys.M());
+  const auto L = llt.matrixL();
+  auto weighted = [&](const Eigen::MatrixXd& S) {  // L^-1 S L^-T (the contact stiffness is not symmetric)
+    const Eigen::MatrixXd A = L.solve(S);                                // L^-1 S
+    return Eigen::MatrixXd(L.solve(A.transpose()).transpose());          // (L^-1 (L^-1 S)^T)^T = L^-1 S L^-T
+  };
+  const Eigen::MatrixXd Kw = weighted(sys.K()), Kcw = weighted(sys.contact_stiffness());
+  const double w = std::sqrt(Kw.norm());
+  const Eigen::MatrixXd LT = llt.matrixU();
   Eigen::VectorXd X0(2 * n);
-  X0 << o.x0, o.v0 / w;
+  X0 << LT * o.x0, LT * o.v0 / w;
   Eigen::MatrixXd A1 = Eigen::MatrixXd::Zero(2 * n, 2 * n), A2 = A1;
   A1.topRightCorner(n, n) = w * Eigen::MatrixXd::Identity(n, n);
   A2.topRightCorner(n, n) = w * Eigen::MatrixXd::Identity(n, n);
-  A1.bottomLeftCorner(n, n) = -MK / w;
-  A2.bottomLeftCorner(n, n) = -llt.solve(sys.contact_stiffness()) / w;
+  A1.bottomLeftCorner(n, n) = -Kw / w;
+  A2.bottomLeftCorner(n, n) = -Kcw / w;
   const Eigen::MatrixXd E2 = (2.0 * o.t2 * A2).exp(), E1 = (2.0 * o.t1 * A1).exp();
   const Eigen::VectorXd XT = E1 * (E2 * X0);
   return (XT - X0).norm() / X0.norm();
