@@ -22,9 +22,25 @@ namespace {
 // the slow modes, which carry the SPPs, are rounding: found by an independent review (a chain with one mass 1e-30
 // gave "success, 0 SPPs" in a NaN window; frequencies 0.304, 0.903 for 0.289, 0.898). Refused, not solved.
 constexpr double kSpectrumDigits = 1e-6;
+// The frequencies themselves (rad per time unit): the admissibility and stability tests use time derivatives of the
+// orbit up to ~omega^4 times its amplitude and their products, which overflow or underflow beyond ~1e+-75 per factor
+// (masses 1e-250 on a unit chain, omega ~ 1e125, gave its three admissible SPPs as inadmissible with status
+// incomplete; masses 1e280 lost all six; found by an independent attack). Refused with the remedy, another time unit.
+constexpr double kMaxFrequency = 1e50;
 void check_resolved_spectrum(const Eigen::VectorXd& omega2) {  // ascending
   const double lo = omega2(0), hi = omega2(omega2.size() - 1);
-  if (lo > 0.0 && std::isfinite(hi) && std::numeric_limits<double>::epsilon() * hi <= kSpectrumDigits * lo) return;
+  if (lo > 0.0 && std::isfinite(hi) && std::numeric_limits<double>::epsilon() * hi <= kSpectrumDigits * lo) {
+    const double max2 = kMaxFrequency * kMaxFrequency;
+    if (lo > 0.0 && std::isfinite(hi) && (hi > max2 || lo < 1.0 / max2)) {
+      std::ostringstream os;
+      os << std::setprecision(3) << "system: its frequencies run from omega_min = " << std::sqrt(lo)
+         << " to omega_max = " << std::sqrt(hi) << " rad per time unit, outside [1e-50, 1e50], where the orbits' time "
+         << "derivatives stay within double precision: expected the system in another time unit (multiplying M by c^2 "
+         << "divides every frequency by c)";
+      detail::invalid(os.str());
+    }
+    return;
+  }
   std::ostringstream os;
   if (!(lo > 0.0) || !std::isfinite(hi) || !std::isfinite(lo))
     os << std::setprecision(3) << "system: K v = omega^2 M v gives omega^2 from " << lo << " to " << hi

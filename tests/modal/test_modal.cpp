@@ -180,3 +180,20 @@ TEST(ModalForm, RefusesASpectrumDoublePrecisionCannotResolve) {
   M(0, 0) = 1e-8;
   EXPECT_NO_THROW(spp::ModalForm(spp::System(M, c.K(), c.w(), c.g0())));
 }
+
+TEST(ModalForm, RefusesFrequenciesBeyondWhatTheAdmissibilityTestsCanHold) {
+  // found by an independent attack: a unit chain with masses 1e-250 (omega ~ 1e125) gave its three admissible SPPs as
+  // inadmissible (the orbit's time derivatives overflow), masses 1e280 lost all six; refused, naming the remedy
+  for (const double mass : {1e-250, 1e-110, 1e110, 1e280}) {
+    const System s = spp::chain(3, {mass}, {1.0}, 2, spp::ContactSide::Upper, 1.0);
+    try {
+      const spp::ModalForm md(s);
+      FAIL() << "masses " << mass << ": expected a refusal";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("outside [1e-50, 1e50]"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("another time unit"), std::string::npos) << e.what();
+    }
+  }
+  for (const double mass : {1e-60, 1e60})  // omega 1e30 and 1e-30: within
+    EXPECT_NO_THROW(spp::ModalForm(spp::chain(3, {mass}, {1.0}, 2, spp::ContactSide::Upper, 1.0)));
+}
