@@ -178,10 +178,11 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> Simulator::follow_contact_then_fligh
                                                                                  const Eigen::VectorXd& v0,
                                                                                  double contact_time,
                                                                                  double flight_time) const {
-  if (x0.size() != system_.n() || v0.size() != system_.n() || !(contact_time >= 0.0) || !(flight_time >= 0.0)) {
+  if (x0.size() != system_.n() || v0.size() != system_.n() || !(contact_time >= 0.0) || !(flight_time >= 0.0) ||
+      !std::isfinite(contact_time) || !std::isfinite(flight_time)) {
     std::ostringstream os;
     os << "follow_contact_then_flight: expected x0 and v0 of size " << system_.n()
-       << " and durations >= 0, got sizes " << x0.size() << " and " << v0.size() << ", durations " << contact_time
+       << " and finite durations >= 0, got sizes " << x0.size() << " and " << v0.size() << ", durations " << contact_time
        << " and " << flight_time;
     detail::invalid(os.str());
   }
@@ -299,6 +300,11 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
       project_position(x);
       record(EventKind::ContactOnset, vb, v, force_row_.dot(x));
       contact = true;
+    } else if (stalled) {
+      // leaving the obstacle from rest, but found again at once: a rounding penetration below the gap's tolerance
+      // (a long run from v5 = 2 on chain5 looped here at t = 206422.89; found by an independent attack). On the
+      // obstacle exactly, its positive acceleration takes it away.
+      project_position(x);
     }
   };
 
@@ -349,7 +355,9 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
       push_sample(ts, xs, vs, contact);
     }
     state_at(ph, ps, s_end, x, v);
-    stalled_events = t_end > t ? 0 : stalled_events + 1;
+    // time passed in the phase's own clock (s_end), not in t: past t ~ 1e5 an event sequence a few 1e-11 apart
+    // leaves t + s_end == t, and a long run stopped as "stalled" at t = 206422.89 (found by an independent attack)
+    stalled_events = s_end > 0.0 ? 0 : stalled_events + 1;
     t = t_end;
     if (!cr.found) break;
     if (contact) {

@@ -217,3 +217,19 @@ TEST(Simulator, RefusesAStateWhoseEnergyOverflowsTheEventComputations) {
   EXPECT_EQ(r.status, SimulationStatus::Success);
   EXPECT_NEAR(r.energy_final / r.energy_initial, 1.0, 1e-9);
 }
+
+TEST(Simulator, ALongRunIsNotTakenForAStall) {
+  // chain5 from v5 = 2, e = 0, over 5e5: stopped as "stalled" at t = 206422.89 (found by an independent attack):
+  // events a few 1e-11 apart there leave t + s == t in double, which was counted as no time passing
+  const System s = spp::test::chain5();
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(5), v0 = Eigen::VectorXd::Zero(5);
+  v0(4) = 2.0;
+  SimulateOptions o;
+  o.duration = 5e5;
+  o.sample_events = false;
+  const SimulationResult r = simulate(s, x0, v0, o);
+  EXPECT_EQ(r.status, SimulationStatus::Success) << r.brief_report();
+  EXPECT_EQ(r.end_time, 5e5);
+  EXPECT_LE(r.energy_final, r.energy_initial);
+  EXPECT_NEAR(r.energy_initial - r.energy_final, r.impact_energy_loss, 1e-9 * r.energy_initial);
+}

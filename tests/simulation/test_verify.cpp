@@ -136,6 +136,7 @@ TEST(Verify, FollowingContactThenFlightRefusesWrongSizesAndNegativeTimes) {
   EXPECT_THROW(sim.follow_contact_then_flight(short_x, x, 1.0, 1.0), std::invalid_argument);
   EXPECT_THROW(sim.follow_contact_then_flight(x, x, -1.0, 1.0), std::invalid_argument);
   EXPECT_THROW(sim.follow_contact_then_flight(x, x, 1.0, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(sim.follow_contact_then_flight(x, x, HUGE_VAL, 1.0), std::invalid_argument);
 }
 
 TEST(Verify, ACandidateTheSimulatorRefusesIsNamedByItsIndex) {
