@@ -116,6 +116,41 @@ void check_solution_values(const json& o, const std::string& at) {
         invalid(at + ": field \"" + k + "\"[" + std::to_string(i) + "]: expected a finite number, got " +
                 describe(v[i]));
   }
+  // minima over a phase are at most the phase's middle value; an admissible SPP's are >= 0 up to the tolerance of
+  // its certified test (orbit.cpp check_admissibility: rel_tol of the gap's or force's amplitude; kAdmissibleSlack is
+  // far above it). An admissible SPP with min_gap -0.5 was read silently (found by an independent attack).
+  auto value = [&](const char* k) {
+    return o.contains(k) && o.at(k).is_number() ? o.at(k).get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  constexpr double kAdmissibleSlack = 1e-6;
+  for (const auto& [min_key, mid_key] : {std::make_pair("min_gap", "mid_flight_gap"),
+                                         std::make_pair("min_force", "mid_contact_force")}) {
+    const double lo = value(min_key), mid = value(mid_key);
+    if (lo > mid + kSameToRounding * std::abs(mid))
+      invalid(at + ": field \"" + min_key + "\" " + num(lo) + " exceeds field \"" + mid_key + "\" " + num(mid) +
+              ": a minimum over the phase is at most its middle value");
+    if (o.contains("admissible") && o.at("admissible") == true && lo < -kAdmissibleSlack * std::abs(mid))
+      invalid(at + ": field \"admissible\" is true but field \"" + min_key + "\" is " + num(lo) +
+              ": expected >= 0 (to " + num(kAdmissibleSlack) + " of \"" + mid_key + "\"), or admissible false");
+  }
+  if (o.contains("floquet_multipliers") && o.at("floquet_multipliers").is_array()) {  // sorted by modulus
+    double last = 0.0;
+    const json& mu = o.at("floquet_multipliers");
+    for (size_t i = 0; i < mu.size(); ++i) {
+      if (!mu[i].is_array() || mu[i].size() != 2 || !mu[i][0].is_number() || !mu[i][1].is_number()) continue;
+      const double r = std::hypot(mu[i][0].get<double>(), mu[i][1].get<double>());
+      if (r < last * (1.0 - kSameToRounding))
+        invalid(at + ": field \"floquet_multipliers\"[" + std::to_string(i) + "] has modulus " + num(r) +
+                ", less than the one before it (" + num(last) + "): expected them sorted by modulus");
+      last = std::max(last, r);
+    }
+  }
+  if (o.contains("flags") && o.at("flags").is_array())
+    for (size_t i = 0; i < o.at("flags").size(); ++i)
+      for (size_t j = 0; j < i; ++j)
+        if (o.at("flags")[i] == o.at("flags")[j])
+          invalid(at + ": field \"flags\"[" + std::to_string(i) + "]: " + describe(o.at("flags")[i]) +
+                  " is listed twice");
   if (o.contains("flags") && o.at("flags").is_array())
     for (size_t i = 0; i < o.at("flags").size(); ++i) {
       const json& f = o.at("flags")[i];
@@ -215,6 +250,11 @@ void check_consistency(const json& r, const std::string& where) {
     invalid(where + ": field \"status\" is \"incomplete\" but neither \"warnings\" nor \"uncertified\" says why: "
             "expected at least one of them non-empty, or status \"success\"");
   }
+  if (has_stats && !sols.empty())  // every SPP lies on a traced curve piece of a rectangle, found by evaluations
+    for (const char* k : {"rectangles", "curve_pieces", "evaluations"})
+      if (r.at("stats").contains(k) && r.at("stats").at(k).is_number_integer() && r.at("stats").at(k).get<long>() < 1)
+        invalid(where + ": field \"stats\".\"" + k + "\" is " + std::to_string(r.at("stats").at(k).get<long>()) +
+                " beside " + std::to_string(sols.size()) + " SPP(s) in \"solutions\": expected at least 1");
   if (has_stats && r.at("stats").contains("roots") && r.at("stats").at("roots").is_number_integer() &&
       r.at("stats").at("roots").get<long>() < static_cast<long>(sols.size()))
     invalid(where + ": field \"stats\".\"roots\" must count at least the " + std::to_string(sols.size()) +

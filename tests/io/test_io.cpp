@@ -1,4 +1,6 @@
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <sys/stat.h>
 
 #include <cmath>
@@ -507,6 +509,31 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   j = good;
   j["system"]["description"] = "two lines\nand a tab\t";
   EXPECT_EQ(refusal(j), "(accepted)");
+  // an admissible SPP's minima, the multipliers' order, flags listed twice, counts beside SPPs (second attack)
+  size_t adm = 0;
+  while (adm < good["solutions"].size() && good["solutions"][adm]["admissible"] != true) ++adm;
+  ASSERT_LT(adm, good["solutions"].size());
+  const std::string sa = "field \"solutions\"[" + std::to_string(adm) + "]: ";
+  for (const char* field : {"min_gap", "min_force"}) {
+    j = good;
+    j["solutions"][adm][field] = -0.5;
+    expect_refused(j, sa + "field \"admissible\" is true but field \"" + field + "\" is -0.5: expected >= 0");
+  }
+  j = good;
+  j["solutions"][adm]["min_gap"] = good["solutions"][adm]["mid_flight_gap"].get<double>() + 1.0;
+  expect_refused(j, sa + "field \"min_gap\" ");
+  j = good;
+  std::reverse(j["solutions"][0]["floquet_multipliers"].begin(), j["solutions"][0]["floquet_multipliers"].end());
+  expect_refused(j, "field \"solutions\"[0]: field \"floquet_multipliers\"[");
+  EXPECT_NE(refusal(j).find("expected them sorted by modulus"), std::string::npos) << refusal(j);
+  j = good;
+  j["solutions"][0]["flags"] = {"near_pole_line", "near_pole_line"};
+  expect_refused(j, "field \"solutions\"[0]: field \"flags\"[1]: the string \"near_pole_line\" is listed twice");
+  for (const char* count : {"rectangles", "curve_pieces", "evaluations"}) {
+    j = good;
+    j["stats"][count] = 0;
+    expect_refused(j, std::string("field \"stats\".\"") + count + "\" is 0 beside ");
+  }
 }
 
 TEST(Io, MatrixMarketOfAnotherSizeThanWIsRefusedBeforeItIsAllocated) {
