@@ -48,8 +48,13 @@ void ModesOptions::validate() const {
   if (!(energy_max > 0) || !std::isfinite(energy_max))
     detail::invalid_option(where, "energy_max", energy_max, "> 0 and finite");
   if (!(max_step > 0) || !(max_step <= 1)) detail::invalid_option(where, "max_step", max_step, "in (0, 1]");
-  if (!(min_step > 0) || !(min_step < max_step))
-    detail::invalid_option(where, "min_step", min_step, "in (0, max_step)");
+  if (!(min_step > 0)) detail::invalid_option(where, "min_step", min_step, "> 0");
+  if (!(min_step < max_step)) {  // both named: either may be the one the user set (--max-step 1e-10 named min_step)
+    std::ostringstream os;
+    os << "ModesOptions: min_step must be < max_step, got min_step = " << min_step << " and max_step = " << max_step
+       << " (raise max_step or lower min_step)";
+    detail::invalid(os.str());
+  }
   if (!(max_turn > 0) || !(max_turn < 1.5)) detail::invalid_option(where, "max_turn", max_turn, "in (0, 1.5)");
   if (max_points < 2) detail::invalid_option(where, "max_points", max_points, "at least 2");
   if (!(locate_tol > 0) || !(locate_tol < max_step))

@@ -95,9 +95,11 @@ using search::Polished;
 
 // A point (t1, t2) given by a caller (a guess, or an SPP to polish) must be positive and finite.
 void require_positive_guess(const char* who, double t1, double t2) {
-  if (!(std::isfinite(t1) && t1 > 0 && std::isfinite(t2) && t2 > 0)) {
+  // (a denormal guess reached the window checks, which named t1_min, an option the user never gave)
+  constexpr double kMin = std::numeric_limits<double>::min();
+  if (!(std::isfinite(t1) && t1 >= kMin && std::isfinite(t2) && t2 >= kMin)) {
     std::ostringstream os;
-    os << who << ": t1 and t2 must be positive and finite, got t1 = " << t1 << ", t2 = " << t2;
+    os << who << ": t1 and t2 must be positive and finite (normal doubles), got t1 = " << t1 << ", t2 = " << t2;
     detail::invalid(os.str());
   }
 }

@@ -26,6 +26,13 @@ TEST(Generators, ChainWithListsAndLowerSide) {
   EXPECT_THROW(chain(3, {1.0, 2.0}, {1.0}, 0, ContactSide::Upper, 1.0), std::invalid_argument);
   EXPECT_THROW(chain(3, {1.0}, {1.0}, 3, ContactSide::Upper, 1.0), std::invalid_argument);
   EXPECT_THROW(chain(3, {-1.0}, {1.0}, 0, ContactSide::Upper, 1.0), std::invalid_argument);
+  // beyond the dense solver: refused before the n x n matrices (n = 20000 took 6.4 GB first; an independent attack)
+  try {
+    chain(2000000, {1.0}, {1.0}, 0, ContactSide::Upper, 1.0);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("chain: n must be at most 10000"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Generators, RodMatchesPaperEq57AndBundledExampleUpToG0) {
