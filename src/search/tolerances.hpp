@@ -48,9 +48,22 @@ inline constexpr double kAxisBand = 5e-2;
 /// Default lower window ends: this fraction of the fastest quarter period (at most kDefaultLowerCap of the window).
 inline constexpr double kDefaultLower = 1e-4;
 inline constexpr double kDefaultLowerCap = 1e-3;
-/// A window edge within this fraction of the fastest quarter period of a pole line is widened past it (the line
-/// becomes interior and its strip is paired; an edge is never snapped onto a pole line).
+/// A window edge keeps from each pole line next to it kEdgePole times the smaller of the fastest quarter period and
+/// the local pole spacing, the wider of the two gaps beside that line (window_plan.cpp plan_axis). Closer, it is
+/// moved outwards: past the line if it lies outside the window (the line becomes interior and its strip is paired),
+/// away from it if it lies inside (no sliver cell); a gap too narrow to hold an edge clear of both its lines is
+/// passed; an edge is never moved onto a pole line. Why relative to that gap: a line's pole margin (pole_margin, 1e-6
+/// by default) is taken of the wider neighbouring cell, so the corners of interior cells come that close to it and no
+/// closer; an edge kept kEdgePole = 100 pole margins away has its corners 100 times farther from the line than those.
+/// An edge 1e-3 of a 1.6e-6 gap from a line whose other gap is 1e-2 wide (tests/data/near_coincident7.json) is
+/// inside that line's margin: there a crossing went unpaired (incomplete). With the quarter period alone (the rule
+/// until 2026-11-24) an edge between clustered lines (3e-6 apart at n = 1000, 1e-4 of the quarter period = 7.9e-5)
+/// was widened over 33 x 33 lines where the window held 2 x 2. Where a line has a gap of a quarter period or more
+/// beside it the rule is the old one.
 inline constexpr double kEdgePole = 1e-4;
+/// An edge moved into a gap goes this fraction of it from the line it passed or left, or kEdgePole times the quarter
+/// period if that is less (the old rule's distance): clear of both lines of the gap whenever the gap can hold an edge.
+inline constexpr double kEdgeIntoGap = 0.5;
 /// The searched region is the window widened by this fraction of its size at each edge: wider than the rounding of
 /// a root computed on a tile edge, so a root on a shared edge is found by both tiles (the half-open rule keeps one).
 inline constexpr double kEdgeSlack = 1e-9;

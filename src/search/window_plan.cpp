@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -11,30 +12,84 @@
 
 namespace spp::search {
 
+namespace {
+
+// The pole lines around x: the two last at or below x (0, the axis, where there are fewer) and the two first above.
+struct PolesAround {
+  double below2 = 0.0, below = 0.0, above = 0.0, above2 = 0.0;
+};
+
+PolesAround poles_around(const Eigen::VectorXd& freqs, double fmax, double x) {
+  // the fastest mode alone has a pole line every pi / fmax: two on each side lie within this reach
+  const double reach = 2.25 * std::numbers::pi / fmax;
+  PolesAround p;
+  for (double t : tangent_poles(freqs, std::max(0.0, x - reach), x + reach)) {  // O(m) lines listed
+    if (t <= x) {
+      p.below2 = p.below;
+      p.below = t;
+    } else if (p.above == 0.0) {
+      p.above = t;
+    } else if (p.above2 == 0.0) {
+      p.above2 = t;
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
 // The region searched for the window (lo, hi] of one phase: the window widened by a hair (roots found outside the
 // window are dropped by the half-open membership rule, so a root on a tile edge is found by both tiles and kept by
-// one), and, where an edge falls within kEdgePole of a pole line, widened past that line so that the line is
-// interior and its thin strip is covered by pairing (a window edge is never snapped onto a pole line).
+// one), and each edge kept clear of the pole lines around it (kEdgePole: a line's clearance follows the spacing of
+// the lines next to it, at most the fastest quarter period): an edge too close to the line beyond it is moved past
+// that line (the line becomes interior and its thin strip is covered by pairing), one too close to the line inside
+// it is moved away from that line (the cell between them is no sliver), and a gap too narrow to hold an edge clear
+// of both its lines is passed. An edge only ever moves outwards, so the region holds the window, and never onto a
+// pole line.
 AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool widen_lo, double pole_margin,
                    double max_count) {
   const double fmax = freqs.size() ? freqs.maxCoeff() : 0.0;
-  const double kappa = fmax > 0 ? kEdgePole * std::numbers::pi / (2.0 * fmax) : 0.0;
+  const double quarter = fmax > 0 ? std::numbers::pi / (2.0 * fmax) : 0.0;
   double rlo = widen_lo ? lo - kEdgeSlack * (hi - lo) : lo, rhi = hi + kEdgeSlack * (hi - lo);
-  for (int pass = 0; pass < 8 && kappa > 0; ++pass) {  // poles may cluster: widen until no pole is near an edge
-    bool moved = false;
-    if (widen_lo) {
-      const auto near = tangent_poles(freqs, std::max(0.0, rlo - kappa), rlo + kappa, max_count);
-      if (!near.empty()) {
-        rlo = std::max(0.5 * near.front(), near.front() - kappa);
-        moved = true;
-      }
-    }
-    const auto near = tangent_poles(freqs, rhi - kappa, rhi + kappa, max_count);
-    if (!near.empty()) {
-      rhi = near.back() + kappa;
-      moved = true;
-    }
-    if (!moved) break;
+  // The distance an edge keeps from the line p whose neighbours are `left` and `right` (0: the axis): kEdgePole of
+  // the wider gap next to p (as p's pole margin), at most of the quarter period; at least a few ulps of p.
+  auto clearance = [&](double left, double p, double right) {
+    return std::max(kEdgePole * std::min(quarter, std::max(p - left, right - p)), kMinPoleMargin * p);
+  };
+  // Where an edge goes from a line into the gap of width `gap` beyond it (kEdgeIntoGap): clear of both lines of the
+  // gap when the gap can hold an edge at all.
+  auto into = [&](double gap, double p) {
+    return std::max(std::min(kEdgePole * quarter, kEdgeIntoGap * gap), 2.0 * kMinPoleMargin * p);
+  };
+  // An edge put into() a gap is clearance() from its line up to the rounding of the sum (a few ulps): that is clear.
+  auto clear_of = [](double distance, double clear, double p) {
+    return distance >= clear - 8.0 * std::numeric_limits<double>::epsilon() * p;
+  };
+  // Each pass settles the edge in its gap or moves it past one more line (outwards): it ends.
+  for (long pass = 0; fmax > 0 && widen_lo && pass <= static_cast<long>(freqs.size()) * 8 + 16; ++pass) {
+    const PolesAround p = poles_around(freqs, fmax, rlo);
+    const double gap = p.above - p.below;
+    const double cb = p.below > 0.0 ? clearance(p.below2, p.below, p.above) : 0.0;
+    const double ca = clearance(p.below, p.above, p.above2);
+    const bool clear_below = p.below == 0.0 || clear_of(rlo - p.below, cb, p.below),
+               clear_above = clear_of(p.above - rlo, ca, p.above);
+    if (clear_below && clear_above) break;
+    if ((clear_below && std::max(cb, ca) <= kEdgeIntoGap * gap) || p.below == 0.0)
+      rlo = std::min(rlo, p.above - into(gap, p.above));  // away from the line above, clear of both lines of the gap
+    else
+      rlo = p.below - into(p.below - p.below2, p.below);  // past the line below (at most half-way to the axis)
+  }
+  for (long pass = 0; fmax > 0 && pass <= static_cast<long>(freqs.size()) * 8 + 16; ++pass) {
+    const PolesAround p = poles_around(freqs, fmax, rhi);
+    const double gap = p.above - p.below;
+    const double cb = p.below > 0.0 ? clearance(p.below2, p.below, p.above) : 0.0;
+    const double ca = clearance(p.below, p.above, p.above2);
+    const bool clear_below = clear_of(rhi - p.below, cb, p.below), clear_above = clear_of(p.above - rhi, ca, p.above);
+    if (clear_below && clear_above) break;
+    if (clear_above && std::max(cb, ca) <= kEdgeIntoGap * gap)
+      rhi = std::max(rhi, p.below + into(gap, p.below));  // away from the line below, clear of both lines of the gap
+    else
+      rhi = p.above + into(p.above2 - p.above, p.above);  // past the line above
   }
   AxisPlan a;
   a.bp.push_back(rlo);

@@ -23,8 +23,8 @@ struct AxisPlan {
 
 // The region searched for the window (lo, hi] of one phase: the window widened by a hair (roots found outside the
 // window are dropped by the half-open membership rule, so a root on a tile edge is found by both tiles and kept by
-// one), and, where an edge falls within kEdgePole of a pole line, widened past that line so that the line is
-// interior and its thin strip is covered by pairing (a window edge is never snapped onto a pole line).
+// one), and, where an edge falls closer to a pole line than kEdgePole of the local pole spacing (at most of the
+// fastest quarter period), moved outwards past that line or away from it (never onto it; see tolerances.hpp).
 /// The region searched for the window (lo, hi] of one phase (see plan_window).
 AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool widen_lo, double pole_margin,
                    double max_count);

@@ -127,6 +127,54 @@ TEST(Window, RandomTilingsOfThePapersChainWindowGiveTheWholeWindowsRoots) {
   }
 }
 
+TEST(Window, TilesCutNextToClusteredPoleLinesKeepTheBruteForcesRoots) {
+  // tests/data/near_coincident7.json has two flight pole lines 1.6e-6 apart (frequencies 10 and 10 (1 + 1e-5)) amid
+  // lines ~1e-2 apart, as a chain's clustered top frequencies have. A cut 0.45 of that gap from a line stays where
+  // it is (the edge rule, tolerances.hpp kEdgePole, asks 6.6e-7 = 0.42 of the gap here; the quarter-period rule
+  // moved it), one 1e-3 (inside the line's pole margin: a crossing went unpaired when it stayed) or 1e-12 of the gap
+  // from a line is moved past the line or away from it. Either way the two tiles (0.1565, c] and (c, 0.16] x
+  // (0.01, 0.3] hold the four roots of the whole window that the independent brute force finds, each in exactly one
+  // tile, and both tiles end success (tests/crosscheck/brute_force.py near_coincident7.json --window 0.1565 0.16 0.01
+  // 0.3: 4 roots, certified=True; on both tiles of cuts 0.3, 1e-3, 1e-7 and 1e-12 of the gap either side of either
+  // line, with the lines rounded to 12 digits: 1 + 3 roots, the same, certified=True).
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/near_coincident7.json");
+  const double expected[4][2] = {{0.156771040013, 0.0283130831822},
+                                 {0.158637000275, 0.0660873626105},
+                                 {0.15796234941, 0.198956087816},
+                                 {0.159744094205, 0.236818681602}};
+  const ModalForm md(s);
+  const std::vector<double> pair = md.flight_poles(0.15707, 0.15709);
+  ASSERT_EQ(pair.size(), 2u);
+  const double gap = pair[1] - pair[0];
+  ASSERT_LT(gap, 2e-6);
+  int cuts = 0;
+  for (const double frac : {0.45, 1e-3, 1e-12})
+    for (const double line : pair)
+      for (const double side : {-1.0, 1.0}) {
+        const double c = line + side * frac * gap;
+        std::vector<Solution> uni;
+        for (const auto& [a, b] : {std::pair{0.1565, c}, std::pair{c, 0.16}}) {
+          const SolveResult t = solve_window(s, a, b, 0.01, 0.3);
+          EXPECT_EQ(t.status, SolveStatus::Success) << "cut " << c << ": " << t.brief_report();
+          for (const Solution& x : t.solutions) {
+            EXPECT_GT(x.t1(), a);
+            EXPECT_LE(x.t1(), b);
+            uni.push_back(x);
+          }
+        }
+        EXPECT_EQ(uni.size(), 4u) << "cut " << c << " (" << frac << " of the gap from " << line << ")";
+        for (const auto& e : expected)
+          EXPECT_EQ(std::count_if(uni.begin(), uni.end(),
+                                  [&](const Solution& x) {
+                                    return std::abs(x.t1() - e[0]) < 1e-9 && std::abs(x.t2() - e[1]) < 1e-9;
+                                  }),
+                    1)
+              << "cut " << c << ": root (" << e[0] << ", " << e[1] << ")";
+        ++cuts;
+      }
+  EXPECT_EQ(cuts, 12);
+}
+
 TEST(Window, FarWindowsAreRefusedBeforeAnyWork) {
   const System s = chain5();
   SolveOptions o;
