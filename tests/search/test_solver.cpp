@@ -173,8 +173,8 @@ TEST(Solver, TraceTerminatesOnClusteredPoleLines) {
 
 TEST(Solver, WindowEdgeJustPastAPoleLineLeavesNoSliver) {
   // Regression: a window edge 1e-9 (relative) past a pole line left a sliver rectangle where H is ~1e9 and
-  // the trace produced false sign changes. The edge now moves onto the pole line: same roots as a window
-  // ending just before it, status success.
+  // the trace produced false sign changes. The edge now moves past the pole line (never onto it; tolerances.hpp
+  // kEdgePole): same roots as a window ending just before it, status success.
   const System s = chain5();
   const ModalForm md(s);
   const double p1 = md.flight_poles(0.0, 12.0).back(), p2 = md.contact_poles(0.0, 12.0).back();
