@@ -52,18 +52,19 @@ AxisPlan plan_axis(const Eigen::VectorXd& freqs, double lo, double hi, bool wide
   const double quarter = fmax > 0 ? std::numbers::pi / (2.0 * fmax) : 0.0;
   double rlo = widen_lo ? lo - kEdgeSlack * (hi - lo) : lo, rhi = hi + kEdgeSlack * (hi - lo);
   // The distance an edge keeps from the line p whose neighbours are `left` and `right` (0: the axis): kEdgePole of
-  // the wider gap next to p (as p's pole margin), at most of the quarter period; at least a few ulps of p.
+  // the wider gap next to p (as p's pole margin), at most of the quarter period; at least ~7 ulps of p (far windows).
   auto clearance = [&](double left, double p, double right) {
-    return std::max(kEdgePole * std::min(quarter, std::max(p - left, right - p)), kMinPoleMargin * p);
+    return std::max(kEdgePole * std::min(quarter, std::max(p - left, right - p)), 4.0 * kMinPoleMargin * p);
   };
   // Where an edge goes from a line into the gap of width `gap` beyond it (kEdgeIntoGap): clear of both lines of the
   // gap when the gap can hold an edge at all.
   auto into = [&](double gap, double p) {
-    return std::max(std::min(kEdgePole * quarter, kEdgeIntoGap * gap), 2.0 * kMinPoleMargin * p);
+    return std::max(std::min(kEdgePole * quarter, kEdgeIntoGap * gap), 8.0 * kMinPoleMargin * p);
   };
-  // An edge put into() a gap is clearance() from its line up to the rounding of the sum (a few ulps): that is clear.
+  // An edge put into() a gap is clearance() from its line up to the rounding of the sum (eps p): that is clear. (The
+  // clearance's floor exceeds this allowance: an edge on a line is never clear.)
   auto clear_of = [](double distance, double clear, double p) {
-    return distance >= clear - 8.0 * std::numeric_limits<double>::epsilon() * p;
+    return distance >= clear - 2.0 * std::numeric_limits<double>::epsilon() * p;
   };
   // Each pass settles the edge in its gap or moves it past one more line (outwards): it ends.
   for (long pass = 0; fmax > 0 && widen_lo && pass <= static_cast<long>(freqs.size()) * 8 + 16; ++pass) {

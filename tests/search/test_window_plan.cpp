@@ -144,3 +144,21 @@ TEST(WindowPlan, AGapTooNarrowToHoldAnEdgeIsPassed) {
   EXPECT_LT(down.bp.front(), pair[0]);
   expect_edge_clear(f, down.bp.front(), "lower");
 }
+
+TEST(WindowPlan, AnEdgeOnAPoleLineFarOutMovesPastIt) {
+  // Far out (t ~ 1e12 quarter periods) 1e-4 of a quarter period is below an ulp of t: the clearance's floor (a few
+  // ulps) keeps an edge placed exactly on a line, or an ulp from it, off that line.
+  Eigen::VectorXd f(2);
+  f << 1.0, std::sqrt(2.0);
+  const double p = (1e12 + 0.5) * std::numbers::pi;  // a pole line of frequency 1
+  for (const double edge : {p, std::nextafter(p, 0.0), std::nextafter(p, 1e300)}) {
+    const search::AxisPlan up = search::plan_axis(f, p - 10.0, edge, true, 1e-6, 1e8);
+    const search::AxisPlan down = search::plan_axis(f, edge, p + 10.0, true, 1e-6, 1e8);
+    for (const double e : {up.bp.back(), down.bp.front()}) {
+      const std::vector<double> near = tangent_poles(f, e - 1.0, e + 1.0);
+      for (double q : near) EXPECT_GT(std::abs(e - q), 4.0 * std::numeric_limits<double>::epsilon() * q) << edge;
+    }
+    EXPECT_GT(up.bp.back(), p);
+    EXPECT_LT(down.bp.front(), p);
+  }
+}
