@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "spp/core/generators.hpp"
+#include "spp/detail/out_of_memory.hpp"
 #include "spp/io.hpp"
 
 using namespace spp;
@@ -103,4 +104,23 @@ TEST(Generators, BarIsSparseAndChecksItsArguments) {
   EXPECT_DOUBLE_EQ(b.K().coeff(99999, 99999), 100000.0);  // the free end: half an interior row
   EXPECT_THROW(bar(0, BarMass::Consistent, 1, ContactSide::Upper, 1.0), std::invalid_argument);
   EXPECT_THROW(bar(10, BarMass::Consistent, 11, ContactSide::Upper, 1.0), std::invalid_argument);
+}
+
+TEST(Generators, OutOfMemoryNamesWhatWasTooLarge) {
+  // a std::bad_alloc said only "std::bad_alloc"; naming_allocation names the object and its size (the CLI prints it,
+  // pybind11 raises MemoryError with it); an inner, more precise name passes through
+  try {
+    spp::detail::naming_allocation("chain: M and K of n = 100000 dofs, each " + spp::detail::dense_size(1e5, 1e5),
+                                   []() -> int { throw std::bad_alloc(); });
+    ADD_FAILURE() << "no exception";
+  } catch (const std::bad_alloc& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "out of memory: chain: M and K of n = 100000 dofs, each a 100000 x 100000 matrix of doubles (80 GB)");
+  }
+  try {
+    spp::detail::naming_allocation("outer", []() -> int { throw spp::detail::OutOfMemory("out of memory: inner"); });
+    ADD_FAILURE() << "no exception";
+  } catch (const std::bad_alloc& e) {
+    EXPECT_EQ(std::string(e.what()), "out of memory: inner");
+  }
 }
