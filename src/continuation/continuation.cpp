@@ -391,6 +391,12 @@ class BranchWalker {
       : tr_(tr), o_(o), seed_mu_(seed_mu), free_scale_(free_scale) {}
 
   std::vector<SeedCrossing> crossings;
+  bool interrupted = false;  // o_.progress returned false: no branch is walked further
+
+  bool keep_going() {
+    if (!interrupted && o_.progress && !o_.progress()) interrupted = true;
+    return !interrupted;
+  }
 
   // points: traced points after the start; events in order.
   // Returns true if the branch closed on itself (then the other direction need not be walked).
@@ -400,6 +406,10 @@ class BranchWalker {
     double h = 0.25 * o_.max_step;
     int creeping = 0;  // consecutive steps far below max_step
     for (int count = 0;; ++count) {
+      if (!keep_going()) {
+        events.push_back({BranchEventKind::Stalled, s.point, "interrupted"});
+        return false;
+      }
       if (count >= o_.max_points) {
         events.push_back({BranchEventKind::Stalled, s.point, "max_points reached"});
         return false;
@@ -670,8 +680,14 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   so.compute_return_error = false;
   so.threads = options.threads;
   so.symmetry = options.symmetry;
+  bool seeds_interrupted = false;
+  if (options.progress)
+    so.progress = [&](const SolveProgress&) {
+      if (!seeds_interrupted && !options.progress()) seeds_interrupted = true;
+      return !seeds_interrupted;
+    };
   std::vector<std::vector<Solution>> seed_sols(options.seeds);
-  for (int k = 0; k < options.seeds; ++k) {
+  for (int k = 0; k < options.seeds && !seeds_interrupted; ++k) {
     System s = ps.at(seed_mu[k]);
     if (free_scale) s = System(s.M(), s.K(), s.w(), 1.0, s.name());
     SolveResult r = solve(s, so);
@@ -680,6 +696,7 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
       res.warnings.push_back("solve at " + par.name + " = " + std::to_string(seed_mu[k]) + ": " + r.brief_report());
     res.seed_spps += static_cast<long>(r.solutions.size());
     seed_sols[k] = std::move(r.solutions);
+    if (!seeds_interrupted && options.progress && !options.progress()) seeds_interrupted = true;
   }
 
   Tracer tr(ps, options, t1_min, t2_min);
@@ -692,16 +709,19 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
     return false;
   };
 
-  for (int k = 0; k < options.seeds; ++k) {
+  walker.interrupted = seeds_interrupted;
+  for (int k = 0; k < options.seeds && !walker.interrupted; ++k) {
     for (const Solution& sol : seed_sols[k]) {
+      if (walker.interrupted) break;
       if (matched(k, sol.t1(), sol.t2())) continue;
       walker.crossings.push_back({k, sol.t1(), sol.t2()});
       res.branches.push_back(trace_branch(tr, walker, tr.scaled(sol.t1(), sol.t2(), seed_mu[k]), sol.orbit.a));
     }
   }
 
-  // Cross-check: every crossing of a seed value is one of solve()'s SPPs there.
-  for (const SeedCrossing& c : walker.crossings) {
+  // Cross-check: every crossing of a seed value is one of solve()'s SPPs there (not after an interruption: the seeds
+  // not solved list none).
+  for (const SeedCrossing& c : walker.interrupted ? std::vector<SeedCrossing>{} : walker.crossings) {
     const auto& sols = seed_sols[c.seed];
     const bool found = std::any_of(sols.begin(), sols.end(), [&](const Solution& s) {
       return std::abs(s.t1() - c.t1) <= kSeedMatch * options.t1_max &&
@@ -719,7 +739,12 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
   }
   for (const Branch& b : res.branches)
     for (const BranchEvent& e : b.events) res.stalled_branches += e.kind == BranchEventKind::Stalled;
-  const bool complete = res.incomplete_seed_solves == 0 && res.stalled_branches == 0 && res.unlisted_crossings == 0;
+  res.interrupted = walker.interrupted;
+  if (res.interrupted)
+    res.warnings.push_back("interrupted: the branches traced so far (the last one ends with a stalled event "
+                           "\"interrupted\"); the seeds not reached are not traced");
+  const bool complete = res.incomplete_seed_solves == 0 && res.stalled_branches == 0 &&
+                        res.unlisted_crossings == 0 && !res.interrupted;
   res.status = complete ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
   res.corrector_solves = tr.corrector_solves;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
@@ -779,7 +804,10 @@ ContinuationResult continue_branch(const ParametricSystem& ps, double mu, const 
   BranchWalker walker(tr, options, no_seeds, ps.g0() == 0.0);
   res.branches.push_back(trace_branch(tr, walker, y0, a));
   for (const BranchEvent& ev : res.branches.front().events) res.stalled_branches += ev.kind == BranchEventKind::Stalled;
-  res.status = res.stalled_branches == 0 ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
+  res.interrupted = walker.interrupted;
+  if (res.interrupted) res.warnings.push_back("interrupted: the branch as traced so far");
+  res.status = res.stalled_branches == 0 && !res.interrupted ? ContinuationStatus::Success
+                                                             : ContinuationStatus::Incomplete;
   res.corrector_solves = tr.corrector_solves;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return res;

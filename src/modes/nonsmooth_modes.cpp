@@ -95,6 +95,12 @@ struct Tracer {
   Eigen::VectorXd D;            // y = D z
   std::set<int> wanted;         // the requested k
   std::vector<size_t> pending;  // families ending at flight_grazing, to continue with k + 2 impacts
+  bool stopped = false;         // options.progress returned false: nothing more is traced
+
+  bool keep_going() {
+    if (!stopped && options.progress && !options.progress()) stopped = true;
+    return !stopped;
+  }
 
   Eigen::VectorXd scales(const KippShape& shape) const {
     const double bn = model.b().norm(), g0 = model.g0();
@@ -207,6 +213,11 @@ struct Tracer {
     double det_prev = bordered_det(shape, z, tau);
     ModePoint prev = f.points.back();
     for (int count = 1;; ++count) {
+      if (!keep_going()) {
+        add_event(f, ModeEventKind::Stalled, prev, "interrupted");
+        ++result.stalled_families;
+        return;
+      }
       if (count >= options.max_points) {
         add_event(f, ModeEventKind::Stalled, prev, "max_points reached");
         ++result.stalled_families;
@@ -424,17 +435,19 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
   const KippModel model(system);
   ModesResult result;
   result.linear_frequencies = model.omega();
-  Tracer tracer{model, options, result, {}, {}, {}};
+  Tracer tracer{model, options, result, {}, {}, {}, false};
   tracer.wanted.insert(options.k_values.begin(), options.k_values.end());
   std::vector<int> ks = options.k_values;
   std::sort(ks.begin(), ks.end());
   const double bn = model.b().norm();
   for (int k : ks)
     for (KippSymmetry s : symmetries_for(k))
-      for (int j = 0; j < system.n(); ++j)
+      for (int j = 0; j < system.n() && tracer.keep_going(); ++j)
         if (std::abs(model.b()(j)) > 1e-10 * bn) tracer.run_start(KippShape{k, s, system.n()}, j);
-  for (size_t i = 0; i < tracer.pending.size(); ++i) tracer.follow_grazing(tracer.pending[i]);
-  result.status = result.stalled_families > 0 ? ModesStatus::Incomplete : ModesStatus::Traced;
+  for (size_t i = 0; i < tracer.pending.size() && tracer.keep_going(); ++i) tracer.follow_grazing(tracer.pending[i]);
+  result.interrupted = tracer.stopped;
+  result.status =
+      result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

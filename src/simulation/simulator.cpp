@@ -133,6 +133,7 @@ const char* to_string(SimulationStatus status) {
     case SimulationStatus::Success: return "success";
     case SimulationStatus::EventLimit: return "event_limit";
     case SimulationStatus::Stalled: return "stalled";
+    case SimulationStatus::Interrupted: return "interrupted";
   }
   return "unknown";
 }
@@ -331,7 +332,17 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   int stalled_events = 0;                 // consecutive events without time passing
   constexpr int kMaxStalledEvents = 100;  // zero-time events in a row: an event sequence at one instant
   // is a few (impact, onset, release); 100 is a loop that time cannot leave
+  constexpr long kProgressEvery = 256;  // events or samples between two calls of opt.progress
+  long steps_since_progress = 0;
   while (t < opt.duration) {
+    if (opt.progress && steps_since_progress >= kProgressEvery) {
+      steps_since_progress = 0;
+      if (!opt.progress()) {
+        res.status = SimulationStatus::Interrupted;
+        break;
+      }
+    }
+    ++steps_since_progress;
     if (static_cast<long>(res.events.size()) >= opt.max_events) {
       res.status = SimulationStatus::EventLimit;
       break;
@@ -349,10 +360,25 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     const double s_end = cr.found ? (contact ? cr.t : tangent_touchdown(f, cr.t, f_tol)) : remaining;
     const double t_end = cr.found ? std::min(t + s_end, opt.duration) : opt.duration;
     Eigen::VectorXd xs, vs;
+    bool stopped = false;
     for (; next_sample < opt.sample_times.size() && opt.sample_times[next_sample] < t_end; ++next_sample) {
+      if (opt.progress && ++steps_since_progress >= kProgressEvery) {  // (a long flight sampled densely)
+        steps_since_progress = 0;
+        if (!opt.progress()) {
+          stopped = true;
+          break;
+        }
+      }
       const double ts = opt.sample_times[next_sample];
       state_at(ph, ps, ts - t, xs, vs);
       push_sample(ts, xs, vs, contact);
+    }
+    if (stopped) {  // the state where sampling stopped: the samples end there
+      res.status = SimulationStatus::Interrupted;
+      const double ts = next_sample > 0 ? std::max(t, opt.sample_times[next_sample - 1]) : t;
+      state_at(ph, ps, ts - t, x, v);
+      t = ts;
+      break;
     }
     state_at(ph, ps, s_end, x, v);
     // time passed in the phase's own clock (s_end), not in t: past t ~ 1e5 an event sequence a few 1e-11 apart

@@ -172,6 +172,7 @@ std::string VerifyResult::brief_report() const {
   os << "verify: " << to_string(status) << ", " << checks.size() << " SPPs, " << returned
      << " return to their initial state, " << left << " leave the orbit; " << inconsistent
      << " disagree with the solver's admissibility";
+  if (unchecked > 0) os << "; " << unchecked << " not checked (interrupted)";
   return os.str();
 }
 
@@ -179,7 +180,14 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
   opt.validate();
   const Simulator sim(system);
   VerifyResult res;
+  // a run that progress stopped: this SPP and the later ones are left unchecked
+  const auto stop = [&](size_t i) {
+    res.unchecked = static_cast<long>(spps.size() - i);
+    res.status = res.inconsistent == 0 ? VerifyStatus::Success : VerifyStatus::Inconsistent;
+    return res;
+  };
   for (size_t i = 0; i < spps.size(); ++i) {
+    if (opt.progress && !opt.progress()) return stop(i);
     const Solution& c = spps[i];
     if (c.x0().size() != system.n() || c.v0().size() != system.n())
       detail::invalid("verify: solution " + std::to_string(i) + ": x0 and v0 must have " + std::to_string(system.n()) +
@@ -195,6 +203,7 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     o.duration = opt.periods * T;
     o.restitution = opt.restitution;
     o.sample_events = false;
+    o.progress = opt.progress;
     for (int k = 1; k <= opt.periods; ++k) o.sample_times.push_back(std::min(k * T, o.duration));
     const SimulationResult r = [&] {  // a state the simulator refuses (e.g. its energy overflows): name the solution
       try {
@@ -203,6 +212,7 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
         detail::invalid("verify: solution " + std::to_string(i) + ": " + e.what());
       }
     }();
+    if (r.status == SimulationStatus::Interrupted) return stop(i);
     chk.impacts = r.impacts;
     chk.contact_onsets = r.contact_onsets;
     chk.releases = r.releases;
@@ -241,7 +251,9 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
       SimulateOptions om;
       om.duration = 2.0 * c.t2() + c.t1();
       om.sample_events = false;
+      om.progress = opt.progress;
       const SimulationResult mid = sim.run(c.x0(), c.v0(), om);
+      if (mid.status == SimulationStatus::Interrupted) return stop(i);
       const Eigen::VectorXd xm = mid.samples.back().x, vm = mid.samples.back().v;
       const OrbitDistance distance(sim, xm, vm, T, 512);
       std::mt19937_64 rng(12345 + i);
@@ -253,6 +265,7 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
       SimulateOptions op = o;
       op.sample_times.insert(op.sample_times.begin(), 0.0);
       const SimulationResult p = sim.run(xm + s * dx, vm + s * dv, op);
+      if (p.status == SimulationStatus::Interrupted) return stop(i);
       for (const Sample& smp : p.samples) chk.perturbed_distances.push_back(distance(stack(smp.x, smp.v)));
       // The mean growth over the periods while the distance is small (the linear regime): averaged over every period,
       // a run that left the orbit and stopped growing read 1.147 for chain #0 of the paper, whose multiplier is

@@ -411,3 +411,29 @@ TEST(Continuation, OneBranchFromOneSolutionIsTheBranchThroughIt) {
   EXPECT_THROW(continue_branch(ps, mu, moved, o), std::invalid_argument);
   EXPECT_THROW(continue_branch(ps, 11.0, sr.solutions.front(), o), std::invalid_argument);
 }
+
+// ContinueOptions::progress (Python's Ctrl-C, issue 13): called at each branch point and in the seed solves;
+// returning false stops the continuation with the branches traced so far, Incomplete and interrupted.
+TEST(Continuation, ProgressReturningFalseStopsWithTheBranchesTracedSoFar) {
+  const ParametricSystem ps = paper_61(1.0, 1.0, 10.0);
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  const ContinuationResult full = continue_branches(ps, o);
+  long calls = 0;
+  o.progress = [&calls] { return ++calls < 50; };  // past the seed solves, into the branches
+  const ContinuationResult r = continue_branches(ps, o);
+  EXPECT_EQ(calls, 50);  // not called again once it said stop
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(r.status, ContinuationStatus::Incomplete);
+  long points = 0, full_points = 0;
+  for (const Branch& b : r.branches) points += static_cast<long>(b.points.size());
+  for (const Branch& b : full.branches) full_points += static_cast<long>(b.points.size());
+  EXPECT_LT(points, full_points);
+  ASSERT_FALSE(r.branches.empty());
+  EXPECT_EQ(r.branches.back().events.back().detail, "interrupted");
+  EXPECT_FALSE(full.interrupted);
+  o.progress = [] { return false; };  // at once: the first seed solve stops, nothing is traced
+  const ContinuationResult none = continue_branches(ps, o);
+  EXPECT_TRUE(none.interrupted && none.branches.empty() && none.unlisted_crossings == 0);
+}

@@ -335,3 +335,29 @@ TEST(Modes, FamiliesStartingAboveEnergyMaxAreNotListed) {
 
 }  // namespace
 }  // namespace spp::modes
+
+namespace spp::modes {
+namespace {
+// ModesOptions::progress (Python's Ctrl-C, issue 13): called before each family point; false stops the tracing with
+// the families traced so far, Incomplete and interrupted.
+TEST(Modes, ProgressReturningFalseKeepsTheFamiliesTraced) {
+  ModesOptions o;
+  o.k_values = {1};
+  o.energy_max = 5.0;
+  const ModesResult full = nonsmooth_modes(chain5(), o);
+  long calls = 0;
+  o.progress = [&calls] { return ++calls < 20; };
+  const ModesResult r = nonsmooth_modes(chain5(), o);
+  EXPECT_EQ(calls, 20);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(r.status, ModesStatus::Incomplete);
+  ASSERT_FALSE(r.families.empty());
+  EXPECT_EQ(r.families.back().events.back().detail, "interrupted");
+  long points = 0, full_points = 0;
+  for (const ModeFamily& f : r.families) points += static_cast<long>(f.points.size());
+  for (const ModeFamily& f : full.families) full_points += static_cast<long>(f.points.size());
+  EXPECT_LT(points, full_points);
+  EXPECT_FALSE(full.interrupted);
+}
+}  // namespace
+}  // namespace spp::modes

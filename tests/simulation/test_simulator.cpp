@@ -233,3 +233,26 @@ TEST(Simulator, ALongRunIsNotTakenForAStall) {
   EXPECT_LE(r.energy_final, r.energy_initial);
   EXPECT_NEAR(r.energy_initial - r.energy_final, r.impact_energy_loss, 1e-9 * r.energy_initial);
 }
+
+// SimulateOptions::progress (Python's Ctrl-C, issue 13): called every 256 events or samples; false stops the run,
+// status Interrupted, its samples ending where it stopped.
+TEST(Simulator, ProgressReturningFalseStopsTheRun) {
+  SimulateOptions o;
+  o.duration = 1e5;
+  o.restitution = 1.0;
+  long calls = 0;
+  o.progress = [&calls] { return ++calls < 3; };
+  const SimulationResult r = simulate(oscillator(0.5), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Ones(1), o);
+  EXPECT_EQ(r.status, SimulationStatus::Interrupted);
+  EXPECT_EQ(calls, 3);
+  EXPECT_LT(r.end_time, o.duration);
+  EXPECT_LE(r.events.size(), 3u * 256u);
+  EXPECT_EQ(r.samples.back().t, r.end_time);
+  o.sample_times = uniform_times(o.duration, 100.0);  // samples only, between two events
+  o.restitution = 0.0;
+  calls = 0;
+  const SimulationResult s = simulate(oscillator(10.0), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Ones(1), o);
+  EXPECT_EQ(s.status, SimulationStatus::Interrupted);
+  EXPECT_LT(s.samples.size(), 1000u);
+  EXPECT_STREQ(to_string(SimulationStatus::Interrupted), "interrupted");
+}

@@ -182,3 +182,21 @@ TEST(Verify, GrowthPerPeriodIsMeasuredWhileThePerturbationIsSmall) {
   EXPECT_GT(c.growth_per_period, 1.3);
   EXPECT_LT(c.growth_per_period, 1.6);
 }
+
+// VerifyOptions::progress (Python's Ctrl-C, issue 13): false stops verify; the SPPs left are counted, not checked.
+TEST(Verify, ProgressReturningFalseLeavesTheRestUnchecked) {
+  const std::vector<Solution> spps = spps_of(chain5(), 12.0, 12.0);
+  VerifyOptions o;
+  long calls = 0;
+  o.progress = [&calls] { return ++calls <= 3; };  // three SPPs checked (a few events each: one call per SPP)
+  const VerifyResult r = verify(chain5(), spps, o);
+  EXPECT_EQ(r.checks.size(), 3u);
+  EXPECT_EQ(r.unchecked, static_cast<long>(spps.size()) - 3);
+  EXPECT_NE(r.brief_report().find("not checked (interrupted)"), std::string::npos) << r.brief_report();
+  o.periods = 100000;  // a long simulation is stopped inside it
+  calls = 0;
+  o.progress = [&calls] { return ++calls < 3; };
+  const VerifyResult s = verify(chain5(), spps, o);
+  EXPECT_TRUE(s.checks.empty());
+  EXPECT_EQ(s.unchecked, static_cast<long>(spps.size()));
+}

@@ -20,6 +20,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -43,6 +44,11 @@ struct ContinueOptions {
   /// Point: branches of the point-symmetric potential SPPs (det T2 = 0, paper §6.2); their gap_closure
   /// events are where the normal velocity at onset vanishes (with g0 = 0: a fixed obstacle).
   Symmetry symmetry = Symmetry::Axial;
+  /// Called before each branch point and about every 0.2 s of each seed solve, from the thread that called
+  /// continue_branches() (so a Python callback may take the GIL): returning false stops the continuation; the branches
+  /// traced so far are kept (the one being traced ends with a Stalled event "interrupted"), the status is Incomplete
+  /// and `interrupted` is set. Empty: never called.
+  std::function<bool()> progress;
 
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
@@ -122,6 +128,7 @@ struct ContinuationResult {
   long seed_spps = 0;         ///< SPPs solve() found at the seed values
   long seed_crossings = 0;    ///< branch crossings of a seed value, each matched with one of those SPPs
   long corrector_solves = 0;  ///< Newton solves on the branch equations
+  bool interrupted = false;   ///< ContinueOptions::progress stopped the continuation (status Incomplete)
   double seconds = 0.0;
   /// One line: status, branches, points, events by kind, counted causes, warnings, time.
   std::string brief_report() const;

@@ -20,6 +20,7 @@
 // time unit).
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct ModesOptions {
   int max_points = 4000;      ///< per family
   double locate_tol = 1e-12;  ///< events located to this, in scaled arclength
   bool branch_points = true;  ///< follow the genuine k-IPPs that branch off the k-fold repetitions
+  /// Called before each family point, from the thread that called nonsmooth_modes() (so a Python callback may take
+  /// the GIL): returning false stops the tracing; the families traced so far are kept (the one being traced ends
+  /// with a Stalled event "interrupted") and the status is Incomplete with `interrupted` set. Empty: never called.
+  std::function<bool()> progress;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
 };
@@ -98,6 +103,7 @@ struct ModesResult {
   Eigen::VectorXd linear_frequencies;  ///< (n) omega, rad per time unit (the backbones' low-energy ends are omega / k)
   long corrector_solves = 0;
   long stalled_families = 0;
+  bool interrupted = false;  ///< ModesOptions::progress stopped the tracing (status Incomplete)
   double seconds = 0.0;
   /// One line: status, families (genuine / repetitions), points, events by kind, time.
   std::string brief_report() const;

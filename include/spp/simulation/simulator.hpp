@@ -6,6 +6,7 @@
 // Independent of the solver: its own eigenproblems, in physical coordinates.
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,9 @@ struct SimulateOptions {
   /// rebound would rise less than a few event tolerances, is plastic: it is where an accumulation of impacts
   /// (chattering, e < 1) ends in lasting contact.
   double rest_velocity_rel_tol = 1e-8;
+  /// Called every 256 events or samples from the thread that called run() (so a Python callback may take the GIL):
+  /// returning false stops the run there with status Interrupted (Ctrl-C in Python). Empty: never called.
+  std::function<bool()> progress;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
 };
@@ -61,7 +65,8 @@ enum class SimulationStatus {
   NotRun,
   Success,     ///< reached t = duration
   EventLimit,  ///< stopped at max_events before t = duration (samples end at the last event)
-  Stalled      ///< over 100 events in a row without time passing (samples end there): a defect to report
+  Stalled,     ///< over 100 events in a row without time passing (samples end there): a defect to report
+  Interrupted  ///< SimulateOptions::progress returned false (samples end there)
 };
 const char* to_string(SimulationStatus status);
 

@@ -7,6 +7,7 @@
 // a measured indication of stability under the given impact law.
 
 #include <Eigen/Dense>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -28,6 +29,10 @@ struct VerifyOptions {
   /// (0, 12]^2 and (0, 20]^2); an x0 edited by 1e-3 of its size is seen (1e-7 is not).
   double potential_return_tol = 1e-6;
   double event_time_tol = 1e-6;  ///< relative to the period: events within it of the expected times match
+  /// Called before each SPP and every 256 events of its simulations, from the thread that called verify() (so a
+  /// Python callback may take the GIL): returning false stops verify; the SPP being checked and the later ones are
+  /// left out (VerifyResult::unchecked counts them). Empty: never called.
+  std::function<bool()> progress;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
 };
@@ -71,6 +76,8 @@ struct VerifyResult {
   VerifyStatus status = VerifyStatus::Success;
   std::vector<SppCheck> checks;
   int returned = 0, left = 0, inconsistent = 0;
+  /// SPPs not checked because VerifyOptions::progress stopped verify (0: every one was); status is that of the others.
+  long unchecked = 0;
   bool all_consistent() const { return inconsistent == 0; }
   std::string brief_report() const;
 };
