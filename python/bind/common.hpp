@@ -125,6 +125,39 @@ inline void require_real(const py::object& a, const std::string& what) {
                                 py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
 }
 
+// Matrix and vector input, one conversion for System and ParametricSystem: numpy arrays, nested lists, scipy.sparse
+// matrices (densified: the solver is dense), and a vector as (n,), (1, n) or (n, 1); the argument named (`what`,
+// e.g. "System: M") when it cannot be converted. An empty part (`empty_ok`: a parametric system's M_mu, K_mu, w_mu)
+// is returned with size 0.
+inline py::object float_array(const py::object& a, const std::string& what) {
+  const py::module_ np = py::module_::import("numpy");
+  py::object d = py::hasattr(a, "toarray") ? a.attr("toarray")() : a;
+  require_real(d, what);
+  try {
+    return np.attr("asarray")(d, "dtype"_a = "float64");
+  } catch (const py::error_already_set&) {
+    detail::invalid(what + " must be an array of numbers, got " + typed_repr(a));
+  }
+}
+inline Eigen::MatrixXd matrix_input(const py::object& a, const std::string& what, bool empty_ok = false) {
+  const py::object arr = float_array(a, what);
+  if (empty_ok && arr.attr("size").cast<long>() == 0) return Eigen::MatrixXd();
+  if (arr.attr("ndim").cast<int>() != 2)
+    detail::invalid(what + " must be a square matrix, got shape " + py::str(arr.attr("shape")).cast<std::string>());
+  return arr.cast<Eigen::MatrixXd>();
+}
+inline Eigen::VectorXd vector_input(const py::object& a, const std::string& what, bool empty_ok = false) {
+  const py::object arr = float_array(a, what);
+  if (empty_ok && arr.attr("size").cast<long>() == 0) return Eigen::VectorXd();
+  const py::tuple shape = arr.attr("shape").cast<py::tuple>();
+  const bool vector_like =
+      shape.size() == 1 || (shape.size() == 2 && (shape[0].cast<long>() == 1 || shape[1].cast<long>() == 1));
+  if (!vector_like)
+    detail::invalid(what + " must be a vector, (n,), (1, n) or (n, 1), got shape " +
+                    py::str(py::object(shape)).cast<std::string>());
+  return arr.attr("ravel")().cast<Eigen::VectorXd>();
+}
+
 // The symmetry from the enum or its name ("axial", "point").
 inline spp::Symmetry symmetry_of(const py::object& v) {
   if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
@@ -132,6 +165,103 @@ inline spp::Symmetry symmetry_of(const py::object& v) {
   if (const std::optional<spp::Symmetry> s = spp::symmetry_named(name)) return *s;
   detail::invalid("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name +
                               "\"");
+}
+
+// A progress=... keyword of solve, nearest_spp or root_map (and the Ctrl-C check of continuation, modes, verify,
+// simulate and trajectory, built with py::none()) (None, True/False, a callable), called from the C++ run
+// (which holds no GIL: it is taken here) about every 0.2 s. Ctrl-C (KeyboardInterrupt) stops the run and keeps what was
+// done; the user's callable may stop it too (by returning False) or raise. Lives in the binding's frame: the C++
+// options hold a lambda that refers to it (copying a py::object without the GIL would not be safe).
+struct ProgressHook {
+  py::object callable = py::none();
+  bool call = false, text = false, interrupted = false, shown = false, late = false;
+
+  ProgressHook(const py::object& progress, const std::string& where) : callable(progress) {
+    call = PyCallable_Check(progress.ptr()) != 0;
+    // True/False/None (numpy's bool too) or a callable: anything else was taken for its truth (progress=5)
+    if (!call && !progress.is_none() && !py::isinstance<py::bool_>(progress) &&
+        !py::isinstance(progress, py::module_::import("numpy").attr("bool_")))
+      throw py::type_error(where + ": progress must be True, False, None, a callable or \"bar\", got " +
+                           typed_repr(progress));
+    text = !call && truth(progress);
+  }
+  static bool truth(const py::object& v) {
+    const int t = PyObject_IsTrue(v.ptr());
+    if (t < 0) throw py::error_already_set();
+    return t != 0;
+  }
+  template <class P>
+  bool operator()(const P& p) {
+    const py::gil_scoped_acquire gil;
+    if (!signals_allow()) return false;
+    if (text && p.seconds >= 1.0) {
+      py::module_::import("sys").attr("stderr").attr("write")("\r  " + p.line() + "   ");
+      shown = true;
+    }
+    if (!call) return true;
+    try {
+      const py::object r = callable(p);
+      return r.is_none() || truth(r);  // None continues; otherwise the value's truth
+    } catch (const py::error_already_set& e) {
+      // Ctrl-C while the user's callable ran (a slow one is where it most often lands): the same stop as a signal
+      // between two reports, so that the partial result is kept (a bare KeyboardInterrupt lost it)
+      if (!e.matches(PyExc_KeyboardInterrupt)) throw;
+      interrupted = true;
+      return false;
+    }
+  }
+  // For runs with no progress report of their own (continuation, modes, verify, simulate): whether to go on, Ctrl-C
+  // checked. Cheap (called per branch point, family point, SPP or 256 events).
+  bool keep_going() {
+    const py::gil_scoped_acquire gil;
+    return signals_allow();
+  }
+  // Ctrl-C seen (now or before: once stopped, a run stays stopped, whatever the later calls find)?
+  bool signals_allow() {
+    if (interrupted) return false;
+    if (PyErr_CheckSignals() != 0) {
+      if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+      PyErr_Clear();
+      interrupted = true;
+      return false;
+    }
+    return true;
+  }
+  // For runs whose partial result is of no use (simulate, verify, trajectory): after the run (GIL held), Ctrl-C
+  // seen during it is raised as KeyboardInterrupt.
+  void raise_if_interrupted() {
+    finish();
+    if (interrupted) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw py::error_already_set();
+    }
+  }
+  // After the run (GIL held): ends the text line; a Ctrl-C that came after the last report counts as one (`late`).
+  void finish() {
+    if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
+    if (PyErr_CheckSignals() != 0) {
+      if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+      PyErr_Clear();
+      late = !interrupted;
+      interrupted = true;
+    }
+  }
+  // The RuntimeWarning of an interrupted run (warnings turned into errors raise).
+  void warn(const std::string& message) const {
+    if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0) throw py::error_already_set();
+  }
+};
+
+// progress is not a field of the options (a callable): taken out of the keywords first.
+inline py::object take_progress(const py::kwargs& fields, py::dict& rest) {
+  py::object progress = py::none();
+  for (const auto& [key, value] : fields) {
+    if (py::str(key).cast<std::string>() == "progress")
+      progress = py::reinterpret_borrow<py::object>(value);
+    else
+      rest[key] = value;
+  }
+  return progress;
 }
 
 // One function per area (python/bind/<area>.cpp), called in this order by module.cpp: types before the functions

@@ -5,8 +5,29 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "state.hpp"
 
 namespace spp::python {
+
+namespace {
+// The run with Ctrl-C checked at each branch point (and in the seed solves): stopped, it returns the branches traced
+// so far (status incomplete, interrupted) with a RuntimeWarning, as solve does.
+template <class Run>
+spp::ContinuationResult run_interruptible(const std::string& where, spp::ContinueOptions& o, Run run) {
+  ProgressHook hook(py::none(), where);
+  o.progress = [&hook] { return hook.keep_going(); };
+  spp::ContinuationResult r;
+  {
+    py::gil_scoped_release release;
+    r = run();
+  }
+  hook.finish();
+  hook.warn(r.interrupted ? where + " interrupted (Ctrl-C): the result holds the branches traced before (status "
+                                    "incomplete, interrupted True)"
+                          : std::string("Ctrl-C came after the continuation had finished: the result is complete"));
+  return r;
+}
+}  // namespace
 
 void bind_continuation(py::module_& m) {
   bind_outcome(m, "ContinuationStatus", {spp::ContinuationStatus::Success, spp::ContinuationStatus::Incomplete},
@@ -35,7 +56,15 @@ void bind_continuation(py::module_& m) {
       .def_readonly("closure", &spp::BranchPoint::closure)
       .def_readonly("energy", &spp::BranchPoint::energy)
       .def_readonly("x0", &spp::BranchPoint::x0)
-      .def_readonly("v0", &spp::BranchPoint::v0);
+      .def_readonly("v0", &spp::BranchPoint::v0)
+      .def(py::pickle([](const spp::BranchPoint& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::branch_point(t); }))
+      .def("__repr__", [](const spp::BranchPoint& p) {
+        std::ostringstream os;
+        os << "<spp.BranchPoint mu=" << p.mu << " t1=" << p.t1 << " t2=" << p.t2
+           << (p.admissible ? " admissible>" : " not admissible>");
+        return os.str();
+      });
   py::class_<spp::BranchEvent>(m, "BranchEvent")
       .def_property_readonly("kind", [](const spp::BranchEvent& e) { return outcome(e.kind); })
       .def_readonly("at", &spp::BranchEvent::at)
@@ -52,6 +81,14 @@ void bind_continuation(py::module_& m) {
           "the crossing multiplier(s) at the located event: one real or a conjugate pair")
       .def_readonly("crossing_angle", &spp::BranchEvent::crossing_angle,
                     "arg of the crossing multiplier in [0, pi]: 0 (+1), pi (-1), theta (pair); NaN otherwise");
+      .def(py::pickle([](const spp::BranchEvent& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::branch_event(t); }))
+      .def("__repr__", [](const spp::BranchEvent& e) {
+        std::ostringstream os;
+        os << "<spp.BranchEvent " << spp::to_string(e.kind) << " at mu=" << e.at.mu << " t1=" << e.at.t1
+           << " t2=" << e.at.t2 << ">";
+        return os.str();
+      });
   py::class_<spp::Branch>(m, "Branch")
       .def_readonly("points", &spp::Branch::points)
       .def_readonly("events", &spp::Branch::events)
@@ -63,7 +100,18 @@ void bind_continuation(py::module_& m) {
               a.row(static_cast<Eigen::Index>(i)) << b.points[i].mu, b.points[i].t1, b.points[i].t2, b.points[i].margin;
             return a;
           },
-          "(N, 4): mu, t1, t2, margin of every point");
+          "(N, 4): mu, t1, t2, margin of every point")
+      .def(py::pickle([](const spp::Branch& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::branch(t); }))
+      .def("__repr__", [](const spp::Branch& b) {
+        std::ostringstream os;
+        os << "<spp.Branch " << b.points.size() << " points";
+        if (!b.points.empty())
+          os << ", mu " << b.points.front().mu << " .. " << b.points.back().mu;
+        os << ", events:";
+        for (const spp::BranchEvent& e : b.events) os << " " << spp::to_string(e.kind);
+        return os.str() + ">";
+      });
   py::class_<spp::ContinuationResult>(m, "ContinuationResult")
       .def_property_readonly("status", [](const spp::ContinuationResult& r) { return outcome(r.status); })
       .def_readonly("incomplete_seed_solves", &spp::ContinuationResult::incomplete_seed_solves)
@@ -71,10 +119,15 @@ void bind_continuation(py::module_& m) {
       .def_readonly("unlisted_crossings", &spp::ContinuationResult::unlisted_crossings)
       .def_readonly("branches", &spp::ContinuationResult::branches)
       .def_readonly("warnings", &spp::ContinuationResult::warnings)
+      .def_readonly("interrupted", &spp::ContinuationResult::interrupted,
+                    "Ctrl-C stopped the continuation: the branches traced before it (status incomplete)")
       .def("brief_report", &spp::ContinuationResult::brief_report)
       .def(
           "gap_closures", [](const spp::ContinuationResult& r) { return spp::gap_closures(r); },
-          "GapClosure events sorted by mu: with g0 = 0, the SPPs of paper §6.1");
+          "GapClosure events sorted by mu: with g0 = 0, the SPPs of paper §6.1")
+      .def(py::pickle([](const spp::ContinuationResult& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::continuation_result(t); }))
+      .def("__repr__", [](const spp::ContinuationResult& r) { return "<spp.ContinuationResult " + r.brief_report() + ">"; });
   py::class_<spp::ContinueOptions>(m, "ContinueOptions",
                                    "Options of continue_branches (the C++ ContinueOptions, field by field; "
                                    "continue_branches(system, t1_max, t2_max, options, **fields) also takes any field "
@@ -110,8 +163,7 @@ void bind_continuation(py::module_& m) {
         if (t1_max) o.t1_max = *t1_max;
         if (t2_max) o.t2_max = *t2_max;
         o.validate();
-        py::gil_scoped_release release;
-        return spp::continue_branches(s, o);
+        return run_interruptible("continue_branches", o, [&] { return spp::continue_branches(s, o); });
       },
       "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
       "Every SPP of the window followed over the parameter's range: continue_branches(system, t1_max=3, t2_max=1, "
@@ -127,8 +179,7 @@ void bind_continuation(py::module_& m) {
         // the solution says which equations it solves, unless the caller said (then a mismatch is refused)
         if (options.is_none() && !fields.contains("symmetry")) o.symmetry = solution.orbit.symmetry;
         o.validate();
-        py::gil_scoped_release release;
-        return spp::continue_branch(s, mu, solution, o);
+        return run_interruptible("continue_branch", o, [&] { return spp::continue_branch(s, mu, solution, o); });
       },
       "system"_a, "mu"_a, "solution"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
       "The one branch through `solution`, an SPP of system.at(mu) (e.g. spp.solve(system.at(mu), ...).solutions[i]), "

@@ -15,33 +15,9 @@ void bind_core(py::module_& m) {
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
       .def(py::init([](const py::object& M, const py::object& K, const py::object& w, double g0,
                        const std::string& name) {
-             // numpy arrays, nested lists, scipy.sparse matrices (densified: the solver is dense), and w as (n,),
-             // (1, n) or (n, 1): each converted here, with the argument named when it cannot be
-             const py::module_ np = py::module_::import("numpy");
-             auto dense = [&](const py::object& a, const char* what) {
-               py::object d = py::hasattr(a, "toarray") ? a.attr("toarray")() : a;
-               require_real(d, std::string("System: ") + what);
-               py::object arr;
-               try {
-                 arr = np.attr("asarray")(d, "dtype"_a = "float64");
-               } catch (const py::error_already_set&) {
-                 detail::invalid(std::string("System: ") + what + " must be an array of numbers");
-               }
-               return arr;
-             };
-             const py::object m = dense(M, "M"), k = dense(K, "K"), v = dense(w, "w");
-             for (const auto& [arr, what] : {std::make_pair(m, "M"), std::make_pair(k, "K")})
-               if (arr.attr("ndim").cast<int>() != 2)
-                 detail::invalid(std::string("System: ") + what + " must be a square matrix, got shape " +
-                                             py::str(arr.attr("shape")).cast<std::string>());
-             const py::tuple shape = v.attr("shape").cast<py::tuple>();
-             const bool vector_like =
-                 shape.size() == 1 || (shape.size() == 2 && (shape[0].cast<long>() == 1 || shape[1].cast<long>() == 1));
-             if (!vector_like)
-               detail::invalid("System: w must be a vector, (n,), (1, n) or (n, 1), got shape " +
-                                           py::str(py::object(shape)).cast<std::string>());
-             return spp::System(m.cast<Eigen::MatrixXd>(), k.cast<Eigen::MatrixXd>(),
-                                v.attr("ravel")().cast<Eigen::VectorXd>(), g0, name);
+             // (python/bind/common.hpp: numpy, lists, scipy.sparse; w as (n,), (1, n) or (n, 1))
+             return spp::System(matrix_input(M, "System: M"), matrix_input(K, "System: K"),
+                                vector_input(w, "System: w"), g0, name);
            }),
            "M"_a, "K"_a, "w"_a, "g0"_a, "name"_a = "",
            "M, K: (n, n) symmetric positive definite (numpy, lists or scipy.sparse); w: non-zero, (n,), (1, n) or "
@@ -68,6 +44,11 @@ void bind_core(py::module_& m) {
   m.def(
       "chain",
       [](int n, std::vector<double> masses, std::vector<double> stiffnesses, int contact_dof, bool upper, double g0) {
+        // checked here, 0-based as the docstring says (the C++ message is the CLI's, 1-based: "in [1, 5], got 6"
+        // for contact_dof=5 confused; found by an independent attack)
+        if (n >= 1 && (contact_dof < -1 || contact_dof >= n))
+          detail::invalid("chain: contact_dof (0-based) must be in [0, " + std::to_string(n - 1) +
+                          "] or -1 (the last), got " + std::to_string(contact_dof));
         return spp::chain(n, masses, stiffnesses, contact_dof < 0 ? n - 1 : contact_dof,
                           upper ? spp::ContactSide::Upper : spp::ContactSide::Lower, g0);
       },
@@ -84,34 +65,45 @@ void bind_core(py::module_& m) {
       .def(py::init([](const py::object& M0, const py::object& M1, const py::object& K0, const py::object& K1,
                        const py::object& w0, const py::object& w1, double g0, const std::string& name, double lo,
                        double hi, const std::string& label) {
-             const std::pair<const py::object*, const char*> parts[] = {{&M0, "M_constant"}, {&M1, "M_mu"},
-                                                                        {&K0, "K_constant"}, {&K1, "K_mu"},
-                                                                        {&w0, "w_constant"}, {&w1, "w_mu"}};
-             for (const auto& [a, what] : parts) require_real(*a, std::string("ParametricSystem: ") + what);
-             auto as = [](const py::object& a, const char* what, auto shape) {
-               try {
-                 return a.cast<decltype(shape)>();
-               } catch (const py::cast_error&) {
-                 detail::invalid(std::string("ParametricSystem: ") + what +
-                                             " must be an array of numbers, got " +
-                                             py::str(py::type::of(a)).cast<std::string>());
-               }
-             };
-             return spp::ParametricSystem(as(M0, "M_constant", Eigen::MatrixXd()), as(M1, "M_mu", Eigen::MatrixXd()),
-                                          as(K0, "K_constant", Eigen::MatrixXd()), as(K1, "K_mu", Eigen::MatrixXd()),
-                                          as(w0, "w_constant", Eigen::VectorXd()), as(w1, "w_mu", Eigen::VectorXd()),
-                                          g0, {name, lo, hi}, label);
+             // the same conversion as System's (scipy.sparse, lists, w as a row or column): ParametricSystem refused
+             // what System accepts (found by an independent attack); an empty mu part: independent of mu
+             const std::string p = "ParametricSystem: ";
+             return spp::ParametricSystem(
+                 matrix_input(M0, p + "M_constant"), matrix_input(M1, p + "M_mu", true),
+                 matrix_input(K0, p + "K_constant"), matrix_input(K1, p + "K_mu", true),
+                 vector_input(w0, p + "w_constant"), vector_input(w1, p + "w_mu", true), g0, {name, lo, hi}, label);
            }),
            "M_constant"_a, "M_mu"_a, "K_constant"_a, "K_mu"_a, "w_constant"_a, "w_mu"_a, "g0"_a, "parameter"_a, "min"_a,
            "max"_a, "name"_a = "",
-           "(n, n) parts (an empty (0, 0) array: does not depend on the parameter); raises ValueError.")
+           "(n, n) parts as System takes them (numpy, lists or scipy.sparse; w parts (n,), (1, n) or (n, 1)); an empty "
+           "M_mu, K_mu or w_mu (e.g. np.empty((0, 0))): does not depend on the parameter. Raises ValueError.")
       .def_static("from_json", &spp::load_parametric_system, "path"_a, "Loads a system file with \"parameter\".")
       .def("at", &spp::ParametricSystem::at, "mu"_a, "The System at this parameter value.")
       .def_property_readonly("n", &spp::ParametricSystem::n)
       .def_property_readonly("g0", &spp::ParametricSystem::g0)
       .def_property_readonly("parameter", [](const spp::ParametricSystem& s) { return s.parameter().name; })
       .def_property_readonly(
-          "range", [](const spp::ParametricSystem& s) { return py::make_tuple(s.parameter().min, s.parameter().max); });
+          "range", [](const spp::ParametricSystem& s) { return py::make_tuple(s.parameter().min, s.parameter().max); })
+      .def_property_readonly("name", &spp::ParametricSystem::name)
+      .def(py::pickle(  // its parts, as the constructor takes them
+          [](const spp::ParametricSystem& s) {
+            return py::make_tuple(s.M_constant(), s.M_mu(), s.K_constant(), s.K_mu(), s.w_constant(), s.w_mu(),
+                                  s.g0(), s.parameter().name, s.parameter().min, s.parameter().max, s.name());
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 11) detail::invalid("ParametricSystem pickle: expected 11 fields");
+            return spp::ParametricSystem(t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(),
+                                         t[2].cast<Eigen::MatrixXd>(), t[3].cast<Eigen::MatrixXd>(),
+                                         t[4].cast<Eigen::VectorXd>(), t[5].cast<Eigen::VectorXd>(), t[6].cast<double>(),
+                                         {t[7].cast<std::string>(), t[8].cast<double>(), t[9].cast<double>()},
+                                         t[10].cast<std::string>());
+          }))
+      .def("__repr__", [](const spp::ParametricSystem& s) {
+        std::ostringstream os;
+        os << "<spp.ParametricSystem '" << s.name() << "' n=" << s.n() << ", " << s.parameter().name << " in ["
+           << s.parameter().min << ", " << s.parameter().max << "]>";
+        return os.str();
+      });
 }
 
 }  // namespace spp::python

@@ -53,6 +53,8 @@ void bind_modes(py::module_& m) {
       .def_readonly("linear_frequencies", &md::ModesResult::linear_frequencies)
       .def_readonly("corrector_solves", &md::ModesResult::corrector_solves)
       .def_readonly("seconds", &md::ModesResult::seconds)
+      .def_readonly("interrupted", &md::ModesResult::interrupted,
+                    "Ctrl-C stopped the tracing: the families traced before it (status incomplete)")
       .def("brief_report", &md::ModesResult::brief_report);
   m.def(
       "modes",
@@ -66,8 +68,20 @@ void bind_modes(py::module_& m) {
         o.max_step = max_step;
         o.branch_points = branch_points;
         o.validate();
-        py::gil_scoped_release release;
-        return md::nonsmooth_modes(s, o);
+        // Ctrl-C checked before each family point: stopped, the families traced so far are returned (status
+        // incomplete, interrupted) with a RuntimeWarning, as solve does
+        ProgressHook hook(py::none(), "modes");
+        o.progress = [&hook] { return hook.keep_going(); };
+        md::ModesResult r;
+        {
+          py::gil_scoped_release release;
+          r = md::nonsmooth_modes(s, o);
+        }
+        hook.finish();
+        hook.warn(r.interrupted ? std::string("modes interrupted (Ctrl-C): the result holds the families traced before "
+                                              "(status incomplete, interrupted True)")
+                                : std::string("Ctrl-C came after modes had finished: the result is complete"));
+        return r;
       },
       "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true,
       "k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: an int "

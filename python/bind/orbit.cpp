@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "state.hpp"
 #include "spp/orbit/solution.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/detail/invalid.hpp"
@@ -60,6 +61,8 @@ void bind_orbit(py::module_& m) {
           "x0", [](const spp::Solution& s) { return s.orbit.x0; }, "(n,) state at contact onset")
       .def_property_readonly(
           "v0", [](const spp::Solution& s) { return s.orbit.v0; }, "(n,)")
+      .def(py::pickle([](const spp::Solution& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::solution(t); }))
       .def("__repr__", [](const spp::Solution& s) {
         return "<spp.Solution t1=" + std::to_string(s.t1()) + " t2=" + std::to_string(s.t2()) +
                (s.admissible() ? " admissible>" : " not admissible>");

@@ -3,83 +3,13 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "state.hpp"
 #include "spp/io.hpp"
 #include "spp/search/root_map.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/detail/invalid.hpp"
 
 namespace spp::python {
-
-namespace {
-
-// A progress=... keyword of solve, nearest_spp or root_map (None, True/False, a callable), called from the C++ run
-// (which holds no GIL: it is taken here) about every 0.2 s. Ctrl-C (KeyboardInterrupt) stops the run and keeps what was
-// done; the user's callable may stop it too (by returning False) or raise. Lives in the binding's frame: the C++
-// options hold a lambda that refers to it (copying a py::object without the GIL would not be safe).
-struct ProgressHook {
-  py::object callable = py::none();
-  bool call = false, text = false, interrupted = false, shown = false, late = false;
-
-  ProgressHook(const py::object& progress, const std::string& where) : callable(progress) {
-    call = PyCallable_Check(progress.ptr()) != 0;
-    // True/False/None (numpy's bool too) or a callable: anything else was taken for its truth (progress=5)
-    if (!call && !progress.is_none() && !py::isinstance<py::bool_>(progress) &&
-        !py::isinstance(progress, py::module_::import("numpy").attr("bool_")))
-      throw py::type_error(where + ": progress must be True, False, None, a callable or \"bar\", got " +
-                           typed_repr(progress));
-    text = !call && truth(progress);
-  }
-  static bool truth(const py::object& v) {
-    const int t = PyObject_IsTrue(v.ptr());
-    if (t < 0) throw py::error_already_set();
-    return t != 0;
-  }
-  template <class P>
-  bool operator()(const P& p) {
-    const py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
-      PyErr_Clear();
-      interrupted = true;
-      return false;
-    }
-    if (text && p.seconds >= 1.0) {
-      py::module_::import("sys").attr("stderr").attr("write")("\r  " + p.line() + "   ");
-      shown = true;
-    }
-    if (!call) return true;
-    const py::object r = callable(p);
-    return r.is_none() || truth(r);  // None continues; otherwise the value's truth
-  }
-  // After the run (GIL held): ends the text line; a Ctrl-C that came after the last report counts as one (`late`).
-  void finish() {
-    if (shown) py::module_::import("sys").attr("stderr").attr("write")("\n");
-    if (PyErr_CheckSignals() != 0) {
-      if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
-      PyErr_Clear();
-      late = !interrupted;
-      interrupted = true;
-    }
-  }
-  // The RuntimeWarning of an interrupted run (warnings turned into errors raise).
-  void warn(const std::string& message) const {
-    if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0) throw py::error_already_set();
-  }
-};
-
-// progress is not a field of the options (a callable): taken out of the keywords first.
-py::object take_progress(const py::kwargs& fields, py::dict& rest) {
-  py::object progress = py::none();
-  for (const auto& [key, value] : fields) {
-    if (py::str(key).cast<std::string>() == "progress")
-      progress = py::reinterpret_borrow<py::object>(value);
-    else
-      rest[key] = value;
-  }
-  return progress;
-}
-
-}  // namespace
 
 void bind_search(py::module_& m) {
   bind_outcome(m, "SolveStatus", {spp::SolveStatus::NotRun, spp::SolveStatus::Success, spp::SolveStatus::Incomplete},
@@ -135,39 +65,22 @@ void bind_search(py::module_& m) {
           "parts of the window not certified, with their cause (empty exactly when status is success)")
       .def("brief_report", &spp::SolveResult::brief_report)
       .def(
-          "to_json", [](const spp::SolveResult& r, const spp::System& s) { return spp::result_json(s, r, -1); },
-          "system"_a, "The result JSON text, as spp solve --json writes it.")
-      .def(
-          "to_dataframe",
-          [](const spp::SolveResult& r) {
-            py::module_ pd;
-            try {
-              pd = py::module_::import("pandas");
-            } catch (const py::error_already_set&) {
-              throw py::import_error("to_dataframe needs pandas (Debian: apt-get install python3-pandas)");
-            }
-            py::list t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags;
-            for (const spp::Solution& x : r.solutions) {
-              t1.append(x.t1());
-              t2.append(x.t2());
-              period.append(x.period());
-              admissible.append(x.admissible());
-              min_gap.append(x.min_gap());
-              min_force.append(x.min_force());
-              energy.append(x.energy());
-              residual.append(x.residual);
-              return_error.append(x.return_error);
-              std::string f;
-              for (const std::string& s : x.flags) f += (f.empty() ? "" : ",") + s;
-              flags.append(f);
-            }
-            return pd.attr("DataFrame")(
-                py::dict("t1"_a = t1, "t2"_a = t2, "period"_a = period, "admissible"_a = admissible,
-                         "min_gap"_a = min_gap, "min_force"_a = min_force, "energy"_a = energy, "residual"_a = residual,
-                         "return_error"_a = return_error, "flags"_a = flags));
+          "to_json",
+          [](const py::object& self, const py::object& system) {
+            // the result's own system by default (results of solve() and load_result() carry it); a path is no
+            // system (r.to_json("f.json") met pybind11's signature dump: found by an independent attack)
+            const py::object sys = system.is_none() && py::hasattr(self, "system") ? self.attr("system") : system;
+            if (!py::isinstance<spp::System>(sys))
+              throw py::type_error(
+                  "SolveResult.to_json: argument system must be an spp.System (or omitted: the result's own, "
+                  "r.system), got " +
+                  typed_repr(sys) +
+                  (py::isinstance<py::str>(sys) ? " (to_json returns the text: open(path, \"w\").write(r.to_json()))"
+                                                : ""));
+            return spp::result_json(sys.cast<const spp::System&>(), self.cast<const spp::SolveResult&>(), -1);
           },
-          "One row per SPP (t1, t2, period, admissible, min_gap, min_force, energy, residual, return_error, flags), in "
-          "the result's order (by period); needs pandas.")
+          "system"_a = py::none(),
+          "The result JSON text, as spp solve --json writes it, for `system` (default: the result's own, r.system).")
       .def("__repr__", [](const spp::SolveResult& r) { return "<spp.SolveResult " + r.brief_report().substr(5) + ">"; })
       .def("_repr_html_",
            [](const spp::SolveResult& r) {
@@ -302,7 +215,20 @@ void bind_search(py::module_& m) {
       .def_property_readonly("search_status", [](const spp::NearestSpp& r) { return outcome(r.search_status); })
       .def_readonly("candidates", &spp::NearestSpp::candidates, "SPPs in the window searched")
       .def_property_readonly(
-          "window", [](const spp::NearestSpp& r) { return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi); });
+          "window", [](const spp::NearestSpp& r) { return py::make_tuple(r.t1_lo, r.t1_hi, r.t2_lo, r.t2_hi); })
+      .def(py::pickle([](const spp::NearestSpp& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::nearest_spp(t); }))
+      .def("__repr__", [](const spp::NearestSpp& r) {
+        std::ostringstream os;
+        os << "<spp.NearestSpp ";
+        if (r.found)
+          os << "t1=" << r.solution.t1() << " t2=" << r.solution.t2()
+             << (r.solution.admissible() ? " admissible" : " not admissible");
+        else
+          os << "none found";
+        os << ", " << r.candidates << " SPPs in the window, search " << spp::to_string(r.search_status) << ">";
+        return os.str();
+      });
   m.def(
       "nearest_spp",
       [solve_options](const spp::System& s, double t1, double t2, double radius, const py::object& options,
@@ -337,14 +263,27 @@ void bind_search(py::module_& m) {
       .def_readonly("symmetric", &spp::RootMapCell::symmetric,
                     "(n2, n1) sign(det H) min|eig H|: its zero curves are eq. (5.1a)")
       .def_readonly("onset", &spp::RootMapCell::onset,
-                    "(n2, n1) the same for P^T H P on z-perp: its zero curves are eq. (5.1b)");
+                    "(n2, n1) the same for P^T H P on z-perp: its zero curves are eq. (5.1b)")
+      .def(py::pickle([](const spp::RootMapCell& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::root_map_cell(t); }))
+      .def("__repr__", [](const spp::RootMapCell& c) {
+        return "<spp.RootMapCell " + std::to_string(c.t1.size()) + " x " + std::to_string(c.t2.size()) + " points>";
+      });
   py::class_<spp::RootMap>(m, "RootMap")
       .def_readonly("flight_poles", &spp::RootMap::flight_poles, "pole lines t1 = (k + 1/2) pi / omega_i")
       .def_readonly("contact_poles", &spp::RootMap::contact_poles, "pole lines t2 = (k + 1/2) pi / d_j")
       .def_readonly("cells", &spp::RootMap::cells)
       .def_readonly("evaluations", &spp::RootMap::evaluations)
       .def_readonly("unsampled_cells", &spp::RootMap::unsampled_cells,
-                    "cells left out because progress (or Ctrl-C) stopped the map; 0: the whole window");
+                    "cells left out because progress (or Ctrl-C) stopped the map; 0: the whole window")
+      .def(py::pickle([](const spp::RootMap& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::root_map(t); }))
+      .def("__repr__", [](const spp::RootMap& r) {
+        return "<spp.RootMap " + std::to_string(r.cells.size()) + " cells, " + std::to_string(r.flight_poles.size()) +
+               " flight and " + std::to_string(r.contact_poles.size()) + " contact pole lines, " +
+               std::to_string(r.evaluations) + " evaluations" +
+               (r.unsampled_cells > 0 ? ", " + std::to_string(r.unsampled_cells) + " cells not sampled" : "") + ">";
+      });
   py::class_<spp::RootMapProgress>(m, "RootMapProgress",
                                    "What a running root map reports to its progress callback (root_map(..., "
                                    "progress=f)).")

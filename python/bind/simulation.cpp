@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "state.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
@@ -29,7 +30,7 @@ Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample
 void bind_simulation(py::module_& m) {
   bind_outcome(m, "SimulationStatus",
                {spp::SimulationStatus::NotRun, spp::SimulationStatus::Success, spp::SimulationStatus::EventLimit,
-                spp::SimulationStatus::Stalled},
+                spp::SimulationStatus::Stalled, spp::SimulationStatus::Interrupted},
                "SimulationResult.status");
   bind_outcome(m, "EventKind", {spp::EventKind::Impact, spp::EventKind::ContactOnset, spp::EventKind::Release},
                "Event.kind");
@@ -44,7 +45,14 @@ void bind_simulation(py::module_& m) {
       .def_readonly("v_after", &spp::Event::v_after)
       .def_readonly("normal_velocity_before", &spp::Event::normal_velocity_before)
       .def_readonly("normal_velocity_after", &spp::Event::normal_velocity_after)
-      .def_readonly("force", &spp::Event::force);
+      .def_readonly("force", &spp::Event::force)
+      .def(py::pickle([](const spp::Event& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::event(t); }))
+      .def("__repr__", [](const spp::Event& e) {
+        std::ostringstream os;
+        os << "<spp.Event " << spp::to_string(e.kind) << " t=" << e.t << ">";
+        return os.str();
+      });
 
   py::class_<spp::SimulationResult>(m, "SimulationResult")
       .def_property_readonly("status", [](const spp::SimulationResult& r) { return outcome(r.status); })
@@ -66,7 +74,10 @@ void bind_simulation(py::module_& m) {
       .def_readonly("energy_initial", &spp::SimulationResult::energy_initial)
       .def_readonly("energy_final", &spp::SimulationResult::energy_final)
       .def_readonly("impact_energy_loss", &spp::SimulationResult::impact_energy_loss)
-      .def("brief_report", &spp::SimulationResult::brief_report);
+      .def("brief_report", &spp::SimulationResult::brief_report)
+      .def(py::pickle([](const spp::SimulationResult& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::simulation_result(t); }))
+      .def("__repr__", [](const spp::SimulationResult& r) { return "<spp.SimulationResult " + r.brief_report() + ">"; });
 
   py::class_<spp::SimulateOptions>(m, "SimulateOptions",
                                    "Options of simulate (the C++ SimulateOptions, field by field; simulate(system, x0, "
@@ -99,8 +110,16 @@ void bind_simulation(py::module_& m) {
         if (!(samples_per_unit > 0.0))
           detail::invalid("simulate: samples_per_unit must be > 0, got " + std::to_string(samples_per_unit));
         if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
-        py::gil_scoped_release release;
-        return spp::simulate(s, x0, v0, o);
+        // Ctrl-C checked every 256 events or samples: raised as KeyboardInterrupt (a cut simulation is no result)
+        ProgressHook hook(py::none(), "simulate");
+        o.progress = [&hook] { return hook.keep_going(); };
+        spp::SimulationResult r;
+        {
+          py::gil_scoped_release release;
+          r = spp::simulate(s, x0, v0, o);
+        }
+        hook.raise_if_interrupted();
+        return r;
       },
       "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(), "samples_per_unit"_a = 100.0,
       "options"_a = py::none(),
@@ -120,7 +139,19 @@ void bind_simulation(py::module_& m) {
       .def_readonly("departure_time", &spp::SppCheck::departure_time)
       .def_readonly("departure", &spp::SppCheck::departure)
       .def_readonly("perturbed_distances", &spp::SppCheck::perturbed_distances)
-      .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period);
+      .def_readonly("impacts", &spp::SppCheck::impacts, "events of the simulation (over every period)")
+      .def_readonly("contact_onsets", &spp::SppCheck::contact_onsets)
+      .def_readonly("releases", &spp::SppCheck::releases)
+      .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period)
+      .def_property_readonly("solution", [](const spp::SppCheck& c) { return c.spp; }, "the SPP checked")
+      .def(py::pickle([](const spp::SppCheck& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::spp_check(t); }))
+      .def("__repr__", [](const spp::SppCheck& c) {
+        std::ostringstream os;
+        os << "<spp.SppCheck t1=" << c.spp.t1() << " t2=" << c.spp.t2() << " " << spp::to_string(c.verdict)
+           << (c.consistent ? ", consistent" : ", INCONSISTENT") << ", " << c.periods_followed << " periods followed>";
+        return os.str();
+      });
 
   py::class_<spp::VerifyResult>(m, "VerifyResult")
       .def_property_readonly("status", [](const spp::VerifyResult& r) { return outcome(r.status); })
@@ -129,7 +160,11 @@ void bind_simulation(py::module_& m) {
       .def_readonly("left", &spp::VerifyResult::left)
       .def_readonly("inconsistent", &spp::VerifyResult::inconsistent)
       .def("all_consistent", &spp::VerifyResult::all_consistent)
-      .def("brief_report", &spp::VerifyResult::brief_report);
+      .def_readonly("unchecked", &spp::VerifyResult::unchecked, "SPPs not checked (a stopped run)")
+      .def("brief_report", &spp::VerifyResult::brief_report)
+      .def(py::pickle([](const spp::VerifyResult& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::verify_result(t); }))
+      .def("__repr__", [](const spp::VerifyResult& r) { return "<spp.VerifyResult " + r.brief_report() + ">"; });
 
   py::class_<spp::VerifyOptions>(m, "VerifyOptions",
                                  "Options of verify (the C++ VerifyOptions, field by field; verify(system, result, "
@@ -153,7 +188,7 @@ void bind_simulation(py::module_& m) {
   m.def(
       "verify",
       [](const spp::System& s, const py::object& result, const py::object& options, const py::kwargs& fields) {
-        const spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
+        spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
         o.validate();
         if (!py::isinstance<spp::SolveResult>(result))
           detail::invalid("verify: result must be a SolveResult (of solve() or load_result()), got " +
@@ -164,8 +199,16 @@ void bind_simulation(py::module_& m) {
         if (py::hasattr(result, "system") && py::isinstance<spp::System>(result.attr("system")) &&
             !spp::same_system(result.attr("system").cast<const spp::System&>(), s))
           detail::invalid("verify: the result was solved for another system than the one given (result.system)");
-        py::gil_scoped_release release;
-        return spp::verify(s, r.solutions, o);
+        // Ctrl-C checked before each SPP and every 256 events: raised as KeyboardInterrupt
+        ProgressHook hook(py::none(), "verify");
+        o.progress = [&hook] { return hook.keep_going(); };
+        spp::VerifyResult v;
+        {
+          py::gil_scoped_release release;
+          v = spp::verify(s, r.solutions, o);
+        }
+        hook.raise_if_interrupted();
+        return v;
       },
       "system"_a, "result"_a, "options"_a = py::none(),
       "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "

@@ -33,6 +33,13 @@ def _split_top_level(text):
     return parts
 
 
+class _Params(list):
+    """One overload's (name, type) pairs, with the names that have a default (`optional`) and whether it takes
+    **kwargs (`open`: any other keyword is its business, e.g. an Options field)."""
+    optional = frozenset()
+    open = False
+
+
 def _signatures(fn):
     """Each overload as a list of (name, type) from pybind11's docstring, 'self' left out."""
     out = []
@@ -40,13 +47,20 @@ def _signatures(fn):
         m = _SIGNATURE.match(line)
         if not m:
             continue
-        params = []
+        params, optional, open_ = _Params(), set(), False
         for p in _split_top_level(m.group(2)):
+            if p.startswith("**"):
+                open_ = True
             if p.startswith("*"):
                 continue
             name, _, rest = p.partition(":")
+            if name.strip() == "self":
+                continue
             params.append((name.strip(), rest.split("=")[0].strip()))
-        out.append([p for p in params if p[0] != "self"])
+            if "=" in rest:
+                optional.add(name.strip())
+        params.optional, params.open = frozenset(optional), open_
+        out.append(params)
     return out
 
 
@@ -76,6 +90,25 @@ def _explain(label, signatures, args, kwargs):
                 value = value if len(value) <= 60 else value[:60] + "..."
                 shown = "spp." + type_name.rsplit(".", 1)[-1] if type_name.startswith("spp._spp.") else type_name
                 return f"{label}: argument {name} must be {shown}, got {type(given[name]).__name__} {value}"
+    # no argument of a wrong type: an unknown keyword, a missing argument or too many (a single signature only;
+    # pybind11 dumped its signature: spp.modes(s, k_max=1) or ParametricSystem(M0, M1, K0, K1, w, g0), found by an
+    # independent attack)
+    if len(signatures) == 1:
+        params = signatures[0]
+        names = [p[0] for p in params]
+        listed = ", ".join(names)
+        unknown = [k for k in kwargs if k not in names]
+        if unknown and not params.open:
+            return f"{label}: unknown argument {unknown[0]} (its arguments: {listed})"
+        if len(args) > len(params):
+            return f"{label}: takes at most {len(params)} arguments ({listed}), got {len(args)} positional"
+        twice = [k for k in kwargs if k in names[:len(args)]]
+        if twice:
+            return f"{label}: argument {twice[0]} given twice (by position and by keyword)"
+        missing = [n for n in names[len(args):] if n not in kwargs and n not in params.optional]
+        if missing:
+            return f"{label}: missing argument{'s' if len(missing) > 1 else ''} {', '.join(missing)} (its arguments: " \
+                   f"{listed})"
     return None
 
 
@@ -151,3 +184,25 @@ def named_constructor_type_errors(cls):
 
     __init__.__doc__ = init.__doc__
     cls.__init__ = __init__
+
+
+def named_option_setters(cls):
+    """An Options class's fields (SolveOptions().t1_max = "x") refuse a wrong type by naming the field, its type and
+    default, instead of pybind11's signature dump (found by an independent attack)."""
+    defaults = cls()
+    for name, attr in list(vars(cls).items()):
+        if not isinstance(attr, property) or attr.fset is None:
+            continue
+
+        def fset(self, value, _set=attr.fset, _name=name, _default=getattr(defaults, name)):
+            try:
+                _set(self, value)
+            except TypeError as e:
+                if not any(m in str(e) for m in _PYBIND_MESSAGES):
+                    raise
+                shown = repr(value)
+                shown = shown if len(shown) <= 60 else shown[:60] + "..."
+                raise TypeError(f"spp.{cls.__name__}.{_name} must be {type(_default).__name__} like its default "
+                                f"{_default!r}, got {type(value).__name__} {shown}") from None
+
+        setattr(cls, name, property(attr.fget, fset, attr.fdel, attr.__doc__))

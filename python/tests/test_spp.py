@@ -670,3 +670,221 @@ def test_continue_branch_refuses_a_solution_outside_the_window_or_of_another_sym
         spp.continue_branch(ps, 4.9, far, t1_max=0.5 * far.t1, t2_max=3)
     with pytest.raises(ValueError, match="expected a solution of symmetry point"):
         spp.continue_branch(ps, 4.9, sols[0], t1_max=8, t2_max=3, symmetry="point")
+
+
+def _interrupted_run(code, timeout=60):
+    """Runs `code` in a fresh interpreter, sends it SIGINT 0.5 s after it prints START, and returns (seconds from
+    the signal to its end, its stdout). The run must end by itself: a Ctrl-C ignored for 120 s is what broke."""
+    import signal
+    import subprocess
+    import time
+
+    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    p = subprocess.Popen([sys.executable, "-c", "import os, sys, warnings, spp\nSRC = " + repr(SRC) + "\n" + code],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    assert p.stdout.readline().strip() == "START", p.stderr.read()
+    time.sleep(0.5)
+    sent = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    try:
+        out, err = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        p.communicate()
+        pytest.fail(f"still running {timeout} s after SIGINT")
+    return time.monotonic() - sent, out + err
+
+
+# Found by an independent attack on issue 13: Ctrl-C was ignored for minutes by continue_branches, verify, simulate
+# and reacted after 19 s (result lost) in modes. Each now checks it at a natural step: continuation and modes keep
+# what was traced (status incomplete, interrupted, a RuntimeWarning); verify and simulate raise KeyboardInterrupt.
+# (Seconds are bounded generously: the machine may be loaded; the defect was minutes.)
+def test_ctrl_c_stops_continuation_and_keeps_the_branches_traced():
+    secs, out = _interrupted_run(
+        "ps = spp.ParametricSystem.from_json(os.path.join(SRC, 'examples', 'two_dof_zero_gap.json'))\n"
+        "print('START')\n"
+        "with warnings.catch_warnings(record=True) as w:\n"
+        "    warnings.simplefilter('always')\n"
+        "    r = spp.continue_branches(ps, t1_max=300, t2_max=100)\n"
+        "print('RESULT', r.status, r.interrupted, any('interrupted' in str(x.message) for x in w))\n")
+    assert "RESULT incomplete True True" in out, out
+    assert secs < 15, secs
+
+
+def test_ctrl_c_stops_verify_and_simulate():
+    secs, out = _interrupted_run(
+        "r = spp.solve(spp.System.from_json(os.path.join(SRC, 'examples', 'chain5.json')), t1_max=12, t2_max=12)\n"
+        "print('START')\n"
+        "try:\n"
+        "    spp.verify(r.system, r, periods=100000)\n"
+        "    print('FINISHED')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('INTERRUPTED')\n")
+    assert "INTERRUPTED" in out, out
+    assert secs < 15, secs
+    secs, out = _interrupted_run(
+        "import numpy as np\n"
+        "s = spp.System.from_json(os.path.join(SRC, 'examples', 'chain5.json'))\n"
+        "x0 = np.zeros(5); v0 = np.ones(5)\n"
+        "print('START')\n"
+        "try:\n"
+        "    spp.simulate(s, x0, v0, 1e7, samples_per_unit=0.01)\n"
+        "    print('FINISHED')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('INTERRUPTED')\n")
+    assert "INTERRUPTED" in out, out
+    assert secs < 15, secs
+
+
+def test_ctrl_c_stops_modes_and_keeps_the_families_traced():
+    secs, out = _interrupted_run(
+        "print('START')\n"
+        "with warnings.catch_warnings(record=True) as w:\n"
+        "    warnings.simplefilter('always')\n"
+        "    r = spp.modes(spp.chain(20), k=range(1, 4), energy_max=1e3)\n"
+        "print('RESULT', r.status, r.interrupted, any('interrupted' in str(x.message) for x in w))\n")
+    assert "RESULT incomplete True True" in out, out
+    assert secs < 15, secs
+
+
+def test_ctrl_c_inside_a_slow_progress_callback_keeps_the_partial_result():
+    # the KeyboardInterrupt is raised inside the user's callable (it sleeps most of the time): it used to escape
+    # bare, losing the result README promises
+    secs, out = _interrupted_run(
+        "import time\n"
+        "s = spp.chain(20)\n"
+        "t1, t2 = spp.fundamental_box(s)\n"
+        "def slow(p):\n"
+        "    time.sleep(0.15)\n"
+        "print('START')\n"
+        "with warnings.catch_warnings(record=True) as w:\n"
+        "    warnings.simplefilter('always')\n"
+        "    r = spp.solve(s, t1_max=t1, t2_max=t2, progress=slow)\n"
+        "print('RESULT', r.status, r.stats['unsearched_cells'] > 0, any('interrupted' in str(x.message) for x in w))\n")
+    assert "RESULT incomplete True True" in out, out
+    assert secs < 15, secs
+
+
+# Found by the same attack: Solution could not be pickled (a multiprocessing Pool returning Solutions failed), and
+# neither could, nor did show themselves, the other result types.
+def _same_fields(a, b, names):
+    for name in names:
+        x, y = np.asarray(getattr(a, name)), np.asarray(getattr(b, name))
+        numeric = x.dtype.kind in "fc" and y.dtype.kind in "fc"
+        assert np.array_equal(x, y, equal_nan=numeric) and x.dtype.kind == y.dtype.kind, name
+
+
+def test_results_pickle_and_show_themselves():
+    s, r = _chain5_result()
+    sol = r.solutions[3]
+    back = pickle.loads(pickle.dumps(sol))
+    _same_fields(sol, back, ["t1", "t2", "admissible", "min_gap", "min_force", "energy", "residual", "return_error",
+                             "flags", "floquet_multipliers", "spectral_radius", "stable", "x0", "v0"])
+    # what a pickled Solution is for: the same trajectory and verification as the original
+    assert np.allclose(spp.trajectory(s, back.t1, back.t2)["x"], spp.trajectory(s, sol.t1, sol.t2)["x"])
+    v = spp.verify(s, r)
+    vb = pickle.loads(pickle.dumps(v))
+    assert vb.status == v.status and len(vb.checks) == len(v.checks) and vb.returned == v.returned
+    _same_fields(v.checks[5], vb.checks[5], ["t1", "t2", "verdict", "consistent", "return_errors", "departure"])
+    assert "VerifyResult" in repr(v) and "SppCheck" in repr(v.checks[0]) and "Solution" in repr(v.checks[0].solution)
+    a = [x for x in r.solutions if x.admissible][0]
+    sim = spp.simulate(s, a.x0, a.v0, a.period)
+    sb = pickle.loads(pickle.dumps(sim))
+    _same_fields(sim, sb, ["status", "t", "x", "v", "gap", "force", "impacts", "releases", "energy_final"])
+    assert len(sb.events) == len(sim.events) and sb.events[0].kind == sim.events[0].kind
+    _same_fields(sim.events[0], pickle.loads(pickle.dumps(sim.events[0])), ["t", "kind", "x", "v_after", "force"])
+    assert "SimulationResult" in repr(sim) and "Event" in repr(sim.events[0])
+    rm = spp.root_map(s, 4, 4, t1_points=32, t2_points=32)
+    rb = pickle.loads(pickle.dumps(rm))
+    assert rb.evaluations == rm.evaluations and len(rb.cells) == len(rm.cells)
+    assert np.array_equal(rb.cells[0].symmetric, rm.cells[0].symmetric) and "RootMap" in repr(rm)
+    near = spp.nearest_spp(s, sol.t1, sol.t2)
+    nb = pickle.loads(pickle.dumps(near))
+    assert nb.found and nb.solution.t1 == near.solution.t1 and nb.window == near.window and "NearestSpp" in repr(near)
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    pb = pickle.loads(pickle.dumps(ps))
+    assert pb.range == ps.range and pb.parameter == ps.parameter and np.allclose(pb.at(2.0).K, ps.at(2.0).K)
+    assert "ParametricSystem" in repr(ps)
+    c = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    cb = pickle.loads(pickle.dumps(c))
+    assert cb.status == c.status and len(cb.branches) == len(c.branches) and cb.warnings == c.warnings
+    assert [p.mu for p in cb.gap_closures()] == [p.mu for p in c.gap_closures()]
+    assert np.array_equal(cb.branches[0].arrays, c.branches[0].arrays, equal_nan=True)
+    i = next(i for i, b in enumerate(c.branches) if b.events)
+    assert [e.kind for e in cb.branches[i].events] == [e.kind for e in c.branches[i].events]
+    for x in (c, c.branches[i], c.branches[i].points[0], c.branches[i].events[0]):
+        assert type(x).__name__ in repr(x)
+        assert type(pickle.loads(pickle.dumps(x))) is type(x)
+
+
+def _solution_of_chain(k):  # (a process pool's worker: module level)
+    return spp.solve(spp.chain(3), t1_max=6, t2_max=6).solutions[k]
+
+
+def test_a_process_pool_returns_solutions():
+    import concurrent.futures
+    with concurrent.futures.ProcessPoolExecutor(2) as ex:
+        got = list(ex.map(_solution_of_chain, [0, 1]))
+    assert [x.t1 for x in got] == [_solution_of_chain(k).t1 for k in [0, 1]]
+
+
+def test_dataframes_of_solutions_checks_and_branches():
+    pd = pytest.importorskip("pandas")
+    s, r = _chain5_result()
+    df = r.to_dataframe()
+    # the columns of spp solve --csv (src/io/csv.cpp), then flags
+    assert list(df.columns) == (["t1", "t2", "period", "admissible", "min_gap", "min_force", "energy", "residual",
+                                 "return_error", "spectral_radius", "stable"] + [f"x0_{i}" for i in range(1, 6)] +
+                                [f"v0_{i}" for i in range(1, 6)] + ["flags"])
+    assert np.allclose(df["spectral_radius"], [x.spectral_radius for x in r.solutions], equal_nan=True)
+    assert list(df["stable"]) == [x.stable for x in r.solutions] and df["stable"].dtype == bool
+    assert np.allclose(df["x0_5"], [x.x0[4] for x in r.solutions])
+    # an empty result keeps its dtypes
+    empty = spp.solve(s, t1_max=0.1, t2_max=0.1).to_dataframe()
+    assert len(empty) == 0 and empty["admissible"].dtype == bool and empty["t1"].dtype == float
+    v = spp.verify(s, r)
+    dv = v.to_dataframe()
+    assert len(dv) == len(v.checks) and dv["consistent"].all() and dv["consistent"].dtype == bool
+    assert list(dv["verdict"]) == [str(c.verdict) for c in v.checks]
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    c = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    dc = c.to_dataframe()
+    assert len(dc) == sum(len(b.points) for b in c.branches) and dc["branch"].max() == len(c.branches) - 1
+    db = c.branches[0].to_dataframe()
+    assert np.allclose(db[["mu", "t1", "t2", "margin"]].to_numpy(), c.branches[0].arrays, equal_nan=True)
+    assert db["admissible"].dtype == bool
+
+
+def test_clear_errors_for_contact_dof_keywords_options_and_to_json():
+    with pytest.raises(ValueError, match=r"contact_dof \(0-based\) must be in \[0, 4\] or -1 \(the last\), got 5"):
+        spp.chain(5, contact_dof=5)
+    assert spp.chain(5, contact_dof=4).w[4] != 0 and spp.chain(5, contact_dof=0).w[0] != 0
+    s, r = _chain5_result()
+    with pytest.raises(TypeError, match="spp.modes: unknown argument k_max"):
+        spp.modes(s, k_max=1, energy_max=5)
+    M0, K0 = np.eye(2), np.array([[2.0, -1.0], [-1.0, 1.0]])
+    with pytest.raises(TypeError, match="spp.ParametricSystem: missing arguments g0, parameter, min, max"):
+        spp.ParametricSystem(M0, np.zeros((2, 2)), K0, np.zeros((2, 2)), np.array([0.0, 1.0]), 1.0)
+    o = spp.SolveOptions()
+    with pytest.raises(TypeError, match="spp.SolveOptions.t1_max must be float like its default 0.0, got str 'x'"):
+        o.t1_max = "x"
+    o.t1_max = 3
+    assert o.t1_max == 3.0
+    with pytest.raises(TypeError, match="to_json: argument system must be an spp.System .* got str 'f.json'"):
+        r.to_json("f.json")
+    assert r.to_json() == r.to_json(s)
+
+
+def test_parametric_system_takes_what_system_takes():
+    sparse = pytest.importorskip("scipy.sparse")
+    M0, K0, K1 = np.eye(2), np.array([[2.0, -1.0], [-1.0, 1.0]]), np.array([[0.0, 0.0], [0.0, 1.0]])
+    ref = spp.ParametricSystem(M0, np.empty((0, 0)), K0, K1, np.array([0.0, 1.0]), np.empty(0), 1.0, "k", 0.0, 1.0)
+    ps = spp.ParametricSystem(sparse.csr_matrix(M0), np.empty((0, 0)), K0.tolist(), sparse.csr_matrix(K1),
+                              np.array([[0.0, 1.0]]), [], 1.0, "k", 0.0, 1.0)
+    assert np.allclose(ps.at(0.5).K, ref.at(0.5).K) and np.allclose(ps.at(0.5).w, ref.at(0.5).w)
+    assert np.allclose(spp.ParametricSystem(M0, [], K0, K1, np.array([[0.0], [1.0]]), [], 1.0, "k", 0, 1).at(1).w,
+                       [0.0, 1.0])
+    with pytest.raises(ValueError, match="ParametricSystem: w_constant must be a vector"):
+        spp.ParametricSystem(M0, [], K0, K1, np.eye(2), [], 1.0, "k", 0.0, 1.0)
+    with pytest.raises(ValueError, match="ParametricSystem: K_mu must be real"):
+        spp.ParametricSystem(M0, [], K0, 1j * K1, [0.0, 1.0], [], 1.0, "k", 0.0, 1.0)

@@ -1,0 +1,76 @@
+"""to_dataframe() of SolveResult, VerifyResult, ContinuationResult and Branch: one row per SPP, per check or per
+branch point, each column with its own dtype (an empty result keeps them: bool for admissible, int for counts).
+SolveResult's columns are those of ``spp solve --csv`` (src/io/csv.cpp: t1 ... stable, x0_1 .. x0_n, v0_1 .. v0_n),
+then flags."""
+import numpy as np
+
+
+def _pandas():
+    try:
+        import pandas
+    except ImportError:
+        raise ImportError("to_dataframe needs pandas (Debian: apt-get install python3-pandas)") from None
+    return pandas
+
+
+def _frame(columns, rows):
+    """columns: [(name, dtype)]; rows: lists of values in that order."""
+    pd = _pandas()
+    data = {}
+    for j, (name, dtype) in enumerate(columns):
+        data[name] = np.array([row[j] for row in rows], dtype=dtype) if rows else np.array([], dtype=dtype)
+    return pd.DataFrame(data, columns=[c[0] for c in columns])
+
+
+def solve_result_frame(r):
+    """One row per SPP in the result's order (by period): the columns of spp solve --csv (t1, t2, period, admissible,
+    min_gap, min_force, energy, residual, return_error, spectral_radius, stable, x0_1 .. x0_n, v0_1 .. v0_n), then
+    flags (comma-separated). Needs pandas."""
+    sols = list(r.solutions)
+    n = len(sols[0].x0) if sols else (r.system.n if hasattr(r, "system") and hasattr(r.system, "n") else 0)
+    columns = [("t1", float), ("t2", float), ("period", float), ("admissible", bool), ("min_gap", float),
+               ("min_force", float), ("energy", float), ("residual", float), ("return_error", float),
+               ("spectral_radius", float), ("stable", bool)]
+    columns += [(f"x0_{i}", float) for i in range(1, n + 1)] + [(f"v0_{i}", float) for i in range(1, n + 1)]
+    columns.append(("flags", object))
+    rows = [[x.t1, x.t2, x.period, x.admissible, x.min_gap, x.min_force, x.energy, x.residual, x.return_error,
+             x.spectral_radius, x.stable] + list(x.x0) + list(x.v0) + [",".join(x.flags)] for x in sols]
+    return _frame(columns, rows)
+
+
+def verify_result_frame(v):
+    """One row per SPP checked: t1, t2, admissible (the solver's), verdict, consistent, periods_followed,
+    return_error (after the first period), potential_return_error, departure_time, departure, impacts,
+    contact_onsets, releases, growth_per_period. Needs pandas."""
+    columns = [("t1", float), ("t2", float), ("admissible", bool), ("verdict", object), ("consistent", bool),
+               ("periods_followed", np.int64), ("return_error", float), ("potential_return_error", float),
+               ("departure_time", float), ("departure", object), ("impacts", np.int64), ("contact_onsets", np.int64),
+               ("releases", np.int64), ("growth_per_period", float)]
+    rows = []
+    for c in v.checks:
+        first = c.return_errors[0] if len(c.return_errors) else float("nan")
+        rows.append([c.t1, c.t2, c.admissible, str(c.verdict), c.consistent, c.periods_followed, first,
+                     c.potential_return_error, c.departure_time, c.departure, c.impacts, c.contact_onsets, c.releases,
+                     c.growth_per_period])
+    return _frame(columns, rows)
+
+
+_POINT_COLUMNS = [("mu", float), ("t1", float), ("t2", float), ("period", float), ("admissible", bool),
+                  ("margin", float), ("closure", float), ("energy", float), ("spectral_radius", float)]
+
+
+def _point_row(p):
+    return [p.mu, p.t1, p.t2, p.period, p.admissible, p.margin, p.closure, p.energy, p.spectral_radius]
+
+
+def branch_frame(b):
+    """One row per point of the branch, in the order traced: mu, t1, t2, period, admissible, margin, closure, energy,
+    spectral_radius. Needs pandas."""
+    return _frame(_POINT_COLUMNS, [_point_row(p) for p in b.points])
+
+
+def continuation_result_frame(c):
+    """One row per point of every branch: branch (its index in c.branches), then the columns of
+    Branch.to_dataframe(). Needs pandas."""
+    rows = [[i] + _point_row(p) for i, b in enumerate(c.branches) for p in b.points]
+    return _frame([("branch", np.int64)] + _POINT_COLUMNS, rows)
