@@ -728,7 +728,7 @@ def test_ctrl_c_stops_verify_and_simulate():
         "x0 = np.zeros(5); v0 = np.ones(5)\n"
         "print('START')\n"
         "try:\n"
-        "    spp.simulate(s, x0, v0, 1e7, samples_per_unit=0.01)\n"
+        "    spp.simulate(s, x0, v0, 1e7, restitution=1.0, samples_per_unit=0.01)  # elastic: impacts to the end\n"
         "    print('FINISHED')\n"
         "except KeyboardInterrupt:\n"
         "    print('INTERRUPTED')\n")
