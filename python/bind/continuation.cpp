@@ -80,7 +80,7 @@ void bind_continuation(py::module_& m) {
           },
           "the crossing multiplier(s) at the located event: one real or a conjugate pair")
       .def_readonly("crossing_angle", &spp::BranchEvent::crossing_angle,
-                    "arg of the crossing multiplier in [0, pi]: 0 (+1), pi (-1), theta (pair); NaN otherwise");
+                    "arg of the crossing multiplier in [0, pi]: 0 (+1), pi (-1), theta (pair); NaN otherwise")
       .def(py::pickle([](const spp::BranchEvent& x) { return state::of(x); },
                       [](const py::tuple& t) { return state::branch_event(t); }))
       .def("__repr__", [](const spp::BranchEvent& e) {

@@ -34,7 +34,8 @@ inline py::tuple of(const spp::Solution& s) {
                                        static_cast<int>(o.symmetry), o.obstacle_velocity),
                         py::make_tuple(a.admissible, a.min_gap, a.min_force, a.mid_flight_gap, a.mid_contact_force,
                                        a.onset_force_rate, a.ends_ok, a.certified),
-                        py::make_tuple(f.multipliers, f.spectral_radius, f.margin, f.stable, f.structure_residual),
+                        py::make_tuple(f.multipliers, f.spectral_radius, f.margin, f.stable, f.structure_residual,
+                                       f.leading, f.spectral_radius_error, static_cast<int>(f.verdict)),
                         s.residual, s.return_error, s.flags);
 }
 inline spp::Solution solution(const py::tuple& t) {
@@ -62,12 +63,15 @@ inline spp::Solution solution(const py::tuple& t) {
   s.admissibility.onset_force_rate = a[5].cast<double>();
   s.admissibility.ends_ok = a[6].cast<bool>();
   s.admissibility.certified = a[7].cast<bool>();
-  const py::tuple f = sized(t[2].cast<py::tuple>(), 5, "Solution (floquet)");
+  const py::tuple f = sized(t[2].cast<py::tuple>(), 8, "Solution (floquet)");
   s.floquet.multipliers = f[0].cast<std::vector<std::complex<double>>>();
   s.floquet.spectral_radius = f[1].cast<double>();
   s.floquet.margin = f[2].cast<double>();
   s.floquet.stable = f[3].cast<bool>();
   s.floquet.structure_residual = f[4].cast<double>();
+  s.floquet.leading = f[5].cast<std::vector<std::complex<double>>>();
+  s.floquet.spectral_radius_error = f[6].cast<double>();
+  s.floquet.verdict = static_cast<spp::StabilityVerdict>(f[7].cast<int>());
   s.residual = t[3].cast<double>();
   s.return_error = t[4].cast<double>();
   s.flags = t[5].cast<std::vector<std::string>>();
@@ -95,12 +99,17 @@ inline spp::BranchPoint branch_point(const py::tuple& t) {
   return p;
 }
 inline py::tuple of(const spp::BranchEvent& e) {
-  return py::make_tuple(static_cast<int>(e.kind), of(e.at), e.detail);
+  return py::make_tuple(static_cast<int>(e.kind), of(e.at), e.detail, static_cast<int>(e.crossing),
+                        e.crossing_multipliers, e.crossing_angle);
 }
 inline spp::BranchEvent branch_event(const py::tuple& t) {
-  sized(t, 3, "BranchEvent");
-  return {static_cast<spp::BranchEventKind>(t[0].cast<int>()), branch_point(t[1].cast<py::tuple>()),
-          t[2].cast<std::string>()};
+  sized(t, 6, "BranchEvent");
+  spp::BranchEvent e{static_cast<spp::BranchEventKind>(t[0].cast<int>()), branch_point(t[1].cast<py::tuple>()),
+                     t[2].cast<std::string>()};
+  e.crossing = static_cast<spp::MultiplierCrossing>(t[3].cast<int>());
+  e.crossing_multipliers = t[4].cast<std::vector<std::complex<double>>>();
+  e.crossing_angle = t[5].cast<double>();
+  return e;
 }
 inline py::tuple of(const spp::Branch& b) {
   py::list pts, evs;

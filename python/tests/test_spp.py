@@ -779,7 +779,8 @@ def test_results_pickle_and_show_themselves():
     sol = r.solutions[3]
     back = pickle.loads(pickle.dumps(sol))
     _same_fields(sol, back, ["t1", "t2", "admissible", "min_gap", "min_force", "energy", "residual", "return_error",
-                             "flags", "floquet_multipliers", "spectral_radius", "stable", "x0", "v0"])
+                             "flags", "floquet_multipliers", "spectral_radius", "stable", "x0", "v0",
+                             "spectral_radius_error", "stability_verdict"])
     # what a pickled Solution is for: the same trajectory and verification as the original
     assert np.allclose(spp.trajectory(s, back.t1, back.t2)["x"], spp.trajectory(s, sol.t1, sol.t2)["x"])
     v = spp.verify(s, r)
