@@ -149,12 +149,12 @@ ContinuationResult continuation_from_json(const json& j, const std::string& wher
   res.t2_max = win.number("t2_max");
   res.warnings = r.texts("warnings");
   const Reader st{r.at("stats"), where + ": field \"stats\""};
-  res.seed_spps = st.integer("seed_spps");
-  res.incomplete_seed_solves = st.integer("incomplete_seed_solves");
-  res.stalled_branches = st.integer("stalled_branches");
-  res.unlisted_crossings = st.integer("unlisted_crossings");
-  res.seed_crossings = st.integer("seed_crossings");
-  res.corrector_solves = st.integer("corrector_solves");
+  res.seed_spps = st.count("seed_spps");
+  res.incomplete_seed_solves = st.count("incomplete_seed_solves");
+  res.stalled_branches = st.count("stalled_branches");
+  res.unlisted_crossings = st.count("unlisted_crossings");
+  res.seed_crossings = st.count("seed_crossings");
+  res.corrector_solves = st.count("corrector_solves");
   res.seconds = st.number("seconds");
   const json& bs = r.at("branches");
   if (!bs.is_array()) invalid(where + ": field \"branches\" must be a list, got " + describe(bs));

@@ -18,21 +18,30 @@ namespace spp {
 namespace fs = std::filesystem;
 using io::invalid;
 
+void check_path_has_no_nul(const std::string& path, const std::string& what) {
+  // a path is handed to the system as a C string, which ends at the first NUL: "a.json\0junk" would open a.json
+  if (const size_t at = path.find('\0'); at != std::string::npos)
+    invalid(what + ": expected a file path without NUL bytes, got a NUL at byte " + std::to_string(at) + " of \"" +
+            io::shorten(path.substr(0, at), io::kQuotedPathChars) + "...\"");
+}
+
 std::string read_file(const std::string& path) {
+  check_path_has_no_nul(path, "cannot read a file");
   // Only a regular file has a size known before reading it: a device (/dev/zero), a pipe or a directory would be read
   // until memory ran out (found by an independent attack: `spp solve /dev/zero` reached 2.9 GB in 3 s).
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   const std::string shown = io::shorten(path, io::kQuotedPathChars);
-  if (!fs::exists(st)) invalid("cannot open \"" + shown + "\" for reading: no such file");
-  if (fs::is_directory(st)) invalid("\"" + shown + "\" is a directory, not a file");
+  if (!fs::exists(st))
+    invalid("cannot open \"" + shown + "\" for reading: expected an existing file, got no such file");
+  if (fs::is_directory(st)) invalid("\"" + shown + "\" is a directory, not a file: expected a file, got a directory");
   if (!fs::is_regular_file(st))
-    invalid("\"" + shown + "\" is not a regular file (a device, a pipe or a socket): expected a file on disk");
+    invalid("\"" + shown + "\" is not a regular file: expected a file on disk, got a device, a pipe or a socket");
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) invalid("cannot open \"" + shown + "\" for reading");
   if (size > kMaxInputFileBytes)
-    invalid("\"" + shown + "\" has " + std::to_string(size) + " bytes, more than the " +
-            std::to_string(kMaxInputFileBytes) + " an input file of spp may have (" + kMaxInputFileReason + ")");
+    invalid("\"" + shown + "\": expected an input file of at most " + std::to_string(kMaxInputFileBytes) + " bytes (" +
+            kMaxInputFileReason + "), got " + std::to_string(size) + " bytes");
   std::ifstream in(path, std::ios::binary);
   if (!in) invalid("cannot open \"" + shown + "\" for reading");
   // read at most the limit and one byte more: a file that grew since its size was taken is still bounded
@@ -49,6 +58,7 @@ std::string read_file(const std::string& path) {
 }
 
 std::string output_file(const std::string& path, const std::string& what) {
+  check_path_has_no_nul(path, what);
   const std::string shown = io::shorten(path, io::kQuotedPathChars);
   auto refuse_system_dirs = [&](const std::string& p) {
     for (const char* system_dir : {"/dev/", "/proc/"})
@@ -69,8 +79,9 @@ std::string output_file(const std::string& path, const std::string& what) {
   constexpr size_t kMaxFileName = 255;
   const std::string name = target.filename().string();
   if (name.size() > kMaxFileName)
-    invalid(what + ": the file name \"" + io::shorten(name, 60) + "\" has " + std::to_string(name.size()) +
-            " bytes, more than the " + std::to_string(kMaxFileName) + " a file system allows");
+    invalid(what + ": the file name \"" + io::shorten(name, 60) + "\": expected at most the " +
+            std::to_string(kMaxFileName) + " bytes a file system allows, got " + std::to_string(name.size()) +
+            " bytes");
   return target.string();
 }
 
@@ -79,13 +90,16 @@ void write_file_atomic(const std::string& given, const std::string& content) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(dir))
-    invalid("cannot write \"" + path + "\": directory \"" + dir.string() + "\" does not exist");
+    invalid("cannot write \"" + path + "\": expected an existing directory, got \"" + dir.string() +
+            "\", which does not exist");
   // the rename below replaces whatever is at path: a directory entry of another kind (a device such as /dev/null, a
   // pipe, a directory) is refused rather than replaced by a regular file
   std::error_code st_ec;
   const fs::file_status st = fs::status(target, st_ec);
   if (fs::exists(st) && !fs::is_regular_file(st))
-    invalid("cannot write \"" + path + "\": it exists and is not a regular file (a directory or a device)");
+    invalid("cannot write \"" + path +
+            "\": it exists and is not a regular file: expected a file (or no file), got a "
+            "directory or a device");
   // a short name (the target's may be up to 255 bytes), unique to this process and call; the salt tells apart
   // processes of one MPI run on two hosts that share a pid and write into one shared directory (a sweep's items)
   static std::atomic<unsigned> calls{0};

@@ -1,5 +1,6 @@
 #include "io/json.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <unordered_set>
@@ -70,9 +71,18 @@ json parse_json_text(const std::string& text, const std::string& path) {
     }
     return true;
   };
+  // A UTF-8 byte-order mark opening the text is accepted (nlohmann skips it; editors on Windows write one). A NUL
+  // byte anywhere is not: nlohmann's lexer takes it for the end of the input, so "{...}\0garbage" parsed as "{...}"
+  // (found by an independent attack). Other trailing text is refused by the parser, its byte offset added.
+  if (const size_t at = text.find('\0'); at != std::string::npos)
+    invalid(path + ": expected JSON text, got a NUL byte at byte offset " + std::to_string(at) +
+            " (a binary file, or text followed by padding?)");
   json j;
   try {
     j = json::parse(text, seen);
+  } catch (const json::parse_error& e) {
+    invalid(path + ": malformed JSON at byte offset " + std::to_string(e.byte == 0 ? 0 : e.byte - 1) + ": " +
+            shorten(e.what(), kMaxParserMessage));
   } catch (const json::exception& e) {
     // nlohmann quotes the offending token whole ("number overflow parsing '1000...'" with 100 000 digits): shortened
     invalid(path + ": malformed JSON: " + shorten(e.what(), kMaxParserMessage));
@@ -80,7 +90,8 @@ json parse_json_text(const std::string& text, const std::string& path) {
     invalid(path + ": expected JSON nested at most " + std::to_string(kMaxJsonDepth) +
             " levels deep (lists in lists, objects in objects), got deeper");
   }
-  if (!duplicate.empty()) invalid(path + ": the key \"" + duplicate + "\" appears twice in one object");
+  if (!duplicate.empty())
+    invalid(path + ": the key \"" + duplicate + "\" appears twice in one object: expected each key once, got it twice");
   return j;
 }
 
@@ -97,18 +108,37 @@ json vector_json(const Eigen::VectorXd& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
+std::string matrix_market_path(const json& v, const char* key, const std::string& where, const std::string& dir) {
+  const std::string& given = v.at("matrix_market").get_ref<const std::string&>();
+  // a NUL ends a C string: "K.mtx\u0000junk" opened K.mtx silently (found by an independent attack); any control
+  // character is refused the same way (no file name of a system is meant to hold one)
+  for (size_t i = 0; i < given.size(); ++i) {
+    const auto c = static_cast<unsigned char>(given[i]);
+    if (c < 0x20 || c == 0x7f)
+      invalid(where + ": field \"" + key +
+              "\": field \"matrix_market\": expected a file path of printable "
+              "characters, got the control character " +
+              std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i) +
+              (c == 0 ? " (a NUL byte, which would cut the path short)" : ""));
+  }
+  if (given.empty())
+    invalid(where + ": field \"" + key + "\": field \"matrix_market\": expected a file path, got the empty string");
+  fs::path p = given;
+  if (p.is_relative()) p = fs::path(dir) / p;
+  return p.string();
+}
+
 Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir,
                              long expected_size) {
-  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\"");
+  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\": expected it, got no such field");
   const json& v = j.at(key);
   if (v.is_object()) {
     if (!v.contains("matrix_market") || !v.at("matrix_market").is_string())
       invalid(where + ": field \"" + key + "\" must be a list of rows or {\"matrix_market\": \"file.mtx\"}");
     check_fields(v, {"matrix_market"}, where + ": field \"" + key + "\"");
-    fs::path p = v.at("matrix_market").get<std::string>();
-    if (p.is_relative()) p = fs::path(dir) / p;
+    const std::string p = matrix_market_path(v, key, where, dir);
     try {
-      return read_matrix_market(p.string(), expected_size);
+      return read_matrix_market(p, expected_size);
     } catch (const std::invalid_argument& e) {
       invalid(where + ": field \"" + key + "\": " + e.what());
     }
@@ -140,7 +170,7 @@ Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& 
 }
 
 Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where) {
-  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\"");
+  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\": expected it, got no such field");
   const json& jw = j.at(key);
   if (!jw.is_array() || jw.empty()) invalid(where + ": field \"" + key + "\" must be a non-empty list of numbers");
   Eigen::VectorXd w(static_cast<Eigen::Index>(jw.size()));
@@ -153,7 +183,8 @@ Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& 
 }
 
 const json& Reader::at(const char* k) const {
-  if (!o.is_object() || !o.contains(k)) invalid(where + ": missing field \"" + k + "\"");
+  if (!o.is_object() || !o.contains(k))
+    invalid(where + ": missing field \"" + k + "\": expected it, got no such field");
   return o.at(k);
 }
 double Reader::number(const char* k) const {
@@ -165,6 +196,21 @@ double Reader::number(const char* k) const {
 long Reader::integer(const char* k) const {
   const json& v = at(k);
   if (!v.is_number_integer()) invalid(where + ": field \"" + k + "\" must be an integer, got " + describe(v));
+  // nlohmann holds 2^63 .. 2^64 - 1 as unsigned: get<long> wrapped 2^63 to a negative number (found by an independent
+  // attack)
+  if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<long>::max()))
+    invalid(where + ": field \"" + k + "\" must be an integer from " +
+            std::to_string(std::numeric_limits<long>::min()) + " to " +
+            std::to_string(std::numeric_limits<long>::max()) + ", got " + v.dump());
+  return v.get<long>();
+}
+long Reader::count(const char* k, long max) const {
+  const json& v = at(k);
+  const std::string rule = "a count, a whole number from 0 to " + std::to_string(max);
+  if (!v.is_number_integer()) invalid(where + ": field \"" + k + "\" must be " + rule + ", got " + describe(v));
+  const bool in_range = v.is_number_unsigned() ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(max)
+                                               : v.get<std::int64_t>() >= 0 && v.get<std::int64_t>() <= max;
+  if (!in_range) invalid(where + ": field \"" + k + "\" must be " + rule + ", got " + v.dump());
   return v.get<long>();
 }
 bool Reader::boolean(const char* k) const {

@@ -3,6 +3,7 @@
 // they cannot read; writers give what the readers read back.
 
 #include <Eigen/Dense>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -35,6 +36,9 @@ json matrix_json(const Eigen::MatrixXd& A);
 json vector_json(const Eigen::VectorXd& v);
 /// A field "key" of j: a list of rows (or {"matrix_market": "file.mtx"}, relative to dir) / a list of numbers.
 /// expected_size >= 0: a Matrix Market file must declare that size (checked before its n^2 doubles are allocated).
+/// The path of {"matrix_market": "file.mtx"} (v, the field `key`), relative to dir; a control character in it (a NUL
+/// would cut it short) or an empty path is refused, naming the field.
+std::string matrix_market_path(const json& v, const char* key, const std::string& where, const std::string& dir);
 Eigen::MatrixXd matrix_field(const json& j, const char* key, const std::string& where, const std::string& dir,
                              long expected_size = -1);
 Eigen::VectorXd vector_field(const json& j, const char* key, const std::string& where);
@@ -47,6 +51,8 @@ struct Reader {
   const json& at(const char* k) const;
   double number(const char* k) const;
   long integer(const char* k) const;
+  /// A count: a whole number from 0 to max (the range of the field it is read into), refused naming k otherwise.
+  long count(const char* k, long max = std::numeric_limits<long>::max()) const;
   bool boolean(const char* k) const;
   std::string text(const char* k) const;
   std::vector<std::string> texts(const char* k) const;

@@ -1,8 +1,8 @@
 #include "spp/io/matrix_market.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +15,7 @@
 
 #include "io/text.hpp"
 #include "spp/detail/out_of_memory.hpp"
+#include "spp/io/files.hpp"
 
 namespace spp {
 
@@ -87,18 +88,27 @@ void check_size(const std::string& path, long rows, long cols, long expected_siz
 // current line. expected_size >= 0: the size line must declare it (checked before anything else about the size).
 template <typename OnSize, typename OnEntry>
 void parse_matrix_market(const std::string& path, bool dense, long expected_size, OnSize on_size, OnEntry on_entry) {
+  check_path_has_no_nul(path, "cannot read a Matrix Market file");
   std::error_code ec;
   const std::filesystem::file_status st = std::filesystem::status(path, ec);
   if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
-    invalid("Matrix Market file \"" + path + "\" is not a regular file (a directory, a device or a pipe)");
+    invalid("Matrix Market file \"" + shorten(path, io::kQuotedPathChars) +
+            "\" is not a regular file: expected a file on disk, got a directory, a device or a pipe");
   std::ifstream in(path);
   if (!in) invalid("cannot open Matrix Market file \"" + shorten(path, io::kQuotedPathChars) + "\"");
   std::string line;
   if (!read_line(in, line, path, 1) || line.rfind("%%MatrixMarket", 0) != 0)
-    invalid(path + ": line 1 must start with %%MatrixMarket");
+    invalid(path + ": line 1 must start with %%MatrixMarket, got \"" + shorten(line, 60) + "\"");
   std::istringstream hs(line);
-  std::string banner, object, format, field, symmetry;
-  hs >> banner >> object >> format >> field >> symmetry;
+  std::string banner, object, format, field, symmetry, extra;
+  hs >> banner >> object >> format >> field >> symmetry >> extra;
+  // the banner is exactly five tokens: a sixth ("... symmetric extra") was ignored, so a header of another variant
+  // of the format read as this one (found by an independent attack)
+  if (!extra.empty())
+    invalid(path +
+            ":1: expected the header \"%%MatrixMarket matrix <format> <field> <symmetry>\" (five words), "
+            "got the extra word \"" +
+            shorten(extra) + "\" after them");
   for (auto* s : {&object, &format, &field, &symmetry})
     for (auto& ch : *s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   if (object != "matrix") invalid(path + ": expected object \"matrix\", got \"" + shorten(object) + "\"");
@@ -118,7 +128,7 @@ void parse_matrix_market(const std::string& path, bool dense, long expected_size
   };
   auto where = [&] { return path + ":" + std::to_string(lineno); };
   auto shown = [](const std::string& l) { return shorten(l, 60); };
-  if (!next_data_line(line)) invalid(path + ": no size line");
+  if (!next_data_line(line)) invalid(path + ": expected a size line after the header, got the end of the file");
   const std::vector<std::string> size = tokens(line);
   long rows = 0, cols = 0, nnz = 0;
   const bool coordinate = format == "coordinate";
@@ -128,11 +138,12 @@ void parse_matrix_market(const std::string& path, bool dense, long expected_size
             ")");
   check_size(path, rows, cols, expected_size);
   if (dense && static_cast<double>(rows) * static_cast<double>(cols) > kMaxDenseEntries)
-    invalid(where() + ": a " + std::to_string(rows) + " x " + std::to_string(cols) +
-            " matrix is too large to hold densely (limit " + num(kMaxDenseEntries) +
-            " entries; a large sparse model is reduced first: spp reduce)");
+    invalid(where() + ": expected a matrix of at most " + num(kMaxDenseEntries) +
+            " entries to hold densely (a large sparse model is reduced first: spp reduce), got a " +
+            std::to_string(rows) + " x " + std::to_string(cols) + " matrix, too large");
   if (!dense && rows > std::numeric_limits<int>::max() / 2)
-    invalid(where() + ": " + std::to_string(rows) + " rows: more than a sparse matrix with int indices holds");
+    invalid(where() + ": expected at most " + std::to_string(std::numeric_limits<int>::max() / 2) +
+            " rows (a sparse matrix with int indices), got " + std::to_string(rows) + " rows");
   const bool sym = symmetry == "symmetric";
   if (sym && rows != cols) invalid(where() + ": a symmetric matrix must be square, got " + size[0] + " x " + size[1]);
   on_size(rows, cols, sym, where);
@@ -150,8 +161,9 @@ void parse_matrix_market(const std::string& path, bool dense, long expected_size
       on_entry(i - 1, j - 1, v, where);
     }
     if (next_data_line(line))
-      invalid(where() + ": more entries than the " + std::to_string(nnz) + " the size line declares: \"" + shown(line) +
-              "\"");
+      invalid(where() + ": expected the " + std::to_string(nnz) +
+              " entries the size line declares, got more entries than the " + std::to_string(nnz) + ": \"" +
+              shown(line) + "\"");
   } else {
     std::vector<std::string> pending;
     size_t next = 0;
@@ -159,26 +171,29 @@ void parse_matrix_market(const std::string& path, bool dense, long expected_size
       for (long i = sym ? j : 0; i < rows; ++i) {
         while (next == pending.size()) {
           if (!next_data_line(line))
-            invalid(path + ": array data ended early at entry (" + std::to_string(i + 1) + ", " +
-                    std::to_string(j + 1) + ")");
+            invalid(path +
+                    ": expected the values the size line declares, got the end of the file (array data ended "
+                    "early at entry (" +
+                    std::to_string(i + 1) + ", " + std::to_string(j + 1) + "))");
           pending = tokens(line);
           next = 0;
         }
         double v = 0;
         if (!parse_number(pending[next++], v))
           invalid(where() + ": entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
-                  ") is not a number: \"" + shown(pending[next - 1]) + "\"");
+                  ") is not a number: expected a decimal number, got \"" + shown(pending[next - 1]) + "\"");
         on_entry(i, j, v, where);
       }
     if (next != pending.size() || next_data_line(line))
-      invalid(where() + ": more values than the " + std::to_string(sym ? rows * (rows + 1) / 2 : rows * cols) +
-              " the size line declares");
+      invalid(where() + ": expected the " + std::to_string(sym ? rows * (rows + 1) / 2 : rows * cols) +
+              " values the size line declares, got more values than the " +
+              std::to_string(sym ? rows * (rows + 1) / 2 : rows * cols));
   }
 }
 
 std::string mirror_given(long i, long j) {
   return "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
-         ") of a symmetric file: its mirror was given too (store one triangle)";
+         ") of a symmetric file: its mirror was given too (expected one triangle stored, got both)";
 }
 
 

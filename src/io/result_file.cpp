@@ -96,7 +96,7 @@ void read_verdict(const Reader& o, Floquet& f) {
   if (!consistent)
     invalid(o.where + ": field \"stability_verdict\" is \"" + v + "\" but spectral_radius " + num(rho) + " +- " +
             num(err) + " gives \"" + to_string(stability_verdict(rho, err, false)) +
-            "\" (\"neutral\" needs spectral_radius 1 exactly)");
+            "\" (\"neutral\" needs spectral_radius 1 exactly): expected the verdict they give, got another");
 }
 
 // One SPP's values that no solve leaves undefined (written as null they would read as NaN, found by an independent
@@ -128,7 +128,8 @@ void check_solution_values(const json& o, const std::string& at) {
     const double lo = value(min_key), mid = value(mid_key);
     if (lo > mid + kSameToRounding * std::abs(mid))
       invalid(at + ": field \"" + min_key + "\" " + num(lo) + " exceeds field \"" + mid_key + "\" " + num(mid) +
-              ": a minimum over the phase is at most its middle value");
+              ": a minimum over the phase is at most its middle value: expected at most " + num(mid) + ", got " +
+              num(lo));
     if (o.contains("admissible") && o.at("admissible") == true && lo < -kAdmissibleSlack * std::abs(mid))
       invalid(at + ": field \"admissible\" is true but field \"" + min_key + "\" is " + num(lo) +
               ": expected >= 0 (to " + num(kAdmissibleSlack) + " of \"" + mid_key + "\"), or admissible false");
@@ -150,7 +151,7 @@ void check_solution_values(const json& o, const std::string& at) {
       for (size_t j = 0; j < i; ++j)
         if (o.at("flags")[i] == o.at("flags")[j])
           invalid(at + ": field \"flags\"[" + std::to_string(i) + "]: " + describe(o.at("flags")[i]) +
-                  " is listed twice");
+                  " is listed twice: expected each flag once, got it twice");
   if (o.contains("flags") && o.at("flags").is_array())
     for (size_t i = 0; i < o.at("flags").size(); ++i) {
       const json& f = o.at("flags")[i];
@@ -233,7 +234,7 @@ void check_consistency(const json& r, const std::string& where) {
     if (!warnings.empty())
       invalid(where + ": field \"status\" is \"success\" but field \"warnings\" has " +
               std::to_string(warnings.size()) + " entr" + (warnings.size() == 1 ? "y" : "ies") +
-              ": a search with warnings is \"incomplete\"");
+              ": a search with warnings is \"incomplete\": expected status \"incomplete\", got \"success\"");
     if (has_stats)
       for (const char* k : {"uncertified_steps", "uncertified_corners", "unpaired_crossings", "unresolved_pieces",
                             "unpolished_roots", "unsearched_cells"})
@@ -286,7 +287,8 @@ void check_consistency(const json& r, const std::string& where) {
         outside(t2, win.number("t2_min"), win.number("t2_max")))
       invalid(where + ": field \"solutions\"[" + std::to_string(i) + "] at (t1, t2) = (" + num(t1) + ", " + num(t2) +
               ") is outside the field \"window\" (" + num(win.number("t1_min")) + ", " + num(win.number("t1_max")) +
-              "] x (" + num(win.number("t2_min")) + ", " + num(win.number("t2_max")) + "]");
+              "] x (" + num(win.number("t2_min")) + ", " + num(win.number("t2_max")) +
+              "]: expected an SPP of the window, got one outside it");
   }
 }
 
@@ -322,9 +324,11 @@ void check_result(const json& r, const std::string& where) {
     const std::vector<const char*> counts = count_keys();
     check_fields(st, counts, at, {"seconds"});
     const Reader sr{st, at};
-    for (const char* k : counts)
-      if (st.contains(k) && sr.integer(k) < 0)
-        invalid(at + ": field \"" + k + "\" must be a count >= 0, got " + std::to_string(sr.integer(k)));
+    // each count within the range of the field it is read into (an int or a long of SolveResult)
+    SolveResult none;
+    for_each_count(none, [&](const char* k, const auto& count) {
+      if (st.contains(k)) sr.count(k, std::numeric_limits<std::remove_cvref_t<decltype(count)>>::max());
+    });
     if (st.contains("seconds") && !(sr.number("seconds") >= 0.0))
       invalid(at + ": field \"seconds\" must be >= 0, got " + num(sr.number("seconds")));
   }
@@ -349,7 +353,9 @@ void check_result(const json& r, const std::string& where) {
     }
     if (!unc.empty() && r.contains("status") && r.at("status") == "success")
       invalid(where + ": field \"status\" is \"success\" but field \"uncertified\" lists " +
-              std::to_string(unc.size()) + " region(s): a search with uncertified regions is \"incomplete\"");
+              std::to_string(unc.size()) +
+              " region(s): a search with uncertified regions is \"incomplete\": "
+              "expected status \"incomplete\", got \"success\"");
   }
   if (r.contains("solutions") && r.at("solutions").is_array()) {
     const json& sols = r.at("solutions");
@@ -494,7 +500,7 @@ SolveResult result_from_json(const json& r, const std::string& where) {
   for_each_count(res, [&](const char* key, auto& count) {
     using Count = std::remove_reference_t<decltype(count)>;
     const bool older = std::string(key) == "unsearched_cells" && !st.o.contains(key);  // before the field existed
-    count = older ? Count{0} : static_cast<Count>(st.integer(key));
+    count = older ? Count{0} : static_cast<Count>(st.count(key, std::numeric_limits<Count>::max()));
   });
   res.stats.seconds = st.number("seconds");
   const json& unc = top.at("uncertified");
@@ -572,7 +578,9 @@ System result_system(const json& r, const std::string& where) {
     invalid(where + ": expected a result of spp solve (fields \"system\" and \"solutions\")");
   check_result(r, where);
   if (!r.at("system").contains("M") || !r.at("system").contains("K"))
-    invalid(where + ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): run spp solve again");
+    invalid(where +
+            ": field \"system\" has no \"M\" and \"K\" (a result from an older spp): expected the system "
+            "with its matrices, got none; run spp solve again");
   System s = embedded_system_from_json(r.at("system"), where + ": field \"system\"");
   if (s.g0() == 0.0)  // spp solve refuses g0 = 0 (its SPPs need one more unknown): no result of it has one
     invalid(where + ": field \"system\": field \"g0\" is 0, which no result of spp solve has (a g0 = 0 system is "

@@ -12,8 +12,15 @@ namespace spp::io {
 namespace fs = std::filesystem;
 
 namespace {
+// Longest "name" and "description" a system file may hold, in bytes: a name is a title (tables, figure titles, the
+// result files that embed it), a description a paragraph or a few; a 100 MB name was read whole and copied into every
+// output (found by an independent attack). Documented in the README.
+constexpr size_t kMaxNameBytes = 4096;
+constexpr size_t kMaxDescriptionBytes = 65536;
+
 double g0_field(const json& j, const std::string& where) {
-  if (!j.contains("g0")) invalid(where + ": missing field \"g0\" (the gap at rest)");
+  if (!j.contains("g0"))
+    invalid(where + ": missing field \"g0\": expected the gap at rest, a number, got no such field");
   if (!j.at("g0").is_number()) invalid(where + ": field \"g0\" must be a number, got " + describe(j.at("g0")));
   return j.at("g0").get<double>();
 }
@@ -28,8 +35,13 @@ std::string name_field(const json& j, const std::string& where) {
   // except tabs and line breaks in the description
   for (const char* k : {"name", "description"}) {
     if (!j.contains(k)) continue;
-    const std::string t = j.at(k).get<std::string>();
+    const std::string& t = j.at(k).get_ref<const std::string&>();
     const bool text = std::string(k) == "description";
+    const size_t limit = text ? kMaxDescriptionBytes : kMaxNameBytes;
+    if (t.size() > limit)
+      invalid(where + ": field \"" + k + "\": expected at most " + std::to_string(limit) + " bytes, got " +
+              std::to_string(t.size()) + " (" + (text ? "a description is a few paragraphs" : "a name is a title") +
+              ")");
     for (size_t i = 0; i < t.size(); ++i) {
       const auto c = static_cast<unsigned char>(t[i]);
       if ((c < 0x20 && !(text && (c == '\t' || c == '\n' || c == '\r'))) || c == 0x7f)
@@ -44,7 +56,7 @@ std::string name_field(const json& j, const std::string& where) {
 template <typename Read>
 auto affine_field(const json& j, const char* key, const std::string& name, const std::string& where, Read read) {
   using T = decltype(read(j, key, where));
-  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\"");
+  if (!j.contains(key)) invalid(where + ": missing field \"" + key + "\": expected it, got no such field");
   const json& v = j.at(key);
   if (v.is_object() && v.contains("constant")) {
     for (const auto& [k, _] : v.items())
@@ -116,7 +128,9 @@ System embedded_system_from_json(const json& j, const std::string& where) {
             std::to_string(js.integer("n")));
   if (!j.contains("w_input_norm")) {
     if (j.contains("w_normalized"))
-      invalid(where + ": field \"w_normalized\" given without \"w_input_norm\" (both or neither)");
+      invalid(where +
+              ": field \"w_normalized\" given without \"w_input_norm\": expected both or neither, got only "
+              "\"w_normalized\"");
     return s;
   }
   const double norm = js.number("w_input_norm");
@@ -151,7 +165,9 @@ bool declares_parameter(const json& j) {
 ParametricSystem parametric_system_from_json(const json& j, const std::string& where, const std::string& dir) {
   if (!j.is_object()) invalid(where + ": expected a JSON object with fields M, K, w, g0, parameter");
   if (!j.contains("parameter"))
-    invalid(where + ": no field \"parameter\" (e.g. \"parameter\": {\"name\": \"k2\", \"min\": 1, \"max\": 10})");
+    invalid(where +
+            ": no field \"parameter\": expected one (e.g. \"parameter\": {\"name\": \"k2\", \"min\": 1, "
+            "\"max\": 10}), got a system without a parameter");
   const json& p = j.at("parameter");
   if (!p.is_object() || !p.contains("name") || !p.at("name").is_string() || p.at("name").get<std::string>().empty())
     invalid(where + ": field \"parameter\" must be {\"name\": \"...\", \"min\": number, \"max\": number}");
@@ -159,12 +175,24 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   check_fields(p, {"name", "min", "max"}, where + ": field \"parameter\"");
   Parameter par;
   par.name = p.at("name").get<std::string>();
+  // (the parameter's name is a key of M, K and w and a column title: the limit and the characters of a name)
+  if (par.name.size() > kMaxNameBytes)
+    invalid(where + ": field \"parameter\": field \"name\": expected at most " + std::to_string(kMaxNameBytes) +
+            " bytes, got " + std::to_string(par.name.size()));
+  for (size_t i = 0; i < par.name.size(); ++i)
+    if (const auto c = static_cast<unsigned char>(par.name[i]); c < 0x20 || c == 0x7f)
+      invalid(where + ": field \"parameter\": field \"name\": expected printable text, got the control character " +
+              std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i));
   for (const char* k : {"min", "max"})
     if (!p.contains(k) || !p.at(k).is_number())
-      invalid(where + ": field \"parameter\" needs the number \"" + std::string(k) + "\"");
+      invalid(where + ": field \"parameter\" needs the number \"" + std::string(k) + "\": expected a number, got " +
+              (p.contains(k) ? describe(p.at(k)) : std::string("no such field")));
   par.min = p.at("min").get<double>();
   par.max = p.at("max").get<double>();
-  if (par.name == "constant") invalid(where + ": the parameter cannot be named \"constant\"");
+  if (par.name == "constant")
+    invalid(where +
+            ": the parameter cannot be named \"constant\": expected another name (\"constant\" is the key of "
+            "the constant parts of M, K and w), got \"constant\"");
   // w first: its length is n, which a Matrix Market file's size line must match before it is read
   auto vec = [&](const json& o, const char* k, const std::string& at) { return vector_field(o, k, at); };
   auto [w0, w1] = affine_field(j, "w", par.name, where, vec);
@@ -198,10 +226,19 @@ json parametric_system_to_json(const ParametricSystem& s) {
 
 namespace spp {
 
+namespace {
+// The declared parameter's name for a message: "?" when "parameter" is no object with a string "name" (json::value
+// threw json::type_error on a number there, not a message naming the field).
+std::string parameter_name(const io::json& p) {
+  if (!p.is_object() || !p.contains("name") || !p.at("name").is_string()) return "?";
+  return io::shorten(p.at("name").get<std::string>());
+}
+}  // namespace
+
 System load_system(const std::string& path) {
   const io::json j = io::read_json_file(path);
   if (io::declares_parameter(j))
-    io::invalid(path + ": declares the parameter \"" + j.at("parameter").value("name", std::string("?")) +
+    io::invalid(path + ": declares the parameter \"" + parameter_name(j.at("parameter")) +
                 "\" (a parametric system): use spp continue, or spp solve --at VALUE (or with g0 = 0 spp solve alone)");
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return io::system_from_json(j, path, dir.empty() ? "." : dir);
@@ -241,16 +278,15 @@ std::vector<std::string> system_file_inputs(const std::string& path) {
 namespace {
 Eigen::SparseMatrix<double> sparse_matrix_field(const io::json& j, const char* key, const std::string& where,
                                                 const std::string& dir, long n) {
-  if (!j.contains(key)) io::invalid(where + ": missing field \"" + key + "\"");
+  if (!j.contains(key)) io::invalid(where + ": missing field \"" + key + "\": expected it, got no such field");
   const io::json& v = j.at(key);
   if (!v.is_object()) return io::matrix_field(j, key, where, dir).sparseView();  // a (small) list of rows
   if (!v.contains("matrix_market") || !v.at("matrix_market").is_string())
     io::invalid(where + ": field \"" + key + "\" must be a list of rows or {\"matrix_market\": \"file.mtx\"}");
   io::check_fields(v, {"matrix_market"}, where + ": field \"" + key + "\"");
-  std::filesystem::path p = v.at("matrix_market").get<std::string>();
-  if (p.is_relative()) p = std::filesystem::path(dir) / p;
+  const std::string p = io::matrix_market_path(v, key, where, dir);
   try {
-    return read_sparse_matrix_market(p.string(), n);
+    return read_sparse_matrix_market(p, n);
   } catch (const std::invalid_argument& e) {
     io::invalid(where + ": field \"" + key + "\": " + e.what());
   }
@@ -270,13 +306,10 @@ SparseSystem load_sparse_system(const std::string& path) {
   const long n = static_cast<long>(w.size());
   Eigen::SparseMatrix<double> M = sparse_matrix_field(j, "M", path, dir, n);
   Eigen::SparseMatrix<double> K = sparse_matrix_field(j, "K", path, dir, n);
-  if (!j.contains("g0")) io::invalid(path + ": missing field \"g0\" (the gap at rest)");
+  if (!j.contains("g0"))
+    io::invalid(path + ": missing field \"g0\": expected the gap at rest, a number, got no such field");
   if (!j.at("g0").is_number()) io::invalid(path + ": field \"g0\" must be a number, got " + io::describe(j.at("g0")));
-  std::string name;
-  for (const char* k : {"name", "description"})
-    if (j.contains(k) && !j.at(k).is_string())
-      io::invalid(path + ": field \"" + k + "\" must be a string, got " + io::describe(j.at(k)));
-  if (j.contains("name")) name = j.at("name").get<std::string>();
+  std::string name = io::name_field(j, path);  // (the same checks as a dense system's)
   try {
     return SparseSystem(std::move(M), std::move(K), std::move(w), j.at("g0").get<double>(), name);
   } catch (const std::invalid_argument& e) {

@@ -406,7 +406,8 @@ TEST(Io, ResultWithUnknownFieldsOrContradictionsIsRefused) {
                  "polish, interrupted, got \"nonsense\"");
   j = good;
   j["stats"]["roots"] = -3;
-  expect_refused(j, "field \"stats\": field \"roots\" must be a count >= 0, got -3");
+  expect_refused(
+      j, "field \"stats\": field \"roots\" must be a count, a whole number from 0 to 9223372036854775807, got -3");
   j = good;
   j["stats"]["seconds"] = -1.0;
   expect_refused(j, "field \"stats\": field \"seconds\" must be >= 0");
@@ -922,4 +923,114 @@ TEST(Io, ContinuationFileGivesBackTheResultThatWasWritten) {
   ev["event"] = to_string(a.events[k].kind);
   const ContinuationFile old = parse_continuation_file(j.dump(), "old.json");
   EXPECT_EQ(old.result.branches[0].events[k].crossing, MultiplierCrossing::None);
+}
+
+// Found by an independent attack (issue 11): "K.mtx\u0000junk" opened K.mtx, the path cut at the NUL by the system.
+TEST(Io, NulByteInAMatrixMarketPathIsRefusedNamingTheField) {
+  const fs::path d = tmpdir();
+  write(d / "I.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n0\n0\n1\n");
+  expect_load_refused(R"({"M": {"matrix_market": "I.mtx\u0000junk"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "field \"M\": field \"matrix_market\": expected a file path of printable characters, got the "
+                      "control character 0 at byte 5 (a NUL byte");
+  // the sparse loader (spp reduce) the same
+  write(d / "nul_sparse.json", R"({"M": [[1,0],[0,1]], "K": {"matrix_market": "I.mtx\u0000"}, "w": [0,-1], "g0": 1})");
+  try {
+    load_sparse_system((d / "nul_sparse.json").string());
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("field \"K\": field \"matrix_market\": expected a file path"),
+              std::string::npos)
+        << e.what();
+  }
+  // and any path given to the library with a NUL in it
+  EXPECT_THROW(read_file((d / "I.mtx").string() + std::string(1, '\0') + "x"), std::invalid_argument);
+  EXPECT_THROW(read_matrix_market((d / "I.mtx").string() + std::string(1, '\0') + "x"), std::invalid_argument);
+}
+
+// Found by an independent attack (issue 11): a NUL byte ended the JSON for the parser, so "{...}\0garbage" was read as
+// "{...}". A UTF-8 byte-order mark before the text is accepted (editors write one); a NUL anywhere, or any text after
+// the value, is refused with its byte offset.
+TEST(Io, NulByteOrTrailingTextAfterTheJsonIsRefusedWithItsByteOffset) {
+  const std::string sys = R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})";
+  const std::string bom = "\xEF\xBB\xBF";
+  const fs::path p = tmpdir() / "bom.json";
+  write(p, bom + sys + "\n");
+  EXPECT_EQ(load_system(p.string()).n(), 2);  // the BOM alone is accepted
+  expect_load_refused(bom + sys + std::string(1, '\0'),
+                      "expected JSON text, got a NUL byte at byte offset " + std::to_string(bom.size() + sys.size()));
+  expect_load_refused(sys + std::string(1, '\0') + "garbage",
+                      "got a NUL byte at byte offset " + std::to_string(sys.size()));
+  expect_load_refused(sys + " garbage", "malformed JSON at byte offset " + std::to_string(sys.size() + 1));
+}
+
+// Found by an independent attack (issue 11): words after the symmetry were ignored, a header of another kind read
+// as this one.
+TEST(Io, MatrixMarketHeaderWithExtraWordsIsRefusedNamingLineOne) {
+  const fs::path d = tmpdir();
+  write(d / "extra.mtx", "%%MatrixMarket matrix coordinate real symmetric extra\n2 2 2\n1 1 1\n2 2 1\n");
+  expect_load_refused(R"({"M": {"matrix_market": "extra.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "extra.mtx:1: expected the header \"%%MatrixMarket matrix <format> <field> <symmetry>\" (five "
+                      "words), got the extra word \"extra\"");
+  write(d / "five.mtx", "%%MatrixMarket matrix coordinate real symmetric  \n2 2 2\n1 1 1\n2 2 1\n");
+  write(d / "five.json", R"({"M": {"matrix_market": "five.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})");
+  EXPECT_EQ(load_system((d / "five.json").string()).n(), 2);  // (trailing blanks are no word)
+}
+
+// Found by an independent attack (issue 11): "curve_pieces": 2^63 was read through a long as -9223372036854775808.
+// Every count is a whole number from 0 to the largest value of the field it is read into.
+TEST(Io, CountBeyondItsRangeInAResultIsRefusedNotReadNegative) {
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  auto refusal = [](const io::json& j) -> std::string {
+    try {
+      parse_result_file(j.dump(), "r.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  io::json j = good;
+  j["stats"]["curve_pieces"] = std::uint64_t{1} << 63;
+  EXPECT_NE(refusal(j).find("field \"curve_pieces\" must be a count, a whole number from 0 to 9223372036854775807, "
+                            "got 9223372036854775808"),
+            std::string::npos)
+      << refusal(j);
+  j = good;
+  j["stats"]["flight_pole_lines"] = 4294967296LL;  // an int field
+  EXPECT_NE(refusal(j).find("field \"flight_pole_lines\" must be a count, a whole number from 0 to 2147483647, got "
+                            "4294967296"),
+            std::string::npos)
+      << refusal(j);
+  j = good;
+  j["stats"]["evaluations"] = 3.5;
+  EXPECT_NE(refusal(j).find("field \"evaluations\" must be a count"), std::string::npos) << refusal(j);
+  j = good;
+  j["stats"]["evaluations"] = 9223372036854775807LL;  // the largest long is read as it is
+  EXPECT_EQ(refusal(j), "(accepted)");
+}
+
+// Found by an independent attack (issue 11): a 100 MB "name" was read whole and copied into every table and result.
+TEST(Io, NameOrDescriptionBeyondItsLimitIsRefusedNamingTheField) {
+  const std::string rest = R"("M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})";
+  expect_load_refused(R"({"name": ")" + std::string(4097, 'a') + "\", " + rest,
+                      "field \"name\": expected at most 4096 bytes, got 4097");
+  expect_load_refused(R"({"description": ")" + std::string(65537, 'a') + "\", " + rest,
+                      "field \"description\": expected at most 65536 bytes, got 65537");
+  const fs::path p = tmpdir() / "long_name_ok.json";
+  write(p, R"({"name": ")" + std::string(4096, 'a') + "\", " + rest);
+  EXPECT_EQ(load_system(p.string()).name().size(), 4096u);
+  // a parametric system's parameter name is a name too
+  const fs::path q = tmpdir() / "long_parameter.json";
+  write(q, R"({"parameter": {"name": ")" + std::string(5000, 'k') +
+               R"(", "min": 1, "max": 2}, "M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})");
+  try {
+    load_parametric_system(q.string());
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("field \"parameter\": field \"name\": expected at most 4096 bytes, got 5000"),
+              std::string::npos)
+        << e.what();
+  }
 }

@@ -15,6 +15,9 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{1} << 30;
 inline constexpr const char* kMaxInputFileReason =
     "1 GiB: a dense 5000-dof system; give a larger model as Matrix Market files and reduce it with spp reduce";
 
+/// Refuses, starting with `what`, a path holding a NUL byte: the system reads a path as a C string, which the NUL
+/// would cut short (a different file opened silently).
+void check_path_has_no_nul(const std::string& path, const std::string& what);
 /// The bytes of a regular file of at most kMaxInputFileBytes. Throws std::invalid_argument naming the file when it
 /// cannot be opened, is not a regular file (a device such as /dev/zero, a pipe) or is larger.
 std::string read_file(const std::string& path);
