@@ -4,12 +4,13 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "command.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/core/parametric.hpp"
-#include "spp/io.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/io.hpp"
 
 namespace spp::cli {
 
@@ -27,20 +28,41 @@ struct GenerateArgs {
   double m1 = 1, m2 = 1, k1 = 1, k2 = 1, two_dof_g0 = 1;
 };
 
+// Masses and stiffnesses a generated system may have: the solver needs frequencies within [1e-50, 1e50] rad per time
+// unit (src/modal/modal.cpp, kMaxFrequency), so omega^2 ~ k / m within [1e-100, 1e100]; each value within
+// [1e-50, 1e50] keeps the ratio there and the sums of K's diagonal finite. Masses of 1e308 were reported as "the
+// eigenvalues of M did not converge" (an overflow; found by an independent attack).
+constexpr double kMinValue = 1e-50, kMaxValue = 1e50;
+
+// The value named `name` (m3, k1) given by option `opt`, within [kMinValue, kMaxValue].
+double checked(double value, const std::string& name, const std::string& opt) {
+  if (!(value >= kMinValue && value <= kMaxValue)) {
+    std::ostringstream os;
+    os << opt << ": expected " << name << " from 1e-50 to 1e50 (masses and stiffnesses whose frequencies sqrt(k/m) "
+       << "the solver holds in double precision; another unit of mass or time brings them there), got " << value;
+    detail::invalid(os.str());
+  }
+  return value;
+}
+
 // The chosen generator with the value named `free->first` (if any) replaced by `free->second`.
 System make(const GenerateArgs& g, const std::optional<std::pair<std::string, double>>& free) {
-  auto take = [&](const std::string& name, double value) { return free && free->first == name ? free->second : value; };
+  // the value named `name`, from option `opt` or, when it is the free parameter, from --range
+  auto take = [&](const std::string& name, double value, const std::string& opt) {
+    return free && free->first == name ? checked(free->second, name, "--range") : checked(value, name, opt);
+  };
   if (*g.chain) {
     std::vector<double> ms = parse_list(g.masses, "--masses"), ks = parse_list(g.stiffnesses, "--stiffnesses");
     if (ms.size() == 1) ms.assign(static_cast<size_t>(g.n), ms[0]);
     if (ks.size() == 1) ks.assign(static_cast<size_t>(g.n), ks[0]);
-    for (size_t i = 0; i < ms.size(); ++i) ms[i] = take("m" + std::to_string(i + 1), ms[i]);
-    for (size_t i = 0; i < ks.size(); ++i) ks[i] = take("k" + std::to_string(i + 1), ks[i]);
+    for (size_t i = 0; i < ms.size(); ++i) ms[i] = take("m" + std::to_string(i + 1), ms[i], "--masses");
+    for (size_t i = 0; i < ks.size(); ++i) ks[i] = take("k" + std::to_string(i + 1), ks[i], "--stiffnesses");
     const int dof = g.contact_dof == 0 ? g.n - 1 : g.contact_dof - 1;
     return chain(g.n, ms, ks, dof, g.side == "upper" ? ContactSide::Upper : ContactSide::Lower, g.chain_g0);
   }
   if (*g.rod) return rod_with_slip(g.a, g.b);
-  return two_dof(take("m1", g.m1), take("m2", g.m2), take("k1", g.k1), take("k2", g.k2), g.two_dof_g0);
+  return two_dof(take("m1", g.m1, "--m1"), take("m2", g.m2, "--m2"), take("k1", g.k1, "--k1"), take("k2", g.k2, "--k2"),
+                 g.two_dof_g0);
 }
 
 // The bar: sparse, its M and K written as Matrix Market files beside the JSON (<stem>.M.mtx, <stem>.K.mtx).
@@ -68,7 +90,8 @@ int run(const GenerateArgs& g) {
     return 0;
   }
   if (g.parameter.empty() || g.range.empty())
-    detail::invalid("generate: --parameter and --range go together");
+    detail::invalid(std::string("generate: --parameter and --range go together: expected both or neither, got only ") +
+                    (g.parameter.empty() ? "--range" : "--parameter"));
   const std::vector<double> range = parse_list(g.range, "--range");
   if (range.size() != 2) detail::invalid("--range: expected MIN,MAX, got \"" + g.range + "\"");
   const int n = *g.chain ? g.n : 2;

@@ -37,7 +37,9 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
        << "[" << i << "][" << j << "] = " << A(i, j) << " but " << field << "[" << j << "][" << i << "] = " << A(j, i);
     detail::invalid(os.str());
   }
-  Eigen::MatrixXd S = 0.5 * (A + A.transpose());
+  // (halved before the sum: A + A^T overflowed to inf for entries above 8.99e307, and masses of 1e308 were reported
+  // as "the eigenvalues of M did not converge"; found by an independent attack)
+  Eigen::MatrixXd S = 0.5 * A + 0.5 * A.transpose();
   // Positive definite, decided on the unit-diagonal congruent matrix D^-1/2 S D^-1/2 (D = diag S): the same answer for
   // the same system in other units per dof (x = diag(1e3, 1, 1e-3) x' scales S by D, not its definiteness), with a
   // margin above rounding (an eigenvalue at the level of rounding is singular).

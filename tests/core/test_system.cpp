@@ -99,3 +99,12 @@ TEST(System, EnergyScaleBeyondDoublesIsRefusedNamingTheRemedy) {
   EXPECT_NO_THROW(System(I2(), K2(), Eigen::Vector2d(0, -1), 1e90));
   EXPECT_NO_THROW(System(I2(), K2(), Eigen::Vector2d(0, -1), 1e-90));
 }
+
+// Found by an independent attack (issue 11): masses of 1e308 were reported as "the eigenvalues of M did not converge"
+// (the symmetrised copy 0.5 (M + M^T) overflowed to inf). Such a system is valid as far as its matrices go; the
+// frequencies it leads to are judged where they are computed (the modal form), with their range.
+TEST(System, EntriesNearTheLargestDoubleAreNoEigenvalueFailure) {
+  const System s(1e308 * I2(), K2(), w2(), 1.0);
+  EXPECT_EQ(s.M()(0, 0), 1e308);
+  EXPECT_EQ(s.M()(1, 0), 0.0);
+}
