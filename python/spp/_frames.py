@@ -1,7 +1,7 @@
 """to_dataframe() of SolveResult, VerifyResult, ContinuationResult and Branch: one row per SPP, per check or per
 branch point, each column with its own dtype (an empty result keeps them: bool for admissible, int for counts).
-SolveResult's columns are those of ``spp solve --csv`` (src/io/csv.cpp: t1 ... stable, x0_1 .. x0_n, v0_1 .. v0_n),
-then flags."""
+SolveResult's columns are those of ``spp solve --csv`` (src/io/csv.cpp: t1 ... stability_verdict, x0_1 .. x0_n,
+v0_1 .. v0_n), then flags."""
 import numpy as np
 
 
@@ -24,17 +24,20 @@ def _frame(columns, rows):
 
 def solve_result_frame(r):
     """One row per SPP in the result's order (by period): the columns of spp solve --csv (t1, t2, period, admissible,
-    min_gap, min_force, energy, residual, return_error, spectral_radius, stable, x0_1 .. x0_n, v0_1 .. v0_n), then
-    flags (comma-separated). Needs pandas."""
+    min_gap, min_force, energy, residual, return_error, spectral_radius, stable, spectral_radius_error,
+    stability_verdict, x0_1 .. x0_n, v0_1 .. v0_n) with the dtypes pandas.read_csv gives them (bool for admissible and
+    stable, written true/false), then flags (comma-separated). Needs pandas."""
     sols = list(r.solutions)
     n = len(sols[0].x0) if sols else (r.system.n if hasattr(r, "system") and hasattr(r.system, "n") else 0)
     columns = [("t1", float), ("t2", float), ("period", float), ("admissible", bool), ("min_gap", float),
                ("min_force", float), ("energy", float), ("residual", float), ("return_error", float),
-               ("spectral_radius", float), ("stable", bool)]
+               ("spectral_radius", float), ("stable", bool), ("spectral_radius_error", float),
+               ("stability_verdict", object)]
     columns += [(f"x0_{i}", float) for i in range(1, n + 1)] + [(f"v0_{i}", float) for i in range(1, n + 1)]
     columns.append(("flags", object))
     rows = [[x.t1, x.t2, x.period, x.admissible, x.min_gap, x.min_force, x.energy, x.residual, x.return_error,
-             x.spectral_radius, x.stable] + list(x.x0) + list(x.v0) + [",".join(x.flags)] for x in sols]
+             x.spectral_radius, x.stable, x.spectral_radius_error, str(x.stability_verdict)] + list(x.x0) +
+            list(x.v0) + [",".join(x.flags)] for x in sols]
     return _frame(columns, rows)
 
 

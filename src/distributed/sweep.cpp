@@ -34,9 +34,11 @@ void require_out_dir(const std::string& out_dir) {
     for (fs::path up = fs::path(out_dir).parent_path(); !up.empty() && up != up.root_path(); up = up.parent_path())
       if (fs::exists(up, ec) && !fs::is_directory(up, ec))
         detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) + "\" cannot exist: \"" +
-                        io::shorten(up.string(), 200) + "\" on its path is a file, not a directory");
+                        io::shorten(up.string(), 200) +
+                        "\" on its path is a file, not a directory: expected a "
+                        "directory there, got a file");
     detail::invalid("sweep: the output directory \"" + io::shorten(out_dir, 200) +
-                    "\" does not exist (create it first)");
+                    "\" does not exist (create it first): expected an existing directory, got no such directory");
   }
 }
 
@@ -124,13 +126,15 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
   if (!file_declares_parameter(parametric_file))
     detail::invalid("sweep: " + io::shorten(parametric_file, 200) +
                     " declares no parameter (no field \"parameter\"): a sweep over values needs a "
-                    "parametric system file; sweep over system files instead");
+                    "parametric system file; sweep over system files instead: expected a file with a parameter, "
+                    "got one without");
   Sweep s;
   s.parametric_.push_back(load_parametric_system(parametric_file));
   const std::string& declared = s.parametric_.front().parameter().name;
   if (parameter != declared)
     detail::invalid("sweep: the parameter asked for is \"" + io::shorten(parameter, 80) + "\", but " +
-                    io::shorten(parametric_file, 200) + " declares the parameter \"" + declared + "\"");
+                    io::shorten(parametric_file, 200) + " declares the parameter \"" + io::shorten(declared, 80) +
+                    "\": expected \"" + io::shorten(declared, 80) + "\", got \"" + io::shorten(parameter, 80) + "\"");
   s.parameter_ = parameter;
   s.out_dir_ = out_dir;
   // one note for every value outside the declared range: the first named, at most 5 more (a sweep may have 1e6)
@@ -161,7 +165,7 @@ Sweep Sweep::over_values(const std::string& parametric_file, const std::string& 
 
 Sweep Sweep::over_files(const std::vector<std::string>& files, const std::string& out_dir) {
   require_out_dir(out_dir);
-  if (files.empty()) detail::invalid("sweep: no system file given");
+  if (files.empty()) detail::invalid("sweep: no system file given: expected at least one, got none");
   // one parametric file and no parameter: a usage error, before any solve (it was one failed item, exit 4)
   if (files.size() == 1 && file_declares_parameter(files.front())) {
     const ParametricSystem ps = load_parametric_system(files.front());
@@ -309,7 +313,8 @@ std::string sweep_table_csv(const SweepTable& t) {
     const SweepItem& item = t.items[r.index];
     os << r.index << "," << (std::isnan(r.value) ? std::string() : shortest(r.value)) << ","
        << csv_field(item.system_file) << "," << csv_field(item.result_file) << "," << to_string(t.solve_status[r.index])
-       << "," << shortest(r.t1) << "," << shortest(r.t2) << "," << shortest(r.period) << "," << (r.admissible ? 1 : 0)
+       << "," << shortest(r.t1) << "," << shortest(r.t2) << "," << shortest(r.period) << ","
+       << (r.admissible ? "true" : "false")  // (a bool column for pandas, as spp solve --csv writes it)
        << "," << shortest(r.min_gap) << "," << shortest(r.min_force) << "," << shortest(r.energy) << "\n";
   }
   return os.str();

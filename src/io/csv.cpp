@@ -9,6 +9,14 @@ namespace spp {
 using io::invalid;
 using io::num;
 
+namespace {
+// A yes/no column as true/false: pandas.read_csv reads such a column as bool (1/0 read as int64; found by an
+// independent attack), numpy and the csv module read the text as it is, and R's read.csv as logical.
+const char* yes_no(bool b) {
+  return b ? "true" : "false";
+}
+}  // namespace
+
 std::string result_to_csv(const SolveResult& r) {
   std::ostringstream os;
   os << "t1,t2,period,admissible,min_gap,min_force,energy,residual,return_error,spectral_radius,stable,"
@@ -18,9 +26,9 @@ std::string result_to_csv(const SolveResult& r) {
   for (int i = 1; i <= n; ++i) os << ",v0_" << i;
   os << "\n";
   for (const Solution& x : r.solutions) {
-    os << num(x.t1()) << "," << num(x.t2()) << "," << num(x.period()) << "," << (x.admissible() ? 1 : 0) << ","
+    os << num(x.t1()) << "," << num(x.t2()) << "," << num(x.period()) << "," << yes_no(x.admissible()) << ","
        << num(x.min_gap()) << "," << num(x.min_force()) << "," << num(x.energy()) << "," << num(x.residual) << ","
-       << num(x.return_error) << "," << num(x.floquet.spectral_radius) << "," << (x.stable() ? 1 : 0) << ","
+       << num(x.return_error) << "," << num(x.floquet.spectral_radius) << "," << yes_no(x.stable()) << ","
        << num(x.floquet.spectral_radius_error) << "," << to_string(x.floquet.verdict);
     for (int i = 0; i < n; ++i) os << "," << num(x.orbit.x0(i));
     for (int i = 0; i < n; ++i) os << "," << num(x.orbit.v0(i));
@@ -78,7 +86,7 @@ std::string simulation_csv(const SimulationResult& r) {
   for (const Sample& s : r.samples) {
     os << num(s.t);
     state_values(os, s.x, s.v);
-    os << "," << num(s.gap) << "," << num(s.force) << "," << (s.in_contact ? 1 : 0) << "\n";
+    os << "," << num(s.gap) << "," << num(s.force) << "," << yes_no(s.in_contact) << "\n";
   }
   return os.str();
 }
