@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -97,6 +98,27 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
       py::setattr(o, key, given);
     } catch (const py::error_already_set& e) {
       if (!e.matches(PyExc_TypeError)) throw;
+      // a whole number pybind11 cannot hold in the C++ field (periods=10**12 into an int) is out of range, not of
+      // another type: "must be int, got int" said nothing (found by an independent attack). Which C++ integer the
+      // field is, asked of the binding itself: does it take 2^40?
+      if (py::isinstance<py::int_>(given) && !py::isinstance<py::bool_>(given) && py::isinstance<py::int_>(current) &&
+          !py::isinstance<py::bool_>(current)) {
+        bool wide = true;
+        try {
+          py::setattr(py::cast(Options{}), key, py::int_(1LL << 40));
+        } catch (const py::error_already_set&) {
+          wide = false;
+        }
+        const std::string lo = wide ? std::to_string(std::numeric_limits<long long>::min())
+                                    : std::to_string(std::numeric_limits<int>::min());
+        const std::string hi = wide ? std::to_string(std::numeric_limits<long long>::max())
+                                    : std::to_string(std::numeric_limits<int>::max());
+        std::string shown = py::repr(given).cast<std::string>();
+        if (shown.size() > 60) shown = shown.substr(0, 60) + "...";
+        detail::invalid(std::string(where) + ": option " + name + " must be an integer from " + lo + " to " + hi +
+                        " (the range of the C++ field; " + type_name + ".validate() then checks its own bounds), got " +
+                        shown + ": out of range");
+      }
       throw py::type_error(std::string(where) + ": option " + name + " must be " +
                            std::string(py::str(py::type::of(current).attr("__name__"))) + " like its default " +
                            py::repr(current).cast<std::string>() + ", got " + typed_repr(value));
@@ -132,11 +154,16 @@ inline void require_real(const py::object& a, const std::string& what) {
 inline py::object float_array(const py::object& a, const std::string& what) {
   const py::module_ np = py::module_::import("numpy");
   py::object d = py::hasattr(a, "toarray") ? a.attr("toarray")() : a;
-  require_real(d, what);
+  // (the complex check inside the try: numpy's iscomplexobj already fails on a ragged list, [[1, 2], [3]], and its
+  // "inhomogeneous shape" message named no argument; found by an independent attack)
   try {
+    require_real(d, what);
     return np.attr("asarray")(d, "dtype"_a = "float64");
-  } catch (const py::error_already_set&) {
-    detail::invalid(what + " must be an array of numbers, got " + typed_repr(a));
+  } catch (const py::error_already_set& e) {
+    // numpy's reason (a ragged list, a string) kept, shortened: it says what is wrong, ours says where
+    std::string why = py::str(e.value()).cast<std::string>();
+    if (why.size() > 160) why = why.substr(0, 160) + "...";
+    detail::invalid(what + " must be an array of numbers, got " + typed_repr(a) + " (numpy: " + why + ")");
   }
 }
 inline Eigen::MatrixXd matrix_input(const py::object& a, const std::string& what, bool empty_ok = false) {

@@ -70,15 +70,30 @@ void bind_orbit(py::module_& m) {
 
   m.def(
       "trajectory",
-      [](const spp::System& s, double t1, double t2, int samples) {
-        if (samples < 2)
-          detail::invalid("trajectory: samples must be >= 2, got " + std::to_string(samples));
+      [](const spp::System& s, double t1, double t2, const py::object& samples_arg) {
+        // taken as any Python integer (an int parameter made samples=10**12 a signature mismatch, "incompatible
+        // function arguments"; found by an independent attack): its range is said instead
+        if (py::isinstance<py::bool_>(samples_arg))
+          throw py::type_error("trajectory: samples must be an int, got " + typed_repr(samples_arg));
+        py::object whole;
+        try {
+          whole = py::module_::import("operator").attr("index")(samples_arg);
+        } catch (const py::error_already_set& e) {
+          if (!e.matches(PyExc_TypeError)) throw;
+          throw py::type_error("trajectory: samples must be an int, got " + typed_repr(samples_arg));
+        }
         // the samples' arrays (t, gap, force and x, v of n each) are allocated at once: bounded like spp trajectory's
         // CSV, named instead of a MemoryError or a swap storm (found by an independent attack)
         constexpr double kMaxValues = 1e8;
-        if (static_cast<double>(samples) * (2.0 * static_cast<double>(s.n()) + 3.0) > kMaxValues)
-          detail::invalid("trajectory: samples x (2n + 3) must be at most 1e8 values (800 MB), got samples = " +
-                          std::to_string(samples) + " for n = " + std::to_string(s.n()));
+        const auto max_samples = static_cast<long long>(kMaxValues / (2.0 * static_cast<double>(s.n()) + 3.0));
+        if (whole < py::int_(2) || whole > py::int_(max_samples)) {
+          std::string shown = py::repr(whole).cast<std::string>();
+          if (shown.size() > 60) shown = shown.substr(0, 60) + "...";
+          detail::invalid("trajectory: samples must be from 2 to " + std::to_string(max_samples) +
+                          " (samples x (2n + 3) at most 1e8 values, 800 MB, for n = " + std::to_string(s.n()) +
+                          "), got " + shown + ": out of range");
+        }
+        const int samples = whole.cast<int>();
         const spp::ModalForm md(s);
         spp::SolveOptions o;
         o.compute_return_error = false;
