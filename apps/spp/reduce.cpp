@@ -64,7 +64,9 @@ int run(const ReduceArgs& a) {
   for (int m : modes) outputs.push_back({"--out", out_name(a.out, m, several)});
   if (!a.csv.empty()) outputs.push_back({"--csv", a.csv});
   if (!a.spp_csv.empty()) {
-    if (window.empty()) detail::invalid("--spp-csv: needs --window (the SPPs of the reduced models)");
+    if (window.empty())
+      detail::invalid(
+          "--spp-csv: needs --window (the SPPs of the reduced models): expected --window with it, got none");
     outputs.push_back({"--spp-csv", a.spp_csv});
   }
   for (size_t k = 0; k < outputs.size(); ++k)

@@ -108,9 +108,14 @@ System system_at(const ParametricSystem& ps, double at, const std::string& path)
 int run(SolveArgs& a) {
   a.options.symmetry = *symmetry_named(a.symmetry);  // CLI11 checked the name
   const bool maxes = a.t1_max_given->count() > 0 || a.t2_max_given->count() > 0;
-  if (a.box && maxes) detail::invalid("--box sets the window's upper ends: give it or --t1-max/--t2-max");
+  if (a.box && maxes)
+    detail::invalid("--box sets the window's upper ends: give it or --t1-max/--t2-max: expected one of them, got both");
   if (!a.box && !(a.t1_max_given->count() > 0 && a.t2_max_given->count() > 0))
-    detail::invalid("--t1-max and --t2-max are required (or --box: the fundamental box)");
+    detail::invalid(std::string("--t1-max and --t2-max are required (or --box: the fundamental box): expected both, "
+                                "got ") +
+                    (a.t1_max_given->count() > 0   ? "only --t1-max"
+                     : a.t2_max_given->count() > 0 ? "only --t2-max"
+                                                   : "neither"));
   if (!a.box) a.options.validate();                                // with --box, once the box is known (below)
   std::vector<std::string> inputs = system_file_inputs(a.system);  // the system file and its Matrix Market files
   check_output(a.json, "--json", inputs);
@@ -119,7 +124,9 @@ int run(SolveArgs& a) {
   const bool parametric = file_declares_parameter(a.system);
   const bool at_given = a.at_given->count() > 0;
   if (!parametric && at_given)
-    detail::invalid("--at: " + a.system + " is not a parametric system (it has no field \"parameter\")");
+    detail::invalid("--at: " + a.system +
+                    " is not a parametric system (it has no field \"parameter\"): expected "
+                    "--at only with a parametric system file, got a system without a parameter");
   if (parametric && !at_given) return run_zero_gap(a);
   g_interrupted = 0;  // Ctrl-C from here on stops the search at its first report (and then reports what was found)
   // (on several MPI ranks there is no such report: mpirun forwards Ctrl-C, and it ends the run)

@@ -106,8 +106,9 @@ int run(SweepArgs& a) {
   const bool by_value = !a.parameter.empty();
   if (by_value != !a.values.empty())
     detail::invalid(
-        "--parameter and --values go together (a sweep over the values of a parametric "
-        "system's parameter); without them, give system files");
+        std::string("--parameter and --values go together (a sweep over the values of a parametric system's "
+                    "parameter); without them, give system files: expected both or neither, got only ") +
+        (by_value ? "--parameter" : "--values"));
   if (by_value && a.systems.size() != 1)
     detail::invalid("--parameter: give one parametric system file, got " +
                                 std::to_string(a.systems.size()) + " files");

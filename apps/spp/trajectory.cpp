@@ -68,11 +68,15 @@ int run(TrajectoryArgs& a) {
   const ModalForm md = naming_system_file(a.system.empty() ? a.result : a.system, [&] { return ModalForm(sys); });
   std::optional<Solution> loaded;
   if (!a.result.empty()) {
-    if (a.solution < 0) detail::invalid("trajectory: --result needs --solution K (0-based)");
+    if (a.solution < 0)
+      detail::invalid("trajectory: --result needs --solution K (0-based): expected both, got --result alone");
     const std::vector<Solution>& sols = file->result.solutions;
     if (static_cast<size_t>(a.solution) >= sols.size())
-      detail::invalid(a.result + ": --solution " + std::to_string(a.solution) + " out of range, the file has " +
-                      std::to_string(sols.size()) + " solutions");
+      detail::invalid(
+          a.result + ": --solution " + std::to_string(a.solution) + " out of range, the file has " +
+          std::to_string(sols.size()) + " solutions: expected " +
+          (sols.empty() ? std::string("none (no solution to show)") : "0 to " + std::to_string(sols.size() - 1)) +
+          ", got " + std::to_string(a.solution));
     loaded = sols[static_cast<size_t>(a.solution)];
   } else if (a.t1_given->count() == 0) {
     detail::invalid("trajectory: give --t1 and --t2, or --result and --solution");

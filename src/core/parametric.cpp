@@ -32,7 +32,7 @@ ParametricSystem::ParametricSystem(Eigen::MatrixXd M_constant, Eigen::MatrixXd M
       parameter_(std::move(parameter)),
       name_(std::move(name)) {
   const std::string& p = parameter_.name;
-  if (p.empty()) detail::invalid("parametric system: the parameter needs a name");
+  if (p.empty()) detail::invalid("parametric system: the parameter needs a name: expected one, got the empty string");
   if (!(std::isfinite(parameter_.min) && std::isfinite(parameter_.max) && parameter_.min < parameter_.max)) {
     std::ostringstream os;
     os << "parametric system: parameter \"" << p << "\" needs finite min < max, got min = " << parameter_.min
@@ -43,7 +43,10 @@ ParametricSystem::ParametricSystem(Eigen::MatrixXd M_constant, Eigen::MatrixXd M
   K1_ = zero_if_empty(std::move(K_mu), K0_, "K's \"" + p + "\" part");
   w1_ = zero_if_empty(std::move(w_mu), w0_, "w's \"" + p + "\" part");
   if (M1_.isZero(0.0) && K1_.isZero(0.0) && w1_.isZero(0.0))
-    detail::invalid("parametric system: parameter \"" + p + "\" is declared but M, K and w do not depend on it");
+    detail::invalid(
+        "parametric system: parameter \"" + p +
+        "\" is declared but M, K and w do not depend on it: expected a non-zero part of M, K or w in it, got "
+        "only zero parts");
   // Every check of System (sizes, symmetry, SPD, w != 0) at both ends of the range.
   at(parameter_.min);
   at(parameter_.max);

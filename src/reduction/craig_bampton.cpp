@@ -139,7 +139,9 @@ std::vector<ReductionResult> reduce(const SparseSystem& system, const std::vecto
           "reduce", "modes[" + std::to_string(k) + "]", modes[k],
           "> modes[" + std::to_string(k - 1) + "] = " + std::to_string(modes[k - 1]) + " (increasing)");
   }
-  if (n < 2) detail::invalid("reduce: the model has " + std::to_string(n) + " dof: nothing to reduce");
+  if (n < 2)
+    detail::invalid("reduce: the model has " + std::to_string(n) +
+                    " dof: nothing to reduce: expected a model of at least 2 dofs, got " + std::to_string(n));
   const auto t_start = Clock::now();
   ReductionTimings shared;
 

@@ -110,7 +110,7 @@ std::vector<double> uniform_times(double duration, double per_unit) {
   if (count > 1e8) {
     std::ostringstream os;
     os << "simulate: " << count << " samples requested (duration " << duration << " x " << per_unit
-       << " per unit time); at most 1e8";
+       << " per unit time); at most 1e8: expected at most 1e8 samples, got " << count;
     detail::invalid(os.str());
   }
   t.reserve(static_cast<size_t>(count) + 1);
@@ -316,7 +316,8 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     const double gtol = kInitialGapTol * (std::abs(system_.g0()) + x.norm());
     if (g < -gtol) {
       std::ostringstream os;
-      os << "simulate: the initial state penetrates the obstacle: gap w^T x0 + g0 = " << g << " < 0";
+      os << "simulate: the initial state penetrates the obstacle: gap w^T x0 + g0 = " << g
+         << " < 0: expected a gap >= 0 at the start, got " << g;
       detail::invalid(os.str());
     }
     res.energy_initial = energy(x, v);
