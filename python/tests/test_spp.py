@@ -98,8 +98,13 @@ def test_a_result_is_written_only_with_its_own_system():
 def test_trajectory_samples_are_bounded():
     s = chain5()
     t1, t2 = spp.solve(s, t1_max=6, t2_max=3).solutions[0].t1, spp.solve(s, t1_max=6, t2_max=3).solutions[0].t2
-    with pytest.raises(ValueError, match=r"samples x \(2n \+ 3\) must be at most 1e8 values"):
+    with pytest.raises(ValueError, match=r"samples must be from 2 to 7692307 \(samples x \(2n \+ 3\) at most 1e8 values"):
         spp.trajectory(s, t1, t2, samples=10**8)
+    # (issue 11: 10**12 was a signature mismatch, "incompatible function arguments"; now its range is said)
+    with pytest.raises(ValueError, match=r"samples must be from 2 to 7692307 .*got 1000000000000: out of range"):
+        spp.trajectory(s, t1, t2, samples=10**12)
+    with pytest.raises(TypeError, match=r"samples must be an int, got float 3.5"):
+        spp.trajectory(s, t1, t2, samples=3.5)
     assert spp.trajectory(s, t1, t2, samples=11)["x"].shape == (11, 5)
 
 
@@ -583,7 +588,7 @@ def test_solve_result_from_json_refuses_unknown_fields_and_contradictions(tmp_pa
     cases = [(("solutions", 0, "foo"), 1, r'field "solutions"\[0\]: unknown field "foo"'),
              (("solutions", 0, "period"), 123.0, r'field "solutions"\[0\]: field "period" must be 2 \(t1 \+ t2\)'),
              (("window", "t1_max"), -5.0, r'field "window": expected 0 <= t1_min < t1_max'),
-             (("stats", "roots"), -1, r'field "stats": field "roots" must be a count >= 0')]
+             (("stats", "roots"), -1, r'field "stats": field "roots" must be a count, a whole number from 0 to')]
     for keys, value, message in cases:
         j = json.loads(json.dumps(good))
         node = j
@@ -835,7 +840,8 @@ def test_dataframes_of_solutions_checks_and_branches():
     df = r.to_dataframe()
     # the columns of spp solve --csv (src/io/csv.cpp), then flags
     assert list(df.columns) == (["t1", "t2", "period", "admissible", "min_gap", "min_force", "energy", "residual",
-                                 "return_error", "spectral_radius", "stable"] + [f"x0_{i}" for i in range(1, 6)] +
+                                 "return_error", "spectral_radius", "stable", "spectral_radius_error",
+                                 "stability_verdict"] + [f"x0_{i}" for i in range(1, 6)] +
                                 [f"v0_{i}" for i in range(1, 6)] + ["flags"])
     assert np.allclose(df["spectral_radius"], [x.spectral_radius for x in r.solutions], equal_nan=True)
     assert list(df["stable"]) == [x.stable for x in r.solutions] and df["stable"].dtype == bool
@@ -889,3 +895,44 @@ def test_parametric_system_takes_what_system_takes():
         spp.ParametricSystem(M0, [], K0, K1, np.eye(2), [], 1.0, "k", 0.0, 1.0)
     with pytest.raises(ValueError, match="ParametricSystem: K_mu must be real"):
         spp.ParametricSystem(M0, [], K0, 1j * K1, [0.0, 1.0], [], 1.0, "k", 0.0, 1.0)
+
+
+# Issue 11, found by an independent attack: periods=10**12 said "must be int ..., got int 1000000000000".
+def test_periods_of_10_to_12_says_out_of_range_and_the_range():
+    s, r = _chain5_result()
+    with pytest.raises(ValueError, match=r"verify: option periods must be an integer from -2147483648 to 2147483647 "
+                                         r".*got 1000000000000: out of range"):
+        spp.verify(s, r, periods=10**12)
+    with pytest.raises(ValueError, match=r"option max_cells must be an integer from -9223372036854775808 to "
+                                         r"9223372036854775807 .*got 100000000000000000000: out of range"):
+        spp.solve(s, t1_max=4, t2_max=2, max_cells=10**20)
+
+
+# Issue 11, found by an independent attack: a ragged w gave numpy's "inhomogeneous shape" without naming w.
+def test_ragged_w_names_the_argument():
+    K = np.array([[2.0, -1.0], [-1.0, 1.0]])
+    with pytest.raises(ValueError, match=r"System: w must be an array of numbers, got list \[\[1, 2\], \[3\]\]"):
+        spp.System(np.eye(2), K, [[1, 2], [3]], 1.0)
+    with pytest.raises(ValueError, match=r"System: M must be an array of numbers"):
+        spp.System([[1, 0], [0]], K, [0, 1], 1.0)
+
+
+# Issue 11, found by an independent attack: the CSV's admissible and stable columns (1/0) were read by pandas as int.
+def test_csv_yes_no_columns_read_by_pandas_as_bool_like_to_dataframe(tmp_path):
+    pd = pytest.importorskip("pandas")
+    import subprocess
+    exe = os.path.join(SRC, "build", "spp")
+    if not os.path.exists(exe):
+        pytest.skip("no build/spp")
+    csv = str(tmp_path / "r.csv")
+    subprocess.run([exe, "solve", os.path.join(SRC, "examples", "chain5.json"), "--t1-max", "12", "--t2-max", "12",
+                    "--quiet", "--csv", csv], check=True)
+    read = pd.read_csv(csv)
+    s, r = _chain5_result()
+    df = r.to_dataframe()
+    assert read["admissible"].dtype == bool and read["stable"].dtype == bool
+    # the frame has the CSV's columns with the CSV's dtypes, then flags
+    assert list(df.columns)[:-1] == list(read.columns)
+    for c in read.columns:
+        assert df[c].dtype == read[c].dtype, c
+    assert list(read["admissible"]) == list(df["admissible"]) and int(read["admissible"].sum()) == 7
