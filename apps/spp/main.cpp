@@ -7,8 +7,9 @@
 
 #include <chrono>
 #include <iostream>
-#include <new>
+#include <limits>
 #include <map>
+#include <new>
 #include <stdexcept>
 #include <thread>
 
@@ -63,6 +64,22 @@ void refuse_empty_texts(CLI::App& app) {
 }
 }  // namespace spp::cli
 
+namespace {
+// CLI11's "Could not convert: --periods = 1000000000000" of a whole number as "expected ... from INT_MIN to INT_MAX,
+// got ..."; any other conversion failure as CLI11 says it.
+std::string out_of_int_range(const std::string& message) {
+  const std::string head = "Could not convert: ";
+  const size_t eq = message.find(" = ");
+  if (message.rfind(head, 0) != 0 || eq == std::string::npos) return message;
+  const std::string opt = message.substr(head.size(), eq - head.size()), value = message.substr(eq + 3);
+  const size_t digits = value.find_first_not_of("+-") == std::string::npos ? 0 : value.find_first_not_of("+-");
+  if (value.empty() || value.find_first_not_of("0123456789", digits) != std::string::npos || digits > 1) return message;
+  return opt + ": expected a whole number from " + std::to_string(std::numeric_limits<int>::min()) + " to " +
+         std::to_string(std::numeric_limits<int>::max()) +
+         " (the option's integer; its own range is checked next), got " + value + ": out of range";
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   const spp::cli::Runtime runtime(argc, argv);  // MPI in spp-mpi (parallel.hpp)
   // OpenBLAS on the calling thread only, for the whole run: its results depend on its thread count (rounding), so
@@ -98,6 +115,12 @@ int main(int argc, char** argv) {
     return spp::cli::is_root() ? app.exit(e) : 0;
   } catch (const CLI::CallForVersion& e) {
     return spp::cli::is_root() ? app.exit(e) : 0;
+  } catch (const CLI::ConversionError& e) {
+    // a whole number that passed whole_number (|n| <= 1e15) but that the option's int cannot hold: said with the range
+    // (--periods 1e12 and --threads 99999999999 said "Could not convert"; found by fuzzing, issue 11)
+    if (spp::cli::is_root())
+      std::cerr << "spp: error: " << bounded(out_of_int_range(e.what()).c_str()) << "\n(run with --help for the usage)\n";
+    return 1;
   } catch (const CLI::ParseError& e) {
     if (spp::cli::is_root()) std::cerr << "spp: error: " << bounded(e.what()) << "\n(run with --help for the usage)\n";
     return 1;

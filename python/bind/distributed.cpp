@@ -17,8 +17,9 @@ Sweep plan(const std::vector<std::string>& systems, const py::object& parameter,
            const std::string& out_dir) {
   if (parameter.is_none() != values.is_none())
     detail::invalid(
-        "sweep: parameter and values go together (a sweep over a parametric system's "
-        "parameter); without them, give system files");
+        std::string("sweep: parameter and values go together (a sweep over a parametric system's parameter); "
+                    "without them, give system files: expected both or neither, got only ") +
+        (parameter.is_none() ? "values" : "parameter"));
   if (parameter.is_none()) return Sweep::over_files(systems, out_dir);
   if (systems.size() != 1)
     detail::invalid("sweep: a sweep over values takes one parametric system file, got " +
@@ -31,7 +32,7 @@ SweepItemStatus status_named(const std::string& name) {
   for (SweepItemStatus s :
        {SweepItemStatus::NotRun, SweepItemStatus::Solved, SweepItemStatus::Resumed, SweepItemStatus::Failed})
     if (name == to_string(s)) return s;
-  detail::invalid("sweep: unknown item outcome \"" + name + "\"");
+  detail::invalid("sweep: unknown item outcome: expected not_run, solved, resumed or failed, got \"" + name + "\"");
 }
 
 }  // namespace

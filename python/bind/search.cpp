@@ -111,7 +111,9 @@ void bind_search(py::module_& m) {
             for (const spp::Solution& x : r.solutions)
               if (x.orbit.x0.size() != sys.n())
                 detail::invalid("SolveResult pickle: its system has n = " + std::to_string(sys.n()) +
-                                            " dofs, its solutions " + std::to_string(x.orbit.x0.size()));
+                                " dofs, its solutions " + std::to_string(x.orbit.x0.size()) +
+                                ": expected solutions of " + std::to_string(sys.n()) + " dofs, got " +
+                                std::to_string(x.orbit.x0.size()));
             return py::make_tuple(spp::result_json(sys, r, -1));
           },
           [](const py::tuple& state) {

@@ -198,7 +198,9 @@ void bind_simulation(py::module_& m) {
         // would blame the solver for the caller's mix-up
         if (py::hasattr(result, "system") && py::isinstance<spp::System>(result.attr("system")) &&
             !spp::same_system(result.attr("system").cast<const spp::System&>(), s))
-          detail::invalid("verify: the result was solved for another system than the one given (result.system)");
+          detail::invalid(
+              "verify: the result was solved for another system than the one given (result.system): "
+              "expected the system of the result, got another");
         // Ctrl-C checked before each SPP and every 256 events: raised as KeyboardInterrupt
         ProgressHook hook(py::none(), "verify");
         o.progress = [&hook] { return hook.keep_going(); };

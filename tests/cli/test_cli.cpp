@@ -753,7 +753,7 @@ TEST(Cli, InputThatIsNotARegularFileOrTooLargeIsRefusedBeforeItIsRead) {
   { std::ofstream(big) << "{"; }
   fs::resize_file(big, (std::uintmax_t{1} << 30) + 1);
   expect_refused_without_output("solve " + big.string() + " --t1-max 5 --t2-max 5 --json " + out.string(),
-                                "has 1073741825 bytes, more than the 1073741824 an input file of spp may have", out);
+                                "expected an input file of at most 1073741824 bytes", out);
   fs::remove(big);
   expect_refused_without_output("verify " + dir().string() + " --json " + out.string(), "is a directory", out);
 }
@@ -1644,3 +1644,112 @@ TEST(CliMpi, InputErrorOnEveryRankEndsCleanlyWithoutAbort) {
   }
 }
 #endif
+
+// Issue 11, found by an independent attack: each of these was accepted silently or said nothing of what was wrong.
+TEST(Cli, NulByteInAMatrixMarketPathIsRefusedNamingTheField) {
+  write("nul_I.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n0\n0\n1\n");
+  expect_rejected(R"({"M": {"matrix_market": "nul_I.mtx\u0000junk"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                  "field \"M\": field \"matrix_market\": expected a file path of printable characters, got the control "
+                  "character 0 at byte 9");
+}
+
+TEST(Cli, SystemFileWithATrailingNulByteIsRefusedWithItsOffsetAndABomIsAccepted) {
+  const std::string bom = "\xEF\xBB\xBF";
+  expect_rejected(bom + kGood + std::string(1, '\0'),
+                  "got a NUL byte at byte offset " + std::to_string(bom.size() + std::string(kGood).size()));
+  const std::string ok = write("bom_ok.json", bom + kGood);
+  EXPECT_EQ(run("solve " + ok + " --t1-max 5 --t2-max 5 --quiet").code, 0);
+}
+
+TEST(Cli, MatrixMarketHeaderWithExtraWordsIsRefusedNamingLineOne) {
+  write("extra_words.mtx", "%%MatrixMarket matrix coordinate real symmetric extra\n2 2 2\n1 1 1\n2 2 1\n");
+  expect_rejected(R"({"M": {"matrix_market": "extra_words.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                  "extra_words.mtx:1: expected the header");
+}
+
+TEST(Cli, CountOf2To63InAResultIsRefusedNotReportedNegative) {
+  const fs::path res = dir() / "count_2_63.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 4 --t2-max 2 --quiet --json " + res.string()).code, 0);
+  std::ifstream in(res);
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["stats"]["curve_pieces"] = std::uint64_t{1} << 63;
+  const std::string bad = write("count_2_63_bad.json", j.dump());
+  const CliRun r = run("verify " + bad);
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("field \"curve_pieces\" must be a count, a whole number from 0 to 9223372036854775807, got "
+                       "9223372036854775808"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("-9223372036854775808"), std::string::npos) << r.out;
+}
+
+TEST(Cli, NameOf100MegabytesIsRefusedNamingTheLimit) {
+  // (5 MB stands for 100 MB: the same refusal, from the length)
+  expect_rejected(R"({"name": ")" + std::string(5'000'000, 'a') + R"(", "M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]],
+                     "w": [0,-1], "g0": 1})",
+                  "field \"name\": expected at most 4096 bytes, got 5000000");
+}
+
+TEST(Cli, GenerateMassesBeyondTheSolverRangeNameTheOptionAndTheRange) {
+  const fs::path out = dir() / "huge_masses.json";
+  fs::remove(out);
+  CliRun r = run("generate chain --n 3 --masses 1e308 --out " + out.string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--masses: expected m1 from 1e-50 to 1e50"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("got 1e+308"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("did not converge"), std::string::npos) << r.out;
+  r = run("generate chain --n 3 --stiffnesses 1,1e-60,1 --out " + out.string());
+  EXPECT_NE(r.out.find("--stiffnesses: expected k2 from 1e-50 to 1e50"), std::string::npos) << r.out;
+  r = run("generate two-dof --k2 1e300 --out " + out.string());
+  EXPECT_NE(r.out.find("--k2: expected k2 from 1e-50 to 1e50"), std::string::npos) << r.out;
+  r = run("generate two-dof --parameter k2 --range 1,1e60 --out " + out.string());
+  EXPECT_NE(r.out.find("--range: expected k2 from 1e-50 to 1e50"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, CsvYesNoColumnsAreWrittenTrueFalseSoPandasReadsThemAsBool) {
+  // admissible and stable were written 1/0: pandas.read_csv read them as int64 (python/tests checks pandas itself)
+  const fs::path cs = dir() / "yes_no.csv";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --quiet --csv " + cs.string()).code, 0);
+  std::ifstream in(cs);
+  std::string header, line;
+  std::getline(in, header);
+  ASSERT_EQ(header.rfind("t1,t2,period,admissible,", 0), 0u) << header;
+  size_t trues = 0, rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    ASSERT_GT(cells.size(), 10u);
+    for (size_t k : {size_t{3}, size_t{10}}) EXPECT_TRUE(cells[k] == "true" || cells[k] == "false") << line;
+    trues += cells[3] == "true";
+    ++rows;
+  }
+  EXPECT_GT(rows, 0u);
+  EXPECT_GT(trues, 0u);
+  const fs::path sim = dir() / "yes_no_sim.csv";
+  ASSERT_EQ(
+      run("simulate " + kChain + " --x0 0,0,0,0,0 --v0 0,0,0,0,1 --duration 5 --restitution 0 --csv " + sim.string())
+          .code,
+      0);
+  std::ifstream s(sim);
+  std::getline(s, header);
+  ASSERT_EQ(header.substr(header.rfind(',') + 1), "contact");
+  while (std::getline(s, line)) {
+    const std::string last = line.substr(line.rfind(',') + 1);
+    EXPECT_TRUE(last == "true" || last == "false") << line;
+  }
+}
+
+TEST(Cli, WholeNumberBeyondAnIntOptionIsRefusedWithItsRangeNotCouldNotConvert) {
+  // found by fuzzing (issue 11): --threads 99999999999 and verify --periods 1e12 said "Could not convert"
+  const CliRun r = run("solve " + kChain + " --t1-max 4 --t2-max 2 --threads 99999999999");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("--threads: expected a whole number from -2147483648 to 2147483647 (the option's integer; its "
+                       "own range is checked next), got 99999999999: out of range"),
+            std::string::npos)
+      << r.out;
+  const CliRun p = run("verify " + kChain + " --periods 1e12");
+  EXPECT_NE(p.out.find("--periods: expected a whole number from -2147483648 to 2147483647"), std::string::npos)
+      << p.out;
+}
