@@ -124,7 +124,7 @@ class CellTracer::Impl {
       // distances from the bordered form, whose error stays at its O(1) scale; the smaller estimate is kept.
       if (p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
         // (a point placed in the bordered form brings its own estimate: no second eigendecomposition)
-        const BorderedOffset bo = q.bordered.valid ? q.bordered : bordered_offset(eq_, q.t1, q.t2);
+        const BorderedOffset bo = q.bordered.valid ? q.bordered : bordered_offset(eq_, q.t1, q.t2, &eigen_cache_);
         if (bo.valid) {
           const double via[3] = {bo.lam_err / (bo.l1 + bo.l2), bo.lam_err / bo.l1, bo.lam_err / bo.l2};
           for (int i = 0; i < 3; ++i)

@@ -85,7 +85,32 @@ struct StepBox {
 struct SpectralProducts {
   Eigen::MatrixXd Hp, HpG, GHpG;
   bool ready = false;
+  /// What |Hp E_box|_F needs at O(m^2) per step (structured_box_norm): the squared column norms of Hp and of Hp Gx,
+  /// and Gx o (Hp Hp Gx) (entrywise product) with its absolute value. One m^3 product, formed by the first
+  /// AlongCurve::k2 at this point (`box_ready`), then shared by every step from it.
+  Eigen::VectorXd hp_col2, hpg_col2;
+  Eigen::MatrixXd GW, aGW;
+  bool box_ready = false;
 };
+
+/// Forms the box_ready part of p (p.Hp, p.HpG formed) for the contact basis G.
+void prepare_box_products(SpectralProducts& p, const Eigen::MatrixXd& G);
+
+/// |Hp E|_F for E = -diag(dF) + G diag(dC) G^T (dF, dC >= 0), from the pieces prepare_box_products kept, in O(m^2):
+///   |Hp E|_F^2 = sum_l dF_l^2 |Hp e_l|^2 - 2 dF^T (G o Hp Hp G) dC + |Hp G diag(dC) G^T|_F^2,
+/// the last term at most sum_i dC_i^2 |Hp G e_i|^2 (1 + delta), delta a bound of |G^T G - I|_2 (rounding of G's
+/// orthonormal columns). `value` is an upper bound of the exact norm for the given Hp, Hp G and G, rounding of the
+/// sums and of Hp Hp G included (`slack`, in squared units); `usable` false where that slack exceeds
+/// kStructuredBoxSlack of the squared norm (cancellation between the flight and contact parts, where the
+/// expansion loses the digits the dense product keeps): take dense_box_norm there.
+struct BoxNorm {
+  double value = 0, slack = 0;
+  bool usable = false;
+};
+BoxNorm structured_box_norm(const SpectralProducts& p, const Eigen::VectorXd& dF, const Eigen::VectorXd& dC);
+/// The same norm from the dense product -Hp diag(dF) + (Hp G diag(dC)) G^T (an m^3 product per call).
+double dense_box_norm(const Eigen::MatrixXd& Hp, const Eigen::MatrixXd& HpG, const Eigen::MatrixXd& G,
+                      const Eigen::VectorXd& dF, const Eigen::VectorXd& dC);
 
 /// Full eigenpairs of bordered forms at the last few points: a step's start is the previous step's end, and a step
 /// the bounds refuse is retried, shorter, from the same start. Keyed by the point and the bordered modes.
@@ -169,7 +194,9 @@ struct BorderedOffset {
   bool valid = false;
   double lam_err = 0, l1 = 0, l2 = 0;
 };
-BorderedOffset bordered_offset(const EquationSet& eq, double t1, double t2);
+/// With `cache`, the eigenpairs come from (and stay in) it: the step certificate at the same point, in a bordered form
+/// with the same bordered modes, then takes them without a second decomposition.
+BorderedOffset bordered_offset(const EquationSet& eq, double t1, double t2, EigenCache* cache = nullptr);
 
 /// Extreme values over t in [lo, hi] (inside one pole interval) of the phase functions of the flight (omega) or
 /// contact (d) frequencies: f = w tan(w t) (PhaseShape::FTan) or tan(w t)/w (TanOverF); increments |f(hi) - f(lo)| per
@@ -212,9 +239,11 @@ class AlongCurve {
   /// |Gx^T Hp Gx| entrywise). E(s) = H(s) - H_x.
   FirstOrder first_order(const Vec& a, const Vec& ya, double kappa, const Mat& Hp, const Mat& HpG, const Mat& aHp,
                          const Mat& aHpG, const Mat& aGHpG) const;
-  /// sup over the step of |Hp E(s)| (Frobenius). Its first term, |Hp E_box|, does not depend on kappa: formed (an m^3
-  /// product) on the first call only, for the Hp, HpG of that call (one AlongCurve serves one end's eigenpairs).
-  double k2(double kappa, const Mat& Hp, const Mat& HpG) const;
+  /// sup over the step of |Hp E(s)| (Frobenius). Its first term, |Hp E_box|, does not depend on kappa: formed on the
+  /// first call only, for the Hp, HpG of that call (one AlongCurve serves one end's eigenpairs). With `products` (the
+  /// point's, holding Hp and HpG) and m >= kLapackFrom, in O(m^2) from its box part (structured_box_norm, formed once
+  /// per point); else, or where that bound is not usable, by an m^3 product (dense_box_norm).
+  double k2(double kappa, const Mat& Hp, const Mat& HpG, SpectralProducts* products = nullptr) const;
   /// sup over the step of |v^T E(s) b|.
   double bilinear(const Vec& v, const Vec& yv, const Vec& b, const Vec& yb, double kappa) const;
 
