@@ -1,9 +1,20 @@
 // build/spp: one process.
+#include <unistd.h>
+
+#include <cstdlib>
+
 #include "parallel.hpp"
+#include "spp/detail/blas_core.hpp"
 
 namespace spp::cli {
 
-Runtime::Runtime(int&, char**&) {}
+// OpenBLAS picks its kernels when it is loaded; where it fell back to its generic ones on a CPU it does not know, the
+// process re-executes itself asking for the right ones (detail::blas_core_advice; the variable, once set, stops a
+// second round). execv returns only on failure: the run goes on with the kernels it has.
+Runtime::Runtime(int&, char**& argv) {
+  const char* core = detail::blas_core_advice();
+  if (*core != '\0' && setenv("OPENBLAS_CORETYPE", core, 0) == 0) execv("/proc/self/exe", argv);
+}
 Runtime::~Runtime() = default;
 int ranks() {
   return 1;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdlib>
+#include <cstring>
 
 #include "detail/lapack.hpp"
+#include "spp/detail/blas_core.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
 
 namespace spp::detail {
@@ -36,9 +39,23 @@ SingleThreadedBlas::SingleThreadedBlas() : saved_(openblas_get_num_threads()) {
 SingleThreadedBlas::~SingleThreadedBlas() {
   if (saved_ != 1) openblas_set_num_threads(saved_);
 }
+const char* blas_core_advice() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (std::getenv("OPENBLAS_CORETYPE") != nullptr) return "";
+  const char* core = openblas_get_corename();
+  if (core == nullptr || std::strcmp(core, "Prescott") != 0) return "";
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) return "SkylakeX";
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
+#endif
+  return "";
+}
 #else
 SingleThreadedBlas::SingleThreadedBlas() = default;
 SingleThreadedBlas::~SingleThreadedBlas() = default;
+const char* blas_core_advice() {
+  return "";
+}
 #endif
 
 Eigen::MatrixXd product(const Eigen::MatrixXd& A, bool transpose_a, const Eigen::MatrixXd& B, bool transpose_b) {

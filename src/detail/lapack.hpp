@@ -28,6 +28,7 @@ void dlaed4_(const int* n, const int* i, const double* d, const double* z, doubl
 #ifdef SPP_OPENBLAS
 void openblas_set_num_threads(int);
 int openblas_get_num_threads(void);
+char* openblas_get_corename(void);
 #endif
 }
 
