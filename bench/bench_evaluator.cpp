@@ -7,13 +7,20 @@
 //   OnsetInertia/m    Evaluator::onset_inertia (the inertia of H compressed to the onset hyperplane)
 //   LdltCount/m       the kernel alone: detail::count_below_ldlt of H (dsytrf + its a posteriori bound)
 //   Tridiagonal/m     the kernel alone: detail::SymmetricTridiagonal of H (dsytrd from m = 128 on)
+//   CertifiedStep/m   one certified step's spectral bounds as a trace makes them (step_certificate.hpp): from its start
+//                     (eigenpairs and products cached) and from its end (new: full eigenpairs, the products Hp, Hp Gx,
+//                     Gx^T Hp Gx, and |Hp E_box| for each end); the step's points t1 = 0.3 - j dt, t2 = 0.2 + j dt
+//   BoxNormDense/m, BoxNormStructured/m   |Hp E_box|_F alone: the m^3 product against the O(m^2) expansion (the
+//                     latter after its one m^3 product per point, prepare_box_products, outside the timing)
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 
 #include "search/evaluator.hpp"
 #include "search/loewner_contact.hpp"
+#include "search/step_certificate.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/detail/dense_products.hpp"
 #include "spp/detail/symmetric_inertia.hpp"
@@ -104,6 +111,91 @@ void Tridiagonal(benchmark::State& state) {
   }
 }
 
+// Four points of a step chain (t1 down, t2 up, as on a curve), their box, and each point's unit eigenvector nearest 0
+// (the traced null vector's stand-in: the bounds' cost does not depend on how small its eigenvalue is).
+struct StepChain {
+  explicit StepChain(const Chain& c) : bf(*c.eq, kT1 - 3 * kDt, kT1, kT2, kT2 + 3 * kDt) {
+    for (int j = 0; j < 4; ++j) {
+      spp::search::StepEnd& e = ends[j];
+      e.s = 2 * j * kDt;
+      e.t1 = kT1 - j * kDt;
+      e.t2 = kT2 + j * kDt;
+      const spp::detail::SymmetricEigen es = spp::detail::symmetric_eigen(bf.matrix(e.t1, e.t2));
+      Eigen::Index k = 0;
+      es.values.cwiseAbs().minCoeff(&k);
+      b[j] = es.vectors.col(k).head(c.modal.m());
+      e.b = &b[j];
+    }
+  }
+  static constexpr double kDt = 1e-7;
+  spp::search::BorderedForm bf;
+  spp::search::StepEnd ends[4];
+  Eigen::VectorXd b[4];
+};
+
+void CertifiedStep(benchmark::State& state) {
+  const spp::detail::SingleThreadedBlas single_threaded_blas;
+  const Chain c(static_cast<int>(state.range(0)));
+  const StepChain sc(c);
+  spp::search::EigenCache cache;  // three entries: with four points in turn, each step's end is new
+  // the first step's start as a trace reaches it: its eigenpairs and products already formed
+  spp::search::spectral_bounds(sc.bf, sc.ends[0], sc.ends[0].s, sc.ends[1].s, kT1 - 3 * StepChain::kDt, kT1, kT2,
+                               kT2 + 3 * StepChain::kDt, &cache);
+  int i = 0, evaluations = 0, valid = 0;
+  for (auto _ : state) {
+    const spp::search::StepEnd& a = sc.ends[i % 4];
+    const spp::search::StepEnd& b = sc.ends[(i + 1) % 4];
+    ++i;
+    for (const spp::search::StepEnd* x : {&a, &b}) {
+      const spp::search::SpectralBounds sb =
+          spp::search::spectral_bounds(sc.bf, *x, std::min(a.s, b.s), std::max(a.s, b.s), kT1 - 3 * StepChain::kDt, kT1,
+                                       kT2, kT2 + 3 * StepChain::kDt, &cache);
+      evaluations += sb.evaluations;
+      valid += sb.valid ? 1 : 0;
+    }
+  }
+  state.counters["evaluations_per_step"] = static_cast<double>(evaluations) / static_cast<double>(i);
+  state.counters["valid_bounds"] = static_cast<double>(valid);
+}
+
+// The products of one point and the box increments of a step of 3 dt (those spectral_bounds takes).
+struct BoxInputs {
+  explicit BoxInputs(const Chain& c) : sc(c) {
+    const spp::detail::SymmetricEigen es = spp::detail::symmetric_eigen(sc.bf.matrix(kT1, kT2));
+    Eigen::Index k = 0;
+    es.values.cwiseAbs().minCoeff(&k);
+    Eigen::VectorXd inv = es.values.cwiseInverse();
+    inv(k) = 0.0;
+    p.Hp = spp::detail::congruence(es.vectors, inv);
+    p.HpG = spp::detail::product(p.Hp, false, sc.bf.Gx(), false);
+    spp::search::prepare_box_products(p, sc.bf.Gx());
+    dF = spp::search::phase_bounds(sc.bf.flight(), kT1 - 3 * StepChain::kDt, kT1).increment;
+    dC = spp::search::phase_bounds(sc.bf.contact(), kT2, kT2 + 3 * StepChain::kDt).increment;
+  }
+  StepChain sc;
+  spp::search::SpectralProducts p;
+  Eigen::VectorXd dF, dC;
+};
+
+void BoxNormDense(benchmark::State& state) {
+  const spp::detail::SingleThreadedBlas single_threaded_blas;
+  const Chain c(static_cast<int>(state.range(0)));
+  const BoxInputs in(c);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(spp::search::dense_box_norm(in.p.Hp, in.p.HpG, in.sc.bf.Gx(), in.dF, in.dC));
+}
+
+void BoxNormStructured(benchmark::State& state) {
+  const spp::detail::SingleThreadedBlas single_threaded_blas;
+  const Chain c(static_cast<int>(state.range(0)));
+  const BoxInputs in(c);
+  spp::search::BoxNorm r;
+  for (auto _ : state) benchmark::DoNotOptimize(r = spp::search::structured_box_norm(in.p, in.dF, in.dC));
+  const double dense = spp::search::dense_box_norm(in.p.Hp, in.p.HpG, in.sc.bf.Gx(), in.dF, in.dC);
+  state.counters["relative_to_dense"] = r.value / dense - 1.0;
+  state.counters["usable"] = r.usable ? 1.0 : 0.0;
+}
+
 }  // namespace
 
 BENCHMARK(Eigenpair)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
@@ -112,4 +204,7 @@ BENCHMARK(OnsetInertia)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark:
 BENCHMARK(LoewnerEntries)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(LdltCount)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Tridiagonal)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(CertifiedStep)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BoxNormDense)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BoxNormStructured)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
