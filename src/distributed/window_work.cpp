@@ -142,7 +142,9 @@ std::vector<std::vector<search::EdgeHit>> read_hits(Reader& r, size_t cells) {
 
 struct WindowWork::Impl {
   System system;
-  std::unique_ptr<EquationSet> eq;
+  std::unique_ptr<EquationSet> user_eq;      // on the caller's modal form: builds the SPPs
+  std::unique_ptr<search::SearchTime> time;  // the search's time unit and modal form (held: eq refers to it)
+  std::unique_ptr<EquationSet> eq;           // on time->modal: what the units trace
   search::WindowPlan plan;
   SolveOptions options;
   std::chrono::steady_clock::time_point t0;
@@ -152,9 +154,12 @@ WindowWork::WindowWork(const System& system, const ModalForm& modal, const Solve
   options.validate();
   search::check_solve_inputs(system, modal, "WindowWork");
   const auto t0 = std::chrono::steady_clock::now();
-  auto eq = make_equations(modal, options.symmetry);
-  search::WindowPlan plan = search::plan_search(modal, options);
-  impl_ = std::make_unique<Impl>(Impl{system, std::move(eq), std::move(plan), options, t0});
+  auto user_eq = make_equations(modal, options.symmetry);
+  auto time = std::make_unique<search::SearchTime>(modal, options);
+  auto eq = make_equations(time->modal, options.symmetry);
+  search::WindowPlan plan = search::plan_search(modal, options, *time);
+  impl_ = std::make_unique<Impl>(
+      Impl{system, std::move(user_eq), std::move(time), std::move(eq), std::move(plan), options, t0});
 }
 
 WindowWork::~WindowWork() = default;
@@ -243,9 +248,9 @@ SolveResult WindowWork::finish(const std::vector<std::string>& outputs) const {
     for (auto* lists : {&out.left, &out.top, &out.right, &out.bottom}) *lists = read_hits(r, I);
     r.end();
   }
-  SolveResult res = search::start_result(impl_->eq->modal(), plan, impl_->options.symmetry);
+  SolveResult res = search::start_result(impl_->user_eq->modal(), plan, impl_->options, *impl_->time);
   search::TracedWindow traced = search::merge_strips(plan, strips, res);
-  search::finish_search(impl_->system, *impl_->eq, plan, traced, impl_->options, res);
+  search::finish_search(impl_->system, *impl_->user_eq, *impl_->eq, *impl_->time, plan, traced, impl_->options, res);
   res.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - impl_->t0).count();
   return res;
 }

@@ -226,6 +226,20 @@ std::vector<double> tangent_poles(const Eigen::VectorXd& freqs, double lo, doubl
   return merged;
 }
 
+ModalForm ModalForm::in_time_unit(double rate) const {
+  if (!(rate > 0.0 && std::isfinite(rate))) {
+    std::ostringstream os;
+    os << "ModalForm::in_time_unit: rate must be positive and finite, got " << rate;
+    detail::invalid(os.str());
+  }
+  ModalForm out = *this;
+  out.omega_ /= rate;
+  out.z_ /= rate;
+  out.d_ /= rate;
+  out.omega_dec_ /= rate;
+  return out;
+}
+
 std::vector<double> ModalForm::flight_poles(double lo, double hi) const {
   return tangent_poles(omega_, lo, hi);
 }

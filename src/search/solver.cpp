@@ -183,17 +183,24 @@ SolutionAt solution_at(const System& system, const ModalForm& md, double t1, dou
   require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
   require_modal_of(system, md, "solution_at");
-  const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
-  const Polished p = polish(*eq, t1, t2);
+  // Newton in the search's time, as solve() polishes (search::SearchTime); the SPP built at the user's times
+  const search::SearchTime time(md, options);
+  const std::unique_ptr<EquationSet> user_eq = make_equations(md, options.symmetry);
+  const std::unique_ptr<EquationSet> eq = make_equations(time.modal, options.symmetry);
+  Polished p = polish(*eq, t1 * time.rate, t2 * time.rate);
+  const bool root = p.converged && std::hypot(p.t1 - t1 * time.rate, p.t2 - t2 * time.rate) <=
+                                       search::kPolishReach * (t1 + t2) * time.rate &&
+                    gap_can_close(*eq, p.t1, p.a);
+  p.t1 = time.to_user(p.t1);
+  p.t2 = time.to_user(p.t2);
   SolutionAt out;
   out.start_t1 = t1;
   out.start_t2 = t2;
   out.t1 = p.t1;
   out.t2 = p.t2;
   out.residual = p.residual;
-  out.found = p.converged && std::hypot(p.t1 - t1, p.t2 - t2) <= search::kPolishReach * (t1 + t2) &&
-              gap_can_close(*eq, p.t1, p.a);
-  if (out.found) out.solution = build_solution(system, *eq, p, options, options.compute_return_error);
+  out.found = root;
+  if (out.found) out.solution = build_solution(system, *user_eq, p, options, options.compute_return_error);
   return out;
 }
 
@@ -379,7 +386,10 @@ bool on_pole_line(const ModalForm& md, double t1, double t2) {
 }
 
 // Step 5: polish every candidate, keep the roots inside the half-open window, deduplicate, build orbits.
-void polish_candidates(const System& system, const EquationSet& eq, const search::WindowPlan& plan,
+// Everything here is in the search's time (eq, plan, candidates) but the SPPs, built on user_eq at the user's times,
+// and the warnings, which name the user's times.
+void polish_candidates(const System& system, const EquationSet& user_eq, const EquationSet& eq,
+                       const search::SearchTime& time, const search::WindowPlan& plan,
                        const std::vector<Candidate>& candidates, bool with_return_error, SolveResult& res) {
   const ModalForm& md = eq.modal();
   const SolveOptions& opt = plan.options;
@@ -405,6 +415,7 @@ void polish_candidates(const System& system, const EquationSet& eq, const search
     return std::hypot(a1 - b1, a2 - b2) <= search::kSameRoot * window_scale;
   };
   std::vector<std::pair<double, double>> artifacts;  // places of the pole-line artifacts dismissed so far
+  std::vector<std::pair<double, double>> roots;      // places of the SPPs kept so far (search time)
   for (const Candidate& c : candidates) {
     const Polished p = polish(eq, c.t1, c.t2, c.b);
     // A candidate that does not polish is not reported as an SPP. Where Newton stalls with a small residual next to a
@@ -434,23 +445,29 @@ void polish_candidates(const System& system, const EquationSet& eq, const search
       // The first kListedUnpolished are named; the rest are counted in one line (finalize), all are in uncertified.
       if (res.stats.unpolished_roots <= kListedUnpolished) {
         std::ostringstream os;
-        os << "a sign change of g near (t1, t2) = (" << c.t1 << ", " << c.t2 << ") did not polish to a root (residual "
+        os << "a sign change of g near (t1, t2) = (" << time.to_user(c.t1) << ", " << time.to_user(c.t2)
+           << ") did not polish to a root (residual "
            << p.residual << ")";
         res.warnings.push_back(os.str());
       }
       continue;
     }
     if (!inside(p.t1, p.t2)) continue;
-    if (std::any_of(res.solutions.begin(), res.solutions.end(),
-                    [&](const Solution& s) { return same_place(s.t1(), s.t2(), p.t1, p.t2); }))
+    if (std::any_of(roots.begin(), roots.end(),
+                    [&](const std::pair<double, double>& r) { return same_place(r.first, r.second, p.t1, p.t2); }))
       continue;
     if (!gap_can_close(eq, p.t1, p.a)) {  // u^T W^-1 p0 = 0 exactly: eq. (5.2) has no scale
       std::ostringstream os;
-      os << "root skipped: at (t1, t2) = (" << p.t1 << ", " << p.t2 << ") the gap cannot close (u^T W^-1 p0 = 0)";
+      os << "root skipped: at (t1, t2) = (" << time.to_user(p.t1) << ", " << time.to_user(p.t2)
+         << ") the gap cannot close (u^T W^-1 p0 = 0)";
       res.warnings.push_back(os.str());
       continue;
     }
-    Solution s = build_solution(system, eq, p, opt, with_return_error);
+    roots.emplace_back(p.t1, p.t2);
+    Polished user_p = p;  // N's null vector a does not depend on the time unit (N scales by a power of rate)
+    user_p.t1 = time.to_user(p.t1);
+    user_p.t2 = time.to_user(p.t2);
+    Solution s = build_solution(system, user_eq, user_p, opt, with_return_error);
     if (c.uncertified) s.flags.push_back("uncertified_step");
     if (c.near_pole) s.flags.push_back("near_pole_line");
     res.solutions.push_back(std::move(s));
@@ -499,7 +516,20 @@ void finalize(const SolveOptions& options, SolveResult& res) {
 
 namespace search {
 
-WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {
+double reference_frequency(const ModalForm& md) {
+  if (md.m() == 0) return 1.0;
+  return std::sqrt(md.omega().minCoeff()) * std::sqrt(md.omega().maxCoeff());  // (no overflow of the product)
+}
+
+SearchTime::SearchTime(const ModalForm& user, const SolveOptions& user_options)
+    : rate(reference_frequency(user)), modal(user.in_time_unit(rate)), options(user_options) {
+  options.t1_min *= rate;
+  options.t1_max *= rate;
+  options.t2_min *= rate;
+  options.t2_max *= rate;
+}
+
+WindowPlan plan_search(const ModalForm& md, const SolveOptions& options, const SearchTime& time) {
   const auto [band1, band2] = axis_band(md);
   if (options.t1_max <= band1 || options.t2_max <= band2) {
     std::ostringstream os;
@@ -508,7 +538,8 @@ WindowPlan plan_search(const ModalForm& md, const SolveOptions& options) {
        << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
     detail::invalid(os.str());
   }
-  return plan_window(md, options);
+  check_window_size(md, options);  // refused naming the user's window; the plan below counts the same cells
+  return plan_window(time.modal, time.options);
 }
 
 void check_solve_inputs(const System& system, const ModalForm& md, const char* where) {
@@ -516,29 +547,38 @@ void check_solve_inputs(const System& system, const ModalForm& md, const char* w
   require_modal_of(system, md, where);
 }
 
-SolveResult start_result(const ModalForm& md, const WindowPlan& plan, Symmetry symmetry) {
+SolveResult start_result(const ModalForm& md, const WindowPlan& plan, const SolveOptions& options,
+                         const SearchTime& time) {
   SolveResult res;
   res.decoupled_modes = static_cast<int>(md.omega_decoupled().size());
   res.repeated_groups = md.repeated_groups();
-  res.symmetry = symmetry;
+  res.symmetry = options.symmetry;
+  // the user's ends as given; the automatic lower ends (plan.options) back from the search's time
   const auto [band1, band2] = axis_band(md);
-  res.t1_min = std::max(plan.options.t1_min, band1);
-  res.t1_max = plan.options.t1_max;
-  res.t2_min = std::max(plan.options.t2_min, band2);
-  res.t2_max = plan.options.t2_max;
+  res.t1_min = std::max(options.t1_min > 0 ? options.t1_min : time.to_user(plan.options.t1_min), band1);
+  res.t1_max = options.t1_max;
+  res.t2_min = std::max(options.t2_min > 0 ? options.t2_min : time.to_user(plan.options.t2_min), band2);
+  res.t2_max = options.t2_max;
   res.stats.flight_pole_lines = plan.t1.poles();
   res.stats.contact_pole_lines = plan.t2.poles();
   return res;
 }
 
-void finish_search(const System& system, const EquationSet& eq, const WindowPlan& plan, TracedWindow& traced,
-                   const SolveOptions& options, SolveResult& res) {
+void finish_search(const System& system, const EquationSet& user_eq, const EquationSet& eq, const SearchTime& time,
+                   const WindowPlan& plan, TracedWindow& traced, const SolveOptions& options, SolveResult& res) {
   // 4. pair the curves across the thin strips around pole lines (a stopped search has no hits from the cells it
   // skipped: its strips are left unpaired, and the status says that the search was stopped)
   if (res.stats.unsearched_cells == 0)
     pair_across_pole_lines(traced.hits, plan.t1, plan.t2, res.stats, res.uncertified, traced.candidates);
   // 5. polish into roots, keep those of the window
-  polish_candidates(system, eq, plan, traced.candidates, options.compute_return_error, res);
+  polish_candidates(system, user_eq, eq, time, plan, traced.candidates, options.compute_return_error, res);
+  // back to the user's time: the regions not certified (the SPPs are built there already)
+  for (UncertifiedRegion& u : res.uncertified) {
+    u.t1_lo = time.to_user(u.t1_lo);
+    u.t1_hi = time.to_user(u.t1_hi);
+    u.t2_lo = time.to_user(u.t2_lo);
+    u.t2_hi = time.to_user(u.t2_hi);
+  }
   // 6. finalize
   finalize(options, res);
 }
@@ -558,14 +598,17 @@ SolveResult solve(const System& system, const ModalForm& md, const SolveOptions&
   require_nonzero_gap(system);
   require_modal_of(system, md, "solve");
   const auto t0 = std::chrono::steady_clock::now();
-  const std::unique_ptr<EquationSet> eq = make_equations(md, options.symmetry);
+  // the search runs in its own time unit (search::SearchTime), the SPPs are built in the user's
+  const search::SearchTime time(md, options);
+  const std::unique_ptr<EquationSet> user_eq = make_equations(md, options.symmetry);
+  const std::unique_ptr<EquationSet> eq = make_equations(time.modal, options.symmetry);
   // 1. plan the window: search region, pole lines, cells (refused if too many) before any evaluation
-  const search::WindowPlan plan = search::plan_search(md, options);
-  SolveResult res = search::start_result(md, plan, options.symmetry);
+  const search::WindowPlan plan = search::plan_search(md, options, time);
+  SolveResult res = search::start_result(md, plan, options, time);
   // 2-3. count at the corners and trace the pieces, cell by cell
   search::TracedWindow traced = trace_cells(*eq, plan, res);
   // 4-6. pair, polish, finalize
-  search::finish_search(system, *eq, plan, traced, options, res);
+  search::finish_search(system, *user_eq, *eq, time, plan, traced, options, res);
   res.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
@@ -574,13 +617,14 @@ WindowEstimate estimate_window(const System& system, const ModalForm& md, const 
   options.validate();
   require_nonzero_gap(system);
   require_modal_of(system, md, "estimate_window");
-  const auto [band1, band2] = axis_band(md);
-  const search::WindowPlan plan = search::plan_search(md, options);
+  const search::SearchTime time(md, options);
+  const search::WindowPlan plan = search::plan_search(md, options, time);
+  const SolveResult window = search::start_result(md, plan, options, time);
   WindowEstimate e;
-  e.t1_min = std::max(plan.options.t1_min, band1);
-  e.t1_max = plan.options.t1_max;
-  e.t2_min = std::max(plan.options.t2_min, band2);
-  e.t2_max = plan.options.t2_max;
+  e.t1_min = window.t1_min;
+  e.t1_max = window.t1_max;
+  e.t2_min = window.t2_min;
+  e.t2_max = window.t2_max;
   e.flight_pole_lines = plan.t1.poles();
   e.contact_pole_lines = plan.t2.poles();
   e.cells = static_cast<long>(plan.t1.cells() * plan.t2.cells());

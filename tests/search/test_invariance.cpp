@@ -85,3 +85,53 @@ TEST(Invariance, ScalingTimeKeepsTheReturnErrorAtRoundingLevel) {
     for (const Solution& x : r.solutions) EXPECT_LT(x.return_error, 1e-8) << f << " at " << x.t1() << ", " << x.t2();
   }
 }
+
+TEST(Invariance, SolverStatusAndCountsDoNotDependOnTheTimeUnit) {
+  // Issue 11 finding: chain5 with K x 1e12 (every frequency x 1e6) on the window scaled by 1e-6 ended incomplete,
+  // with unproved trace steps and several times the evaluations, where the unit system ends success: absolute numbers
+  // in the search decided in the user's time unit. The search now runs in its own time (search::SearchTime): the same
+  // status, the same SPPs scaled, the same verdicts and nearly the same work in any time unit.
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/examples/chain5.json");
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  o.compute_return_error = false;
+  o.threads = 1;
+  const SolveResult ref = solve(s, o);
+  ASSERT_EQ(ref.status, SolveStatus::Success) << ref.brief_report();
+  ASSERT_GT(ref.solutions.size(), 0u);
+  struct Scaled {
+    const char* what;
+    System system;
+    double time;  // every time of the system multiplied by this
+  };
+  const std::vector<Scaled> cases = {
+      {"K x 1e12", System(s.M(), 1e12 * s.K(), s.w(), s.g0()), 1e-6},
+      {"K x 1e-12", System(s.M(), 1e-12 * s.K(), s.w(), s.g0()), 1e6},
+      {"M x 1e8", System(1e8 * s.M(), s.K(), s.w(), s.g0()), 1e4},
+  };
+  for (const Scaled& c : cases) {
+    SolveOptions oc = o;
+    oc.t1_max = o.t1_max * c.time;
+    oc.t2_max = o.t2_max * c.time;
+    const SolveResult r = solve(c.system, oc);
+    EXPECT_EQ(r.status, ref.status) << c.what << ": " << r.brief_report();
+    EXPECT_TRUE(r.uncertified.empty()) << c.what;
+    EXPECT_EQ(r.stats.uncertified_steps, 0) << c.what;
+    EXPECT_EQ(r.stats.curve_pieces, ref.stats.curve_pieces) << c.what;
+    // the same search up to the rounding of the frequencies: near-identical work
+    EXPECT_NEAR(static_cast<double>(r.stats.evaluations), static_cast<double>(ref.stats.evaluations),
+                1e-3 * static_cast<double>(ref.stats.evaluations))
+        << c.what;
+    EXPECT_NEAR(r.t1_min, ref.t1_min * c.time, 1e-9 * r.t1_min) << c.what;
+    EXPECT_NEAR(r.t2_min, ref.t2_min * c.time, 1e-9 * r.t2_min) << c.what;
+    ASSERT_EQ(r.solutions.size(), ref.solutions.size()) << c.what;
+    for (size_t i = 0; i < r.solutions.size(); ++i) {
+      const Solution &x = ref.solutions[i], &y = r.solutions[i];
+      EXPECT_NEAR(y.t1(), x.t1() * c.time, 1e-9 * y.t1()) << c.what;
+      EXPECT_NEAR(y.t2(), x.t2() * c.time, 1e-9 * y.t2()) << c.what;
+      EXPECT_EQ(y.admissible(), x.admissible()) << c.what;
+      EXPECT_EQ(y.floquet.verdict, x.floquet.verdict) << c.what;
+      EXPECT_NEAR(y.floquet.spectral_radius, x.floquet.spectral_radius, 1e-6) << c.what;
+    }
+  }
+}

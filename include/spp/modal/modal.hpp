@@ -72,6 +72,12 @@ class ModalForm {
   std::vector<double> flight_poles(double lo, double hi) const;
   std::vector<double> contact_poles(double lo, double hi) const;
 
+  /// The same modal form in the time tau = rate t (rate > 0, rad per time unit): every frequency (omega, d, z and the
+  /// decoupled ones) divided by rate; shapes, u, G, beta and g0 unchanged. It is the modal form of the system with K
+  /// divided by rate^2, without a new eigen-decomposition: O(n m). Throws std::invalid_argument for a rate not
+  /// positive and finite.
+  ModalForm in_time_unit(double rate) const;
+
  private:
   int n_ = 0;
   Eigen::VectorXd omega_, u_, z_, d_, omega_dec_;
