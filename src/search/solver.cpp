@@ -399,16 +399,22 @@ void polish_candidates(const System& system, const EquationSet& user_eq, const E
   // like 1 / t1 (the gap to the next eigenvalue is O(t1)): sign changes within 5% of the fastest quarter period of
   // the axis are not resolvable in double precision (an independent brute force sees rounding noise there) and are
   // not reported, whatever the window, so that tilings stay consistent (axis_band). Likewise for t2 -> 0.
-  const auto [band1, band2] = axis_band(md);
-  const double lo1 = std::max(opt.t1_min, band1), lo2 = std::max(opt.t2_min, band2);
+  // The window is the user's, in the user's time (start_result put it in res, raised to the axis bands): the
+  // half-open rule compares the roots, taken back to the user's time, with the edges the user gave, so that tiles cut
+  // at a root's coordinate share it exactly (in the search's time each edge carries the rounding of t * rate).
+  const double lo1 = res.t1_min, lo2 = res.t2_min, hi1 = res.t1_max, hi2 = res.t2_max;
   // a root within rounding of an edge is on it (search::kOnEdgeUlps): the half-open rule then gives it to one tile
-  auto on_edge = [](double t, double edge) {
-    return std::abs(t - edge) <= search::kOnEdgeUlps * std::numeric_limits<double>::epsilon() * std::abs(edge) ? edge
-                                                                                                               : t;
+  // or within Newton's own resolution, where polish stops (kPolishStep of t1 + t2): two tiles' Newton land anywhere
+  // within that of each other (up to ~30 ulps of t2 for chain5's root at (3.216, 0.528): a cut 3 ulps below it gave
+  // the root to neither tile once the search ran in its own time)
+  auto on_edge = [](double t, double edge, double resolution) {
+    const double d = std::max(search::kOnEdgeUlps * std::numeric_limits<double>::epsilon() * std::abs(edge), resolution);
+    return std::abs(t - edge) <= d ? edge : t;
   };
-  auto inside = [&](double t1, double t2) {
-    const double s1 = on_edge(on_edge(t1, opt.t1_max), lo1), s2 = on_edge(on_edge(t2, opt.t2_max), lo2);
-    return s1 > lo1 && s1 <= opt.t1_max && s2 > lo2 && s2 <= opt.t2_max;
+  auto inside = [&](double tau1, double tau2) {
+    const double t1 = time.to_user(tau1), t2 = time.to_user(tau2), r = search::kPolishStep * (t1 + t2);
+    const double s1 = on_edge(on_edge(t1, hi1, r), lo1, r), s2 = on_edge(on_edge(t2, hi2, r), lo2, r);
+    return s1 > lo1 && s1 <= hi1 && s2 > lo2 && s2 <= hi2;
   };
   // The same place, at the rounding level of the roots: each root, unpolished sign change or artifact counts once.
   auto same_place = [&](double a1, double a2, double b1, double b2) {

@@ -12,8 +12,9 @@ namespace spp {
 
 namespace {
 
-/// Golden-section search for the closest time of a trajectory stops at this fraction of 1 + t: ~50 eps, finer than
-/// the simulator's event times, so the distance measured is the trajectory's, not the search's.
+/// Golden-section search for the closest time of a trajectory stops at this fraction of t: ~50 eps, finer than the
+/// simulator's event times, so the distance measured is the trajectory's, not the search's. (Of t, not of 1 + t,
+/// which is an absolute time: with frequencies ~1e6, times ~1e-5, it stopped at 1e-9 relative; issue 11 finding.)
 constexpr double kGoldenTol = 1e-14;
 
 Eigen::VectorXd stack(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
@@ -122,7 +123,7 @@ class OrbitDistance {
     const double g = (std::sqrt(5.0) - 1.0) / 2.0;
     double a = t_[i0], b = t_[i1];
     double c = b - g * (b - a), d = a + g * (b - a), fc = dist_at(c), fd = dist_at(d);
-    for (int it = 0; it < 60 && b - a > kGoldenTol * (1.0 + b); ++it) {
+    for (int it = 0; it < 60 && b - a > kGoldenTol * b; ++it) {
       if (fc < fd) {
         b = d, d = c, fd = fc, c = b - g * (b - a), fc = dist_at(c);
       } else {
