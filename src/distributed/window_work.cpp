@@ -177,7 +177,7 @@ long WindowWork::unit_cells(size_t j) const {
 
 double WindowWork::unit_cost(size_t j) const {
   const auto& bp = impl_->plan.t2.bp;
-  return static_cast<double>(unit_cells(j)) * (bp[j + 1] - bp[j]);
+  return static_cast<double>(unit_cells(j)) * impl_->time->to_user(bp[j + 1] - bp[j]);  // (the plan is in tau)
 }
 
 std::string WindowWork::trace_unit(size_t j) const {
