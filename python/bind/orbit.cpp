@@ -12,6 +12,32 @@
 
 namespace spp::python {
 
+namespace {
+// spp::sample_orbit's samples (the same times T k / (samples - 1), the same states), computed here one by one so that
+// Ctrl-C is checked between them: every kSamplesPerCheck samples, or every one for large systems, about every 1e6
+// flops (well under a millisecond; a sample costs ~ m^2 + n m). Cut short (rows left unset) when it is pressed: the
+// caller raises KeyboardInterrupt.
+spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int samples, ProgressHook& hook) {
+  constexpr double kFlopsPerCheck = 1e6;
+  constexpr double kSamplesPerCheck = 1024;
+  const double per_sample = static_cast<double>(md.m()) * static_cast<double>(md.m() + md.n()) + 1.0;
+  const int every = static_cast<int>(std::clamp(kFlopsPerCheck / per_sample, 1.0, kSamplesPerCheck));
+  spp::OrbitSamples s{Eigen::VectorXd(samples), Eigen::VectorXd(samples), Eigen::VectorXd(samples),
+                      Eigen::MatrixXd(samples, md.n()), Eigen::MatrixXd(samples, md.n())};
+  const double T = orbit.period();
+  for (int k = 0; k < samples; ++k) {
+    if (k % every == 0 && !hook.keep_going()) break;
+    s.t(k) = T * k / (samples - 1);
+    const spp::OrbitState st = spp::orbit_state(md, orbit, s.t(k));
+    s.x.row(k) = st.x.transpose();
+    s.v.row(k) = st.v.transpose();
+    s.gap(k) = st.gap;
+    s.force(k) = st.force;
+  }
+  return s;
+}
+}  // namespace
+
 void bind_orbit(py::module_& m) {
   py::class_<spp::Solution>(m, "Solution", "One potential SPP")
       .def_property_readonly("t1", &spp::Solution::t1, "flight half-duration")
@@ -94,17 +120,22 @@ void bind_orbit(py::module_& m) {
                           "), got " + shown + ": out of range");
         }
         const int samples = whole.cast<int>();
-        const spp::ModalForm md(s);
-        spp::SolveOptions o;
-        o.compute_return_error = false;
+        // Ctrl-C checked while sampling (a million samples of a large system take seconds; it was not checked at
+        // all, found by an independent attack) and after each stage: raised as KeyboardInterrupt
+        ProgressHook hook(py::none(), "trajectory");
         spp::SolutionAt at;
+        spp::OrbitSamples os;
         {
           py::gil_scoped_release release;
+          const spp::ModalForm md(s);
+          spp::SolveOptions o;
+          o.compute_return_error = false;
           at = spp::solution_at(s, md, t1, t2, o);
+          if (at.found) os = sampled(md, at.solution.orbit, samples, hook);
         }
+        hook.raise_if_interrupted();
         if (!at.found) throw py::value_error("trajectory: " + at.brief_report());
         const spp::Solution& sol = at.solution;
-        spp::OrbitSamples os = spp::sample_orbit(md, sol.orbit, samples);
         return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
                         "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(),
                         "t2"_a = sol.t2(), "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible());
