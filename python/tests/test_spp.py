@@ -677,7 +677,7 @@ def test_continue_branch_refuses_a_solution_outside_the_window_or_of_another_sym
         spp.continue_branch(ps, 4.9, sols[0], t1_max=8, t2_max=3, symmetry="point")
 
 
-def _interrupted_run(code, timeout=60):
+def _interrupted_run(code, timeout=60, skip_until_start=False):
     """Runs `code` in a fresh interpreter, sends it SIGINT 0.5 s after it prints START, and returns (seconds from
     the signal to its end, its stdout). The run must end by itself: a Ctrl-C ignored for 120 s is what broke."""
     import signal
@@ -687,7 +687,10 @@ def _interrupted_run(code, timeout=60):
     env = dict(os.environ, PYTHONUNBUFFERED="1")
     p = subprocess.Popen([sys.executable, "-c", "import os, sys, warnings, spp\nSRC = " + repr(SRC) + "\n" + code],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    assert p.stdout.readline().strip() == "START", p.stderr.read()
+    line = p.stdout.readline()
+    while skip_until_start and line and line.strip() != "START":  # (what the code printed before)
+        line = p.stdout.readline()
+    assert line.strip() == "START", p.stderr.read()
     time.sleep(0.5)
     sent = time.monotonic()
     p.send_signal(signal.SIGINT)
@@ -936,3 +939,37 @@ def test_csv_yes_no_columns_read_by_pandas_as_bool_like_to_dataframe(tmp_path):
     for c in read.columns:
         assert df[c].dtype == read[c].dtype, c
     assert list(read["admissible"]) == list(df["admissible"]) and int(read["admissible"].sum()) == 7
+
+
+# Found by an independent attack on issue 13: the progress callback was called once more after it had returned False
+# (the final report of the search).
+def test_progress_callback_is_not_called_again_once_it_returned_false():
+    big = spp.chain(20)
+    t1, t2 = spp.fundamental_box(big)
+    calls = []
+
+    def stop(p):
+        calls.append(p)
+        return False
+
+    r = spp.solve(big, t1_max=t1, t2_max=t2, progress=stop)
+    assert r.status == "incomplete"
+    assert len(calls) == 1
+
+
+# Found by the same attack: spp.trajectory could not be interrupted (its samples were computed holding the GIL, Ctrl-C
+# was seen only when they were all done). A run of seconds (7 million samples of the paper's chain) stops within a
+# second or so with KeyboardInterrupt.
+def test_ctrl_c_stops_trajectory():
+    secs, out = _interrupted_run(
+        "s = spp.System.from_json(os.path.join(SRC, 'examples', 'chain5.json'))\n"
+        "r = spp.solve(s, t1_max=12, t2_max=12, admissible_only=True)\n"
+        "a = r.solutions[0]\n"
+        "print('START')\n"
+        "try:\n"
+        "    spp.trajectory(s, a.t1, a.t2, 7_000_000)\n"
+        "    print('FINISHED')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('INTERRUPTED')\n", skip_until_start=True)
+    assert "INTERRUPTED" in out, out
+    assert secs < 3, secs

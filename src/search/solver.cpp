@@ -220,6 +220,18 @@ std::string SolutionAt::brief_report() const {
 
 namespace search {
 
+namespace {
+// An "interrupted" region (cells not searched) as part of the window searched: the planned axes reach past the
+// window's ends (an edge moved clear of a pole line), and a region reported below t2_min told the user to rerun a
+// range they had not asked for (found by an independent attack). Nothing is listed when none of it is in the window.
+void add_interrupted(const SolveOptions& opt, double a1, double b1, double a2, double b2,
+                     std::vector<UncertifiedRegion>& out) {
+  const double lo1 = std::max(a1, opt.t1_min), hi1 = std::min(b1, opt.t1_max);
+  const double lo2 = std::max(a2, opt.t2_min), hi2 = std::min(b2, opt.t2_max);
+  if (lo1 < hi1 && lo2 < hi2) out.push_back({lo1, hi1, lo2, hi2, "interrupted"});
+}
+}  // namespace
+
 StripOut trace_strip(const EquationSet& eq, const WindowPlan& plan, size_t j, const std::atomic<bool>* stop,
                      TraceCounters* counters) {
   const SolveOptions& opt = plan.options;
@@ -235,7 +247,7 @@ StripOut trace_strip(const EquationSet& eq, const WindowPlan& plan, size_t j, co
   for (size_t i = 0; i < I; ++i) {
     if (stop && *stop) {  // stopped: the rest of the strip is listed as not searched
       out.stats.unsearched_cells += static_cast<long>(I - i);
-      out.uncertified.push_back({a1.bp[i], a1.bp[I], a2.bp[j], a2.bp[j + 1], "interrupted"});
+      add_interrupted(opt, a1.bp[i], a1.bp[I], a2.bp[j], a2.bp[j + 1], out.uncertified);
       break;
     }
     const size_t found_before = tracer.candidates().size();
@@ -253,8 +265,12 @@ StripOut trace_strip(const EquationSet& eq, const WindowPlan& plan, size_t j, co
     // (pole line j + 1) into the bottom edge of strip j + 1
     if (!tracer.trace_cell(cell, i, out.left[i], out.top[i], out.right[i], out.bottom[i])) {
       const bool cut = stop && stop->load();  // stopped inside the cell: its pieces ended early, not searched
-      if (cut) ++out.stats.unsearched_cells;
-      out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, cut ? "interrupted" : "step"});
+      if (cut) {
+        ++out.stats.unsearched_cells;
+        add_interrupted(opt, cell.a1, cell.b1, cell.A, cell.B, out.uncertified);
+      } else {
+        out.uncertified.push_back({cell.a1, cell.b1, cell.A, cell.B, "step"});
+      }
     }
     if (counters) counters->candidates_found += static_cast<long>(tracer.candidates().size() - found_before);
   }
@@ -343,16 +359,19 @@ search::TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan
                             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
       return opt.progress(p);
     };
+    // once the callback has returned false it is not called again (the final report too: a second "stop" report
+    // after the caller's own, found by an independent attack)
+    bool declined = false;
     try {
       auto last = t0;
       while (workers_done.load() < nthreads) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
         if (std::chrono::steady_clock::now() - last >= std::chrono::milliseconds(200)) {
           last = std::chrono::steady_clock::now();
-          if (!stop && !report()) stop = true;
+          if (!declined && !report()) declined = stop = true;
         }
       }
-      report();
+      if (!declined) report();
     } catch (...) {  // the callback threw: stop the workers, then pass it on
       stop = true;
       for (auto& th : pool) th.join();
@@ -369,11 +388,16 @@ search::TracedWindow trace_cells(const EquationSet& eq, const search::WindowPlan
 std::string SolveProgress::line() const {
   const double done = static_cast<double>(cells_done), total = static_cast<double>(cells_total);
   const double pct = cells_total > 0 ? 100.0 * done / total : 100.0;
-  const double left = cells_done > 0 ? seconds * (total - done) / done : 0.0;
   std::ostringstream os;
   os << std::fixed << "cells " << cells_done << " / " << cells_total << " (" << std::setprecision(0) << pct << "%), "
-     << candidates << " sign changes of g, " << std::setprecision(1) << seconds << " s, ~" << std::setprecision(0)
-     << left << " s left";
+     << candidates << " sign changes of g, " << std::setprecision(1) << seconds << " s elapsed";
+  // The time left is recomputed at each report from the mean time per cell so far. It cannot be estimated before a
+  // cell is done, nor once every cell has been started (cells_done counts started cells: the last ones can take long,
+  // and "~0 s left" stuck on screen while they ran, found by an independent attack): then none is shown.
+  if (cells_done > 0 && cells_done < cells_total)
+    os << ", ~" << std::setprecision(0) << seconds * (total - done) / done << " s left";
+  else if (cells_done >= cells_total && cells_total > 0)
+    os << ", finishing the last cells";
   return os.str();
 }
 

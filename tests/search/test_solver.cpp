@@ -361,6 +361,66 @@ TEST(Progress, ReportsEveryCellAndStopsWithWhatWasFound) {
   }
 }
 
+TEST(Progress, TheCallbackIsNotCalledAgainOnceItReturnedFalse) {
+  // It was called once more, at the end of the search, after it had asked to stop (found by an independent attack).
+  const System s20 = chain(20, {1.0}, {1.0}, 19, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  std::tie(o.t1_max, o.t2_max) = fundamental_box(ModalForm(s20));
+  o.threads = 2;
+  int calls = 0;
+  o.progress = [&calls](const SolveProgress&) {
+    ++calls;
+    return false;
+  };
+  const SolveResult r = solve(s20, o);
+  EXPECT_EQ(r.status, SolveStatus::Incomplete);
+  EXPECT_EQ(calls, 1);
+}
+
+TEST(Progress, TheInterruptedRegionsLieInsideTheWindow) {
+  // The window's ends next to pole lines make the plan reach past them (each edge moved clear of its line); the
+  // regions not searched of a stopped search started below t2_min (found by an independent attack). Ends put just
+  // inside pole lines, stopped at the first report: every "interrupted" region is inside the window.
+  const System s20 = chain(20, {1.0}, {1.0}, 19, ContactSide::Upper, 1.0);
+  const ModalForm md(s20);
+  const auto [b1, b2] = fundamental_box(md);
+  const std::vector<double> fp = md.flight_poles(0.2 * b1, b1), cp = md.contact_poles(0.2 * b2, b2);
+  ASSERT_GE(fp.size(), 2u);
+  ASSERT_GE(cp.size(), 2u);
+  SolveOptions o;
+  o.t1_min = fp.front() * (1 + 1e-7);
+  o.t1_max = fp.back() * (1 - 1e-7);
+  o.t2_min = cp.front() * (1 + 1e-7);
+  o.t2_max = cp.back() * (1 - 1e-7);
+  o.threads = 2;
+  o.progress = [](const SolveProgress&) { return false; };
+  const SolveResult r = solve(s20, o);
+  int interrupted = 0;
+  for (const UncertifiedRegion& u : r.uncertified) {
+    if (u.cause != "interrupted") continue;
+    ++interrupted;
+    EXPECT_GE(u.t1_lo, o.t1_min);
+    EXPECT_LE(u.t1_hi, o.t1_max);
+    EXPECT_GE(u.t2_lo, o.t2_min);
+    EXPECT_LE(u.t2_hi, o.t2_max);
+    EXPECT_LT(u.t1_lo, u.t1_hi);
+    EXPECT_LT(u.t2_lo, u.t2_hi);
+  }
+  EXPECT_GT(interrupted, 0);
+}
+
+TEST(Progress, TheLineRecomputesTheTimeLeftAndDropsItWhenItCannotBeEstimated) {
+  // "~0 s left" stuck on screen before the first cell was done and while the last cells ran (cells_done counts the
+  // cells started; found by an independent attack).
+  auto line = [](long done, long total, double seconds) { return SolveProgress{done, total, 0, seconds}.line(); };
+  EXPECT_EQ(line(0, 100, 5.0).find("left"), std::string::npos) << line(0, 100, 5.0);
+  EXPECT_EQ(line(100, 100, 50.0).find("left"), std::string::npos) << line(100, 100, 50.0);
+  EXPECT_NE(line(100, 100, 50.0).find("finishing"), std::string::npos);
+  EXPECT_NE(line(50, 100, 10.0).find("~10 s left"), std::string::npos) << line(50, 100, 10.0);
+  EXPECT_NE(line(50, 100, 20.0).find("~20 s left"), std::string::npos) << line(50, 100, 20.0);  // recomputed
+  EXPECT_NE(line(50, 100, 20.0).find("20.0 s elapsed"), std::string::npos) << line(50, 100, 20.0);
+}
+
 TEST(Progress, AStopRaisedDuringACellEndsItsPiecesAtTheNextStep) {
   // A stop was checked only between cells, and one certified cell of a 20-dof chain can take tens of seconds (Ctrl-C
   // did not end such a run within 30 s). The tracer now ends each piece at its next step: the cell of the paper's SPP
