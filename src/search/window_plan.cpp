@@ -133,12 +133,18 @@ WindowPlan plan_window(const ModalForm& md, const SolveOptions& options) {
   w.axis2 = opt.t2_min == 0.0;
   if (w.axis1) opt.t1_min = t1_auto;
   if (w.axis2) opt.t2_min = t2_auto;
-  check_window_size(md, opt);
-  const double max_lines = static_cast<double>(opt.max_cells) + 16.0;
   // Nothing within axis_band() of an axis is reported: a window reaching into the band is searched from half of it.
   const auto [band1, band2] = axis_band(md);
   const bool cut1 = opt.t1_min < 0.5 * band1 && 0.5 * band1 < opt.t1_max;
   const bool cut2 = opt.t2_min < 0.5 * band2 && 0.5 * band2 < opt.t2_max;
+  // counted, and named when refused, as planned: from the band's half where it cuts the window (the refusal printed
+  // the default lower ends, 1e-4 quarter periods, while the plan starts at 0.5 axis_band; found by an independent
+  // attack)
+  SolveOptions planned = opt;
+  if (cut1) planned.t1_min = 0.5 * band1;
+  if (cut2) planned.t2_min = 0.5 * band2;
+  check_window_size(md, planned);
+  const double max_lines = static_cast<double>(opt.max_cells) + 16.0;
   w.t1 = plan_axis(md.omega(), cut1 ? 0.5 * band1 : opt.t1_min, opt.t1_max, !(w.axis1 || cut1), opt.pole_margin,
                    max_lines);
   w.t2 = plan_axis(md.d(), cut2 ? 0.5 * band2 : opt.t2_min, opt.t2_max, !(w.axis2 || cut2), opt.pole_margin, max_lines);

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -197,6 +198,31 @@ TEST(Window, MaxCellsRefusesWithTheCountAndCanBeRaised) {
   expect_refused(s, o, "460");
   o.max_cells = 460;
   EXPECT_EQ(solve(s, o).solutions.size(), 64u);
+}
+
+TEST(Window, MaxCellsRefusalNamesTheLowerEndsPlanned) {
+  // From the axis (t1_min = t2_min = 0) the plan starts at half the axis band, but the refusal printed the default
+  // lower ends (1e-4 quarter periods), which are not searched (found by an independent attack).
+  const System s = chain5();
+  const ModalForm md(s);
+  SolveOptions o;
+  o.t1_max = 12.0;
+  o.t2_max = 12.0;
+  o.max_cells = 100;
+  const auto [band1, band2] = axis_band(md);
+  const auto [auto1, auto2] = default_lower_ends(md, o.t1_max, o.t2_max);
+  ASSERT_LT(auto1, 0.5 * band1);  // the default lower ends are inside the band: the plan is cut there
+  std::ostringstream planned, defaults;
+  planned << "(" << 0.5 * band1 << ", " << o.t1_max << "] x (" << 0.5 * band2 << ", " << o.t2_max << "]";
+  defaults << "(" << auto1 << ", ";
+  try {
+    solve(s, o);
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(planned.str()), std::string::npos) << m << "\nexpected " << planned.str();
+    EXPECT_EQ(m.find(defaults.str()), std::string::npos) << m;
+  }
 }
 
 TEST(Window, StepCertificateProvesEveryStepOfAWindowAwayFromPoleLines) {
