@@ -5,7 +5,9 @@
 // error, a defect of spp, says so), 3 verify, 4 sweep, 5 simulate, 130 solve (command.hpp lists them; the footer below
 // and README say the same, tests/cli checks both and drives each).
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -106,6 +108,27 @@ int main(int argc, char** argv) {
   commands.push_back(spp::cli::add_sweep(app));
   spp::cli::refuse_empty_texts(app);
   app.set_version_flag("--version", std::string("spp ") + SPP_VERSION);
+  // on every subcommand too (`spp solve --version` was a usage error, exit 1; found by an independent attack)
+  std::function<void(CLI::App&)> version_everywhere = [&](CLI::App& parent) {
+    for (CLI::App* sub : parent.get_subcommands([](CLI::App*) { return true; })) {
+      sub->set_version_flag("--version", std::string("spp ") + SPP_VERSION);
+      version_everywhere(*sub);
+    }
+  };
+  version_everywhere(app);
+  // A first word that is neither an option nor a subcommand is named, with the subcommands (CLI11 said "A subcommand
+  // is required", as if none had been given; found by an independent attack).
+  const std::vector<CLI::App*> subcommands = app.get_subcommands([](CLI::App*) { return true; });
+  if (argc > 1 && argv[1][0] != '-' &&
+      std::none_of(subcommands.begin(), subcommands.end(), [&](CLI::App* sub) { return sub->check_name(argv[1]); })) {
+    if (spp::cli::is_root()) {
+      std::string names;
+      for (const CLI::App* sub : subcommands) names += (names.empty() ? "" : ", ") + sub->get_name();
+      std::cerr << "spp: error: unknown subcommand \"" << bounded(argv[1]) << "\": expected one of " << names
+                << "\n(run with --help for the usage)\n";
+    }
+    return 1;
+  }
   // Usage errors exit 1 like every other error (README), not CLI11's 105-107; --help and --version exit 0.
   try {
     app.parse(argc, argv);

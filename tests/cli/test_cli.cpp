@@ -176,6 +176,25 @@ TEST(Cli, MissingFileAndUsageErrors) {
   EXPECT_EQ(run("solve --help").code, 0);
 }
 
+TEST(Cli, UnknownSubcommandIsNamedWithTheSubcommands) {
+  // "spp foo" said "A subcommand is required" (found by an independent attack)
+  const CliRun r = run("foo");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.out.find("unknown subcommand \"foo\""), std::string::npos) << r.out;
+  for (const char* sub : {"solve", "continue", "trajectory", "plot", "animate", "generate", "sweep"})
+    EXPECT_NE(r.out.find(sub), std::string::npos) << sub << "\n" << r.out;
+  EXPECT_EQ(r.out.find("A subcommand is required"), std::string::npos) << r.out;
+}
+
+TEST(Cli, VersionAfterASubcommandPrintsTheVersion) {
+  // "spp solve --version" exited 1 (found by an independent attack)
+  for (const char* sub : {"solve", "plot", "generate chain"}) {
+    const CliRun r = run(std::string(sub) + " --version");
+    EXPECT_EQ(r.code, 0) << sub << "\n" << r.out;
+    EXPECT_EQ(r.out.rfind("spp ", 0), 0u) << sub << "\n" << r.out;
+  }
+}
+
 TEST(Cli, TrajectoryWritesOnePeriod) {
   const fs::path js = dir() / "t.json", cs = dir() / "traj.csv";
   ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --admissible-only --json " + js.string()).code, 0);

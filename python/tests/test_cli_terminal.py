@@ -1,0 +1,69 @@
+"""spp solve's progress line on a terminal (a pseudo-terminal here): what stays on screen once the search is over."""
+import os
+import pty
+import signal
+import subprocess
+import time
+
+import pytest
+
+import spp
+
+CLI = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(spp.__file__)))), "spp")
+
+
+def screen(text):
+    """The lines a terminal shows for `text`: a carriage return moves back to the line's start, later characters
+    overwrite earlier ones."""
+    lines = []
+    for raw in text.replace("\r\n", "\n").split("\n"):
+        cells = []
+        pos = 0
+        for ch in raw:
+            if ch == "\r":
+                pos = 0
+                continue
+            if pos < len(cells):
+                cells[pos] = ch
+            else:
+                cells.append(ch)
+            pos += 1
+        lines.append("".join(cells).rstrip())
+    return [line for line in lines if line]
+
+
+# Found by an independent attack on issue 13: after Ctrl-C, the progress line "... (stopping)" stayed on screen above
+# the result (it was ended with a newline, not cleared).
+@pytest.mark.skipif(not os.path.exists(CLI), reason="no spp executable beside the package (build tree)")
+def test_ctrl_c_progress_line_does_not_stay_on_screen(tmp_path):
+    sys_file = tmp_path / "c20.json"
+    subprocess.run([CLI, "generate", "chain", "--n", "20", "--out", str(sys_file)], check=True, capture_output=True)
+    master, slave = pty.openpty()
+    p = subprocess.Popen([CLI, "solve", str(sys_file), "--box", "--quiet"], stdout=subprocess.PIPE, stderr=slave,
+                         stdin=subprocess.DEVNULL)
+    os.close(slave)
+    err = b""
+    start = time.monotonic()
+    try:
+        # wait for the progress line (shown from 1 s on), then Ctrl-C
+        while b"cells " not in err and time.monotonic() - start < 60:
+            err += os.read(master, 4096)
+        time.sleep(0.5)
+        p.send_signal(signal.SIGINT)
+        out, _ = p.communicate(timeout=120)
+        while True:
+            try:
+                chunk = os.read(master, 4096)
+            except OSError:  # the child's end closed
+                break
+            if not chunk:
+                break
+            err += chunk
+    finally:
+        os.close(master)
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == 130, (p.returncode, err)
+    shown = screen(err.decode())
+    assert not any("stopping" in line or line.lstrip().startswith("cells ") for line in shown), shown
+    assert any(line.startswith("interrupted:") for line in shown), shown
