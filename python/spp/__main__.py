@@ -11,11 +11,7 @@ import shutil
 import sys
 import tempfile
 
-import matplotlib
-
-matplotlib.use("Agg")  # headless: files only (the library modules leave the backend alone)
-
-from ._spp import load_result
+EXIT_INTERRUPTED = 130  # Ctrl-C, as spp solve and a shell report it
 
 
 MAX_ROOT_MAP_POINTS = 4000  # per axis: 1.6e7 grid values per condition, minutes of evaluations; the default is 400
@@ -33,6 +29,7 @@ def _plot(a):
                          f"got {a.root_map_points}")
     if os.path.exists(a.out) and not os.path.isdir(a.out):
         raise ValueError(f"--out {a.out}: exists and is not a directory (plot writes its figures into a directory)")
+    from ._spp import load_result
     r = load_result(a.result)
     system, spps, window = r.system, list(r.solutions), dict(t1_min=r.t1_min, t1_max=r.t1_max, t2_min=r.t2_min,
                                                                 t2_max=r.t2_max)
@@ -58,7 +55,7 @@ def _plot(a):
             if a.root_map_points:
                 # the root map is the long part (a 20-dof box: 10^5 points): its progress line on a terminal
                 save(plot.root_map_figure(system, spps, window, points=a.root_map_points,
-                                          progress=sys.stderr.isatty()), "root_map")
+                                          progress=sys.stderr.isatty(), uncertified=r.uncertified), "root_map")
             save(plot.frequency_energy_figure(spps), "frequency_energy")
             for k in chosen:
                 save(plot.spp_figure(system, spps[k]), f"spp_{k}")
@@ -102,6 +99,7 @@ def _animate(a):
     out_dir = os.path.dirname(os.path.abspath(a.out))
     if not os.path.isdir(out_dir):
         raise ValueError(f"--out {a.out}: the directory {out_dir} does not exist")
+    from ._spp import load_result
     r = load_result(a.result)
     system, spps = r.system, list(r.solutions)
     if a.solution < 0:
@@ -140,7 +138,14 @@ def main(argv=None):
     q.add_argument("--layout", default="auto", help="auto, chain, plane or dofs")
     a = ap.parse_args(argv)
     try:
+        import matplotlib
+        matplotlib.use("Agg")  # headless: files only (the library modules leave the backend alone)
         _plot(a) if a.command == "plot" else _animate(a)
+    except KeyboardInterrupt:
+        # Ctrl-C: one line, no traceback (it printed 47 lines), and nothing half-written (the figures are staged and
+        # the animation written to a temporary name: both removed on the way out)
+        print("interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except ValueError as e:
         print(f"spp: error: {e}", file=sys.stderr)
         return 1
@@ -155,4 +160,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:  # before main's own handler (while Python imports the package)
+        print("interrupted", file=sys.stderr)
+        sys.exit(EXIT_INTERRUPTED)

@@ -8,6 +8,7 @@ import numpy as np
 
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 
 from ._files import atomic_path
 from ._spp import root_map, simulate, trajectory
@@ -126,7 +127,8 @@ def spp_figure(system, solution, samples=2000, path=None, axes=None):
                            label="force < 0 in contact")
     _align_zeros(top, right)
     handles = top.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
-    top.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    # outside the axes, right of the force's axis label: it covered the flight's curves (found by an attack)
+    top.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.2, 1.0), fontsize=7, frameon=False)
     state = "admissible" if solution.admissible else "not admissible"
     top.set_title(f"SPP $t_1$ = {t1:.6g}, $t_2$ = {t2:.6g}, $T$ = {T:.6g} ({state})", fontsize=9, pad=14)
     n = x.shape[1]
@@ -191,13 +193,55 @@ def _merged_cells(rm):
     return t1, t2, merged[0], merged[1]
 
 
-def root_map_figure(system, solutions, window, points=400, path=None, ax=None, progress=None):
+# The uncertified regions of a result (SolveResult.uncertified) on the root map: one style per cause, the cause in the
+# legend. "interrupted" (cells a stopped search never reached) is the one that can cover much of the window.
+# Drawn over the curves (below the SPP markers), translucent: a region is seen whatever is drawn under it.
+UNCERTIFIED_STYLES = {
+    "interrupted": dict(facecolor="0.45", alpha=0.55, label="not searched (interrupted)"),
+    "step": dict(facecolor="C1", alpha=0.45, label="uncertified: trace step"),
+    "corner": dict(facecolor="C4", alpha=0.45, label="uncertified: cell corner"),
+    "budget": dict(facecolor="C5", alpha=0.45, label="uncertified: step budget"),
+    "pairing": dict(facecolor="C6", alpha=0.45, label="uncertified: pole-line pairing"),
+    "polish": dict(facecolor="C8", alpha=0.45, label="uncertified: unpolished sign change"),
+}
+UNCERTIFIED_ZORDER = 2.5  # above the contours (2), below the markers (3)
+
+
+def _shade_uncertified(ax, regions, w):
+    """Each uncertified region a rectangle (clipped to the window), one collection per cause (gid
+    "uncertified_<cause>"), labelled with its cause and count."""
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Rectangle
+    by_cause = {}
+    for u in regions:
+        lo1, hi1 = max(u["t1_lo"], w["t1_min"]), min(u["t1_hi"], w["t1_max"])
+        lo2, hi2 = max(u["t2_lo"], w["t2_min"]), min(u["t2_hi"], w["t2_max"])
+        if lo1 < hi1 and lo2 < hi2:
+            by_cause.setdefault(u["cause"], []).append(Rectangle((lo1, lo2), hi1 - lo1, hi2 - lo2))
+    proxies = []
+    for cause, rects in by_cause.items():
+        style = dict(UNCERTIFIED_STYLES.get(cause, dict(facecolor="0.3", alpha=0.45, label=f"uncertified: {cause}")))
+        label = style.pop("label") + f" ({len(rects)})"
+        ax.add_collection(PatchCollection(rects, edgecolor="none", zorder=UNCERTIFIED_ZORDER,
+                                          gid=f"uncertified_{cause}", **style))
+        proxies.append(Patch(label=label, **style))  # (a PatchCollection has no legend entry of its own)
+    return proxies
+
+
+def root_map_figure(system, solutions, window, points=400, path=None, ax=None, progress=None, uncertified=None,
+                    numbers=True):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
-    anything with t1, t2, admissible) marked, potential open, admissible filled. An SPP is where a dashed curve
-    touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that 4-tuple);
-    points: grid points per axis; ax: axes to draw into (default a new figure); progress: spp.root_map's (True: a
-    line on stderr, a callable: called with RootMapProgress; Ctrl-C raises KeyboardInterrupt, no figure drawn)."""
+    anything with t1, t2, admissible) marked, potential open, admissible filled, each numbered with its index in
+    `solutions` (the # of spp solve's table and the JSON's solution number; numbers=False: none). An SPP is where a
+    dashed curve touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that
+    4-tuple); uncertified: the regions of a result (SolveResult.uncertified: dicts with t1_lo, t1_hi, t2_lo, t2_hi,
+    cause), shaded with their cause in the legend (default: those of `window` when it is a SolveResult), e.g. the part
+    an interrupted search did not reach; points: grid points per axis; ax: axes to draw into (default a new figure);
+    progress: spp.root_map's (True: a line on stderr, a callable: called with RootMapProgress; Ctrl-C raises
+    KeyboardInterrupt, no figure drawn). The legend is outside the axes (below), so that it covers nothing."""
+    if uncertified is None:
+        uncertified = getattr(window, "uncertified", None) or []
     w = _window(window)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted map's warning: raised below instead
@@ -215,7 +259,14 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
                           (onset, dict(colors="C2", linewidths=0.8, linestyles="--"))):
         if np.nanmin(values) < 0 < np.nanmax(values):
             ax.contour(t1, t2, np.ma.masked_invalid(values), levels=[0.0], **style)
+    shaded = _shade_uncertified(ax, uncertified, w)
+    solutions = list(solutions)
     _scatter_spps(ax, solutions, lambda s: s.t1, lambda s: s.t2)
+    if numbers:  # the table's index beside each marker (gid "spp_number")
+        for k, sol in enumerate(solutions):
+            if w["t1_min"] <= sol.t1 <= w["t1_max"] and w["t2_min"] <= sol.t2 <= w["t2_max"]:
+                ax.annotate(str(k), (sol.t1, sol.t2), xytext=(2.5, 2.5), textcoords="offset points", fontsize=5,
+                            color="C3" if sol.admissible else "0.3", zorder=4, gid="spp_number")
     ax.set_xlim(w["t1_min"], w["t1_max"])
     ax.set_ylim(w["t2_min"], w["t2_max"])
     ax.set_xlabel("flight half-duration $t_1$ (-)")
@@ -223,7 +274,7 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     handles = [Line2D([], [], color="C0", lw=0.9, label=r"(5.1a) $\det H = 0$"),
                Line2D([], [], color="C2", lw=0.8, ls="--", label=r"(5.1b) $\det P^\top H P = 0$"),
                Line2D([], [], color="0.8", lw=0.5, label="pole lines")]
-    handles += ax.get_legend_handles_labels()[0]
+    handles += ax.get_legend_handles_labels()[0] + shaded
     ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
     if own:
         fig.tight_layout()

@@ -191,3 +191,81 @@ def test_plot_command_failing_half_way_leaves_no_partial_set(tmp_path, monkeypat
     assert main(["plot", str(res), "--out", str(fresh), "--solutions", "0,3", "--root-map-points", "0",
                  "--formats", "png"]) == 1
     assert not fresh.exists()
+
+
+# Found by an independent attack on issue 13: the root map of an interrupted result did not show the part of the window
+# that was never searched (an empty region looked like one without SPPs).
+def test_root_map_shades_the_unsearched_region_of_an_interrupted_result(tmp_path):
+    s = spp.chain(10)  # its box: a search of seconds, stopped at its first report
+    t1, t2 = spp.fundamental_box(s)
+    r = spp.solve(s, t1_max=t1, t2_max=t2, progress=lambda p: False)
+    assert r.status == "incomplete" and any(u["cause"] == "interrupted" for u in r.uncertified)
+    fig = plot.root_map_figure(s, r.solutions, r, points=40, path=tmp_path / "rm.png")
+    ax = fig.axes[0]
+    shaded = [c for c in ax.collections if c.get_gid() == "uncertified_interrupted"]
+    assert len(shaded) == 1
+    regions = [u for u in r.uncertified if u["cause"] == "interrupted"]
+    assert len(shaded[0].get_paths()) == len(regions)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(lab.startswith("not searched (interrupted)") for lab in labels), labels
+    # the regions given explicitly (a window as a dict) are shaded as well; none without them
+    w = dict(t1_min=r.t1_min, t1_max=r.t1_max, t2_min=r.t2_min, t2_max=r.t2_max)
+    fig2 = plot.root_map_figure(s, r.solutions, w, points=40, uncertified=r.uncertified)
+    assert any(c.get_gid() == "uncertified_interrupted" for c in fig2.axes[0].collections)
+    fig3 = plot.root_map_figure(s, r.solutions, w, points=40)
+    assert not any(str(c.get_gid()).startswith("uncertified") for c in fig3.axes[0].collections)
+
+
+# Found by the same attack: the root map's markers carried no number, so an SPP of the table could not be found on it;
+# and the legend lay over the map.
+def test_root_map_numbers_the_spps_as_the_table_and_keeps_the_legend_outside(tmp_path):
+    s, r = result()
+    fig = plot.root_map_figure(s, r.solutions, r, points=60, path=tmp_path / "rm.png")
+    ax = fig.axes[0]
+    numbers = [t for t in ax.texts if t.get_gid() == "spp_number"]
+    assert [t.get_text() for t in numbers] == [str(k) for k in range(len(r.solutions))]
+    for t, sol in zip(numbers, r.solutions):
+        assert np.allclose(t.xy, (sol.t1, sol.t2))
+    fig.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    axes = ax.get_window_extent()
+    assert legend.y1 <= axes.y0 or legend.x0 >= axes.x1  # below or beside the axes, not over the map
+    assert not plot.root_map_figure(s, r.solutions, r, points=30, numbers=False).axes[0].texts
+
+
+def test_spp_figure_legend_lies_outside_the_curves(tmp_path):
+    s, r = result()
+    fig = plot.spp_figure(s, r.solutions[3], path=tmp_path / "s.png")
+    fig.canvas.draw()
+    top = fig.axes[0]
+    legend = top.get_legend().get_window_extent()
+    assert legend.x0 >= top.get_window_extent().x1
+
+
+# Found by the same attack: Ctrl-C in `spp plot` printed a 47-line Python traceback. Now one line, exit 130, and no
+# figure (nor the output directory it created) left behind.
+def test_ctrl_c_in_plot_command_prints_one_line_and_leaves_nothing(tmp_path):
+    import signal
+    import subprocess
+    import sys
+    import time
+    s = spp.chain(10)  # its box: a search of seconds, stopped at its first report
+    t1, t2 = spp.fundamental_box(s)
+    r = spp.solve(s, t1_max=t1, t2_max=t2, progress=lambda p: False)
+    res = tmp_path / "r.json"
+    res.write_text(r.to_json(s))
+    out = tmp_path / "figs"
+    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    p = subprocess.Popen([sys.executable, "-m", "spp", "plot", str(res), "--out", str(out), "--root-map-points",
+                          "4000", "--formats", "png"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=env)
+    deadline = time.monotonic() + 60
+    while not out.exists() and time.monotonic() < deadline and p.poll() is None:  # the root map is being drawn
+        time.sleep(0.05)
+    time.sleep(1.0)
+    p.send_signal(signal.SIGINT)
+    stdout, stderr = p.communicate(timeout=60)
+    assert p.returncode == 130, (p.returncode, stderr)
+    assert stderr == "interrupted\n", stderr
+    assert stdout == ""
+    assert not out.exists()
