@@ -7,8 +7,11 @@ The picture follows the system's structure, read from M, K and w (no extra metad
     that plane, the oblique obstacle line w_i x_i + w_j x_j + g0 = 0, its path, and the force along the normal;
     beside it, every dof as a bar;
   - "dofs": anything else: every dof's position as a stem plot.
-Below each picture, gap and contact force over the period with a cursor. Curves come from spp.simulate (exact
-flows) started at the SPP's x0, v0; time origin at contact onset.
+Below each picture, gap (left axis) and contact force (right axis, its own scale) with a cursor. The curves are
+those of spp.plot.spp_figure: the SPP's own equations (spp.trajectory, exact flows), so that an inadmissible SPP is
+shown as the potential orbit it is (contact 2 t2, then flight 2 t1 through the obstacle), its violations shaded and
+named, not as what the simulator does from its onset state (it leaves the orbit at the first impact); time origin at
+contact onset, flight on [-2 t1, 0] and contact on [0, 2 t2], as in the static figure.
 """
 import os
 import shutil
@@ -19,7 +22,7 @@ import matplotlib.pyplot as plt
 from matplotlib import animation
 
 from ._files import atomic_path
-from ._spp import simulate
+from . import plot as _plot
 
 LAYOUTS = ("auto", "chain", "plane", "dofs")
 FIGSIZE_IN = (6.4, 4.8)  # every frame
@@ -194,6 +197,75 @@ class _Dofs:
         return [self.stems, self.tops]
 
 
+def _figure(system, spp, frames, periods, kind):
+    """The animation's figure, its frame function and frame count: one period of the SPP from spp.plot's
+    _one_period (the SPP's own equations), on the static figure's time axis [-2 t1, 2 t2] (flight before contact),
+    repeated for `periods`."""
+    T, t1, t2 = spp.period, spp.t1, spp.t2
+    count = frames * periods
+    tr = _plot._one_period(system, spp, max(2000, 20 * frames))
+    t = np.where(tr["t"] > 2 * t2, tr["t"] - T, tr["t"])  # the flight after the contact is the one before it
+    order = np.argsort(t, kind="stable")
+    t, x, gap, force = t[order], tr["x"][order], tr["gap"][order], tr["force"][order]
+    keep = np.r_[True, np.diff(t) > 0]  # t = 2 t2 - T and t = -2 t1 are the same instant: once
+    t, x, gap, force = t[keep], x[keep], gap[keep], force[keep]
+    if periods > 1:
+        t = np.concatenate([t + k * T for k in range(periods)])
+        x, gap, force = (np.concatenate([a] * periods) for a in (x, gap, force))
+    times = -2 * t1 + np.arange(count) * (T / frames)
+    at = np.clip(np.searchsorted(t, times), 0, len(t) - 1)
+
+    fig = plt.figure(figsize=FIGSIZE_IN)
+    grid = fig.add_gridspec(2, 2 if kind == "plane" else 1, height_ratios=[1.6, 1])
+    if kind == "plane":
+        scene = _Plane(fig.add_subplot(grid[0, 0]), system, x, force, fig.add_subplot(grid[0, 1]))
+        hist = fig.add_subplot(grid[1, :])
+    else:
+        top = fig.add_subplot(grid[0, 0])
+        scene = _Chain(top, system, x, force) if kind == "chain" else _Dofs(top, x)
+        hist = fig.add_subplot(grid[1, 0])
+    for k in range(periods):
+        hist.axvspan(k * T, k * T + 2 * t2, color="0.9", lw=0, label="contact phase" if k == 0 else None)
+    hist.plot(t, gap, color="C0", lw=1.2, label="gap $g$ (-)", gid="gap")
+    hist.axhline(0.0, color="k", lw=0.6)
+    hist.set_xlim(-2 * t1, 2 * t2 + (periods - 1) * T)
+    hist.set_xlabel("time $t$ (-), 0 at contact onset")
+    hist.set_ylabel("gap $g$ (-)", color="C0", fontsize=8)
+    right = hist.twinx()  # the force has its own scale (at n = 20 the gap reaches 500 and the force 40)
+    right.plot(t, force, color="C3", lw=1.2, label=r"force $\lambda$ (-)", gid="force")
+    right.set_ylabel(r"contact force $\lambda$ (-)", color="C3", fontsize=8)
+    # a potential SPP's violations of ineqs. (5.3), as in spp_figure: gap < 0 in flight, force < 0 in contact
+    phase = np.mod(t, T)
+    contact = phase <= 2 * t2
+    scale_g, scale_f = max(np.abs(gap).max(), 1e-300), max(np.abs(force).max(), 1e-300)
+    bad_gap, bad_force = ~contact & (gap < -1e-9 * scale_g), contact & (force < -1e-9 * scale_f)
+    if bad_gap.any():
+        hist.fill_between(t, gap, 0.0, where=bad_gap, color="red", alpha=0.35, lw=0, label="gap < 0 in flight",
+                          gid="violation")
+    if bad_force.any():
+        right.fill_between(t, force, 0.0, where=bad_force, color="red", alpha=0.2, lw=0, hatch="//",
+                           label="force < 0 in contact", gid="violation")
+    _plot._align_zeros(hist, right)
+    handles = hist.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
+    hist.legend(handles=handles, fontsize=6, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=len(handles),
+                frameon=False, borderaxespad=0.1)
+    cursor = hist.axvline(t[at[0]], color="k", lw=1)
+    if spp.admissible:
+        title = f"SPP $t_1$ = {spp.t1:.5g}, $t_2$ = {spp.t2:.5g}, $T$ = {T:.5g} (admissible)"
+    else:  # what is shown is not a motion of the system: said in the title
+        title = (f"potential SPP $t_1$ = {spp.t1:.5g}, $t_2$ = {spp.t2:.5g}, $T$ = {T:.5g}: NOT ADMISSIBLE\n"
+                 "(its own equations, the obstacle ignored in flight: not a motion of the system)")
+    fig.suptitle(title, fontsize=9, color="k" if spp.admissible else "C3")
+    fig.tight_layout()
+
+    def update(k):
+        i = at[k]
+        cursor.set_xdata([t[i], t[i]])
+        return [cursor, *scene.draw(x[i], force[i])]
+
+    return fig, update, count
+
+
 def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=80, layout="auto"):
     """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
     (ffmpeg). frames: per period. Returns the number of frames written. Raises ValueError on bad arguments."""
@@ -206,38 +278,7 @@ def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=80, layout="au
     if kind == "plane" and np.count_nonzero(np.abs(system.w) > 1e-12) != 2:
         raise ValueError("layout 'plane' needs w on exactly two dofs")
 
-    T = spp.period
-    count = frames * periods
-    times = np.arange(count) * (T / frames)
-    # Dense samples for the curves, then the frame states from the same exact flows.
-    sim = simulate(system, spp.x0, spp.v0, periods * T, 0.0, max(2000, 20 * frames) / T)
-    t, x, gap, force = sim.t, sim.x, sim.gap, sim.force
-    at = np.clip(np.searchsorted(t, times), 0, len(t) - 1)
-
-    fig = plt.figure(figsize=FIGSIZE_IN)
-    grid = fig.add_gridspec(2, 2 if kind == "plane" else 1, height_ratios=[1.6, 1])
-    if kind == "plane":
-        scene = _Plane(fig.add_subplot(grid[0, 0]), system, x, force, fig.add_subplot(grid[0, 1]))
-        hist = fig.add_subplot(grid[1, :])
-    else:
-        top = fig.add_subplot(grid[0, 0])
-        scene = _Chain(top, system, x, force) if kind == "chain" else _Dofs(top, x)
-        hist = fig.add_subplot(grid[1, 0])
-    hist.plot(t, gap, color="C0", lw=1.2, label="gap $g$ (-)")
-    hist.plot(t, force, color="C3", lw=1.2, label=r"force $\lambda$ (-)")
-    hist.axhline(0.0, color="k", lw=0.6)
-    hist.set_xlim(0.0, periods * T)
-    hist.set_xlabel("time $t$ since contact onset (-)")
-    hist.legend(fontsize=7, loc="upper right", frameon=False)
-    cursor = hist.axvline(0.0, color="k", lw=1)
-    state = "admissible" if spp.admissible else "not admissible"
-    fig.suptitle(f"SPP $t_1$ = {spp.t1:.5g}, $t_2$ = {spp.t2:.5g}, $T$ = {T:.5g} ({state})", fontsize=9)
-    fig.tight_layout()
-
-    def update(k):
-        i = at[k]
-        cursor.set_xdata([t[i], t[i]])
-        return [cursor, *scene.draw(x[i], force[i])]
+    fig, update, count = _figure(system, spp, frames, periods, kind)
 
     anim = animation.FuncAnimation(fig, update, frames=count, blit=False)
     writer = animation.PillowWriter(fps=fps) if ext == ".gif" else animation.FFMpegWriter(fps=fps)

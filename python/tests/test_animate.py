@@ -82,3 +82,40 @@ def test_bad_arguments_are_refused_before_any_file(tmp_path):
         with pytest.raises(ValueError, match=words):
             animate.animate(system, sol, **kwargs)
     assert list(tmp_path.iterdir()) == []
+
+
+# Found by an independent attack on issue 13: an inadmissible SPP was animated from the simulator (which leaves the
+# orbit at the first impact), on [0, T] instead of the static figure's [-2 t1, 2 t2], gap and force on one axis.
+def test_inadmissible_spp_is_animated_as_its_potential_orbit_on_the_figures_time_axis(tmp_path):
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    r = spp.solve(s, t1_max=12, t2_max=12)
+    sol = next(x for x in r.solutions if not x.admissible and x.min_gap < 0)
+    fig, update, count = animate._figure(s, sol, frames=10, periods=1, kind="chain")
+    try:
+        gap_ax, force_ax = [a for a in fig.axes if any(l.get_gid() == "gap" for l in a.lines)][0], \
+            [a for a in fig.axes if any(l.get_gid() == "force" for l in a.lines)][0]
+        assert gap_ax is not force_ax  # twin axes, each with its label
+        assert "gap" in gap_ax.get_ylabel() and "force" in force_ax.get_ylabel()
+        t, gap = [l for l in gap_ax.lines if l.get_gid() == "gap"][0].get_data()
+        ref = spp.trajectory(s, sol.t1, sol.t2, 2000)
+        assert np.isclose(gap.min(), ref["gap"].min(), rtol=1e-3, atol=1e-9)  # the potential orbit, gap < 0
+        assert gap.min() < 0
+        step = sol.period / 1000  # (2000 samples a period: the ends within a sample)
+        assert abs(t.min() + 2 * sol.t1) < step and abs(t.max() - 2 * sol.t2) < step
+        assert gap_ax.get_xlim() == pytest.approx((-2 * sol.t1, 2 * sol.t2))
+        assert any(c.get_gid() == "violation" for c in gap_ax.collections)
+        assert "NOT ADMISSIBLE" in fig._suptitle.get_text()
+        update(count - 1)
+    finally:
+        import matplotlib.pyplot as plt
+        plt.close(fig)
+    animate.animate(s, sol, tmp_path / "i.gif", frames=4, dpi=40)
+
+
+# Found by the same attack: the docs' GIFs were 384 x 288 (dpi 60), their text unreadable.
+def test_docs_gifs_are_web_sized_and_small():
+    for name in ("chain5_spp1.gif", "rod4_spp.gif"):
+        path = os.path.join(SRC, "docs", "img", name)
+        with Image.open(path) as im:
+            assert im.size[0] >= 800, (name, im.size)
+        assert os.path.getsize(path) < 2 * 1024 ** 2, name
