@@ -190,7 +190,7 @@ int run(SolveArgs& a) {
               << " ms; estimate: " << e.cells << " cells x ~" << static_cast<long>(e.evaluations_per_cell)
               << " evaluations per cell (benchmarks' mean" << (a.options.certify_steps ? ", certified" : "") << ") / "
               << e.threads << " thread(s) ~ " << e.seconds
-              << " s (an order of magnitude: it varies several-fold between systems)\n";
+              << " s (rough: actual CPU time measured 0.4x to 12x of it, larger systems higher; README)\n";
     return 0;
   }
   bool shown = false;
