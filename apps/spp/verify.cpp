@@ -25,6 +25,7 @@ int run(const VerifyArgs& a) {
   naming_system_file(a.result, [&] { return ModalForm(file.system); });
   const VerifyResult r = verify(file.system, file.result.solutions, a.options);
   const std::string json_text = a.json.empty() ? "" : verify_json(r);
+  for (const std::string& w : r.warnings) std::cerr << "spp verify: warning: " << w << "\n";
   std::cout << verify_table(r) << r.brief_report() << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
   return r.all_consistent() ? 0 : 3;

@@ -231,9 +231,11 @@ json verify_to_json(const VerifyResult& r) {
     }
     checks.push_back(o);
   }
-  return {{"status", to_string(r.status)},  {"checks", checks},
+  json out = {{"status", to_string(r.status)},  {"checks", checks},
           {"returned", r.returned},         {"left", r.left},
           {"inconsistent", r.inconsistent}, {"all_consistent", r.all_consistent()}};
+  if (!r.warnings.empty()) out["warnings"] = r.warnings;
+  return out;
 }
 
 }  // namespace spp::io

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <limits>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 
 #include "spp/detail/invalid.hpp"
+#include "spp/modal/modal.hpp"
+#include "spp/stability/floquet.hpp"
 
 namespace spp {
 
@@ -177,6 +182,47 @@ std::string VerifyResult::brief_report() const {
   return os.str();
 }
 
+namespace {
+// Empty when `claimed` (read from a result) agrees with `recomputed` from the system: the spectral radius within
+// the two rounding bounds, the verdict, and every multiplier (sorted alike) within kMultiplierTolerance.
+std::string stability_mismatch(const Floquet& claimed, const Floquet& recomputed) {
+  // The structural and defective multipliers (the double 1 and the double 0) split by ~sqrt(rounding) ~1e-8: a
+  // tolerance well above that and well below any edit worth making.
+  constexpr double kMultiplierTolerance = 1e-6;
+  std::ostringstream os;
+  os << std::setprecision(10);
+  const double rho = recomputed.spectral_radius, err = recomputed.spectral_radius_error;
+  if (std::isnan(rho)) return "";
+  const double claimed_err = std::isnan(claimed.spectral_radius_error) ? 0.0 : claimed.spectral_radius_error;
+  if (!(std::abs(claimed.spectral_radius - rho) <= err + claimed_err + kMultiplierTolerance * 1e-3)) {
+    os << "the stability claimed is not the system's: spectral_radius " << claimed.spectral_radius
+       << ", recomputed from (t1, t2) " << rho << " +- " << err;
+    return os.str();
+  }
+  if (claimed.verdict != StabilityVerdict::NotComputed && claimed.verdict != recomputed.verdict) {
+    os << "the stability claimed is not the system's: verdict " << to_string(claimed.verdict) << ", recomputed "
+       << to_string(recomputed.verdict);
+    return os.str();
+  }
+  if (claimed.multipliers.size() != recomputed.multipliers.size()) {
+    os << "the stability claimed is not the system's: " << claimed.multipliers.size() << " multipliers, recomputed "
+       << recomputed.multipliers.size();
+    return os.str();
+  }
+  for (size_t k = 0; k < claimed.multipliers.size(); ++k) {
+    // pairs of equal modulus may come in either order: compare with the nearest recomputed one
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& r : recomputed.multipliers) nearest = std::min(nearest, std::abs(claimed.multipliers[k] - r));
+    if (!(nearest <= kMultiplierTolerance * (1.0 + std::abs(claimed.multipliers[k])))) {
+      os << "the stability claimed is not the system's: multiplier " << claimed.multipliers[k].real() << " + "
+         << claimed.multipliers[k].imag() << "i is " << nearest << " away from every recomputed one";
+      return os.str();
+    }
+  }
+  return "";
+}
+}  // namespace
+
 VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& opt) {
   opt.validate();
   const Simulator sim(system);
@@ -187,6 +233,15 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     res.status = res.inconsistent == 0 ? VerifyStatus::Success : VerifyStatus::Inconsistent;
     return res;
   };
+  // docs/stability.md: the onset's plastic projection needs e < 1; an elastic impact keeps the normal velocity and
+  // chatters forever, so the growth measured with e = 1 is not what spectral_radius predicts (found by the attack of
+  // issue 14: 253.6 per period on a stable chain SPP, without a word).
+  constexpr double kElastic = 1.0;
+  if (opt.perturbation > 0.0 && opt.restitution >= kElastic)
+    res.warnings.push_back("restitution 1 (elastic): the Floquet multipliers and the stability verdict are derived for "
+                           "e < 1 (docs/stability.md) and do not apply; the growth per period measured here is not "
+                           "comparable with spectral_radius");
+  std::optional<ModalForm> modal;  // built for the first SPP whose stability is to be checked
   for (size_t i = 0; i < spps.size(); ++i) {
     if (opt.progress && !opt.progress()) return stop(i);
     const Solution& c = spps[i];
@@ -246,6 +301,17 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
       chk.departure = "x0, v0 are not the SPP at (t1, t2): its own contact and flight flows (2 t2, then 2 t1) come "
                       "back " + fmt(chk.potential_return_error) + " away (an edited result, or another system's)" +
                       (chk.departure.empty() ? "" : "; and " + chk.departure);
+    }
+    // The stability the file claims must be the system's: multipliers recomputed from (t1, t2) and the system (found
+    // by an attack, issue 14: a chain SPP's leading pair scaled to modulus 1.05 with rho 1.05 and verdict unstable,
+    // or its real part flipped, passed verify).
+    if (c.orbit.symmetry == Symmetry::Axial && !c.floquet.multipliers.empty()) {
+      if (!modal) modal.emplace(system);
+      const std::string why = stability_mismatch(c.floquet, floquet(*modal, c.orbit));
+      if (!why.empty()) {
+        chk.consistent = false;
+        chk.departure = why + (chk.departure.empty() ? "" : "; and " + chk.departure);
+      }
     }
     if (returns && opt.perturbation > 0.0) {
       // perturb the mid-flight state (the gap is largest there), follow the distance to the orbit

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "paper_examples.hpp"
 #include "spp/io.hpp"
@@ -199,4 +200,49 @@ TEST(Verify, ProgressReturningFalseLeavesTheRestUnchecked) {
   const VerifyResult s = verify(chain5(), spps, o);
   EXPECT_TRUE(s.checks.empty());
   EXPECT_EQ(s.unchecked, static_cast<long>(spps.size()));
+}
+
+// Found by the attack of issue 14: in a stable chain SPP, scaling the leading pair to modulus 1.05 with spectral
+// radius 1.05 and verdict unstable (c5_t4.json), or flipping the pair's real part (c5_t3.json), both passed verify.
+TEST(Verify, EditedMultipliersThatAgreeWithEachOtherAreInconsistent) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0), admissible;
+  for (const Solution& c : all)
+    if (c.admissible()) admissible.push_back(c);
+  ASSERT_EQ(admissible.size(), 7u);
+  const Solution spp = admissible[2];  // stable (docs/stability.md §5)
+  ASSERT_TRUE(spp.stable());
+  ASSERT_TRUE(verify(chain5(), {spp}, VerifyOptions{}).all_consistent());
+  auto is_leading = [&](const std::complex<double>& m) { return std::abs(m) == spp.floquet.spectral_radius; };
+  Solution scaled = spp, flipped = spp;
+  for (auto& m : scaled.floquet.multipliers)
+    if (is_leading(m)) m *= 1.05 / std::abs(m);
+  scaled.floquet.spectral_radius = 1.05;
+  scaled.floquet.margin = -0.05;
+  scaled.floquet.verdict = StabilityVerdict::Unstable;
+  scaled.floquet.stable = false;
+  for (auto& m : flipped.floquet.multipliers)
+    if (is_leading(m)) m = {-m.real(), m.imag()};
+  for (const Solution& edited : {scaled, flipped}) {
+    const VerifyResult r = verify(chain5(), {edited}, VerifyOptions{});
+    EXPECT_EQ(r.status, VerifyStatus::Inconsistent) << r.brief_report();
+    ASSERT_EQ(r.checks.size(), 1u);
+    EXPECT_NE(r.checks[0].departure.find("stability claimed is not the system's"), std::string::npos)
+        << r.checks[0].departure;
+  }
+}
+
+// Found by the attack of issue 14: --perturb with --restitution 1 printed a growth of 253.6 per period on a stable
+// SPP without saying that the stability theory excludes e = 1.
+TEST(Verify, PerturbationWithElasticImpactsWarnsThatFloquetDoesNotApply) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0);
+  const auto it = std::find_if(all.begin(), all.end(), [](const Solution& c) { return c.admissible(); });
+  ASSERT_NE(it, all.end());
+  VerifyOptions o;
+  o.perturbation = 1e-6;
+  o.restitution = 1.0;
+  const VerifyResult r = verify(chain5(), {*it}, o);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("do not apply"), std::string::npos);
+  o.restitution = 0.5;
+  EXPECT_TRUE(verify(chain5(), {*it}, o).warnings.empty());
 }

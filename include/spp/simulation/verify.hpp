@@ -78,6 +78,9 @@ struct VerifyResult {
   int returned = 0, left = 0, inconsistent = 0;
   /// SPPs not checked because VerifyOptions::progress stopped verify (0: every one was); status is that of the others.
   long unchecked = 0;
+  /// Caveats on reading the results, one sentence each (e.g. a perturbation simulated with restitution 1, where the
+  /// Floquet multipliers, derived for e < 1, do not apply).
+  std::vector<std::string> warnings;
   bool all_consistent() const { return inconsistent == 0; }
   std::string brief_report() const;
 };
