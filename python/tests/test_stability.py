@@ -123,3 +123,32 @@ def test_continuation_event_names_the_multiplier_that_crosses():
     assert sorted(len(o) for o in out) == [0, 1]
     z = max(out, key=len)[0]
     assert abs(z.imag) < 1e-9 and z.real > 1.0
+
+
+def test_leading_multipliers_survive_load_result(chain, tmp_path):
+    # found by the attack of issue 14: present after solve and pickle, [] after load_result
+    s, r = chain
+    path = str(tmp_path / "c5.json")
+    with open(path, "w") as f:
+        f.write(r.to_json())
+    back = spp.load_result(path)
+    assert len(back.solutions) == len(r.solutions)
+    for a, b in zip(r.solutions, back.solutions):
+        assert len(b.leading_multipliers) == len(a.leading_multipliers) > 0
+        assert np.allclose(b.leading_multipliers, a.leading_multipliers, rtol=1e-12, atol=0)
+
+
+def test_dataframe_has_the_csv_columns(chain, tmp_path):
+    # found by the attack of issue 14: to_dataframe lacked spectral_radius_error and stability_verdict; names only
+    # (how the CSV writes booleans may change), in the CSV's order, then flags
+    pytest.importorskip("pandas")
+    import subprocess
+    cli = os.path.join(os.path.dirname(spp.__file__), "..", "..", "spp")  # build/python/spp -> build/spp
+    if not os.path.exists(cli):
+        pytest.skip("the spp command is not built beside the package")
+    s, r = chain
+    csv = tmp_path / "c5.csv"
+    subprocess.run([cli, "solve", os.path.join(SRC, "examples", "chain5.json"), "--t1-max", "12", "--t2-max", "12",
+                    "--csv", str(csv)], check=True, capture_output=True)
+    header = csv.read_text().splitlines()[0].split(",")
+    assert list(r.to_dataframe().columns) == header + ["flags"]

@@ -217,6 +217,22 @@ void check_floquet(const Reader& o, const Floquet& f, long n) {
             ", got " + num(f.margin));
 }
 
+// The leading multipliers (Floquet::leading) from the file's list: the one whose modulus is spectral_radius (a
+// positive imaginary part first) and its conjugate when complex. They were left empty, so Python's
+// Solution.leading_multipliers read [] after load_result (found by the attack of issue 14). Not for a neutral verdict
+// (the radius is then the decoupled modes' 1, not a coupled multiplier's) nor with fewer than three multipliers.
+std::vector<std::complex<double>> leading_of(const Floquet& f) {
+  if (f.verdict == StabilityVerdict::Neutral || f.multipliers.size() < 3) return {};
+  const std::complex<double>* best = nullptr;
+  for (const auto& z : f.multipliers) {
+    const double d = std::abs(std::abs(z) - f.spectral_radius), db = best ? std::abs(std::abs(*best) - f.spectral_radius) : 0.0;
+    if (best == nullptr || d < db || (d == db && z.imag() > best->imag())) best = &z;
+  }
+  std::vector<std::complex<double>> lead{*best};
+  if (best->imag() != 0.0) lead.push_back(std::conj(*best));
+  return lead;
+}
+
 // What the solver's status means (search/solver.cpp, finalize: "success" exactly when no warning and no uncertified
 // region), checked across fields: "success" beside a count of unproved work, a warning or an SPP whose
 // admissibility is not certified; "incomplete" with neither warning nor region; fewer roots than SPPs listed (an
@@ -563,6 +579,7 @@ SolveResult result_from_json(const json& r, const std::string& where) {
       x.floquet.structure_residual = o.number("floquet_structure_residual");
       check_floquet(o, x.floquet, n);
       read_verdict(o, x.floquet);
+      x.floquet.leading = leading_of(x.floquet);
       x.floquet.stable = x.floquet.verdict == StabilityVerdict::Stable;
       if (o.boolean("stable") != x.stable())
         invalid(o.where + ": field \"stable\" must be admissible and stability_verdict \"stable\" (files without a "
