@@ -305,7 +305,8 @@ def frequency_energy_figure(solutions, path=None, ax=None):
 
 def multipliers_figure(solutions, path=None, ax=None):
     """Floquet multipliers (docs/stability.md) of the admissible SPPs in the complex plane, with the unit circle:
-    one colour per SPP, its index and spectral radius in the legend; filled markers for stable SPPs, open for
+    one colour per SPP, its index in `solutions` (the result's solution index: the # of README's and docs/stability.md's
+    tables for an admissible-only solve) and spectral radius in the legend; filled markers for stable SPPs, open for
     the others (their verdict, unstable / undecided / neutral, in the legend). The two structural multipliers 1 and the two zeros are drawn too. solutions: Solution objects
     (with floquet_multipliers); ax: axes to draw into (default a new figure)."""
     sols = [(k, s) for k, s in enumerate(solutions) if s.admissible and len(s.floquet_multipliers)]
