@@ -259,6 +259,32 @@ TEST(Continuation, StabilityChangesAreLocated) {
   EXPECT_GE(located, 1) << r.brief_report();
 }
 
+// Found by the attack of issue 14: on the chain with k5 in [0.9, 1] and the window (0, 12]^2, a branch with
+// dt1/dk5 ~ 230 reported stability_lost at k5 = 0.9423784260, (t1, t2) = (10.283443820, 4.518563173): an uncorrected
+// predictor (the corrector failed there and the bisection kept the tangent's point), 6.6e-4 from the SPP in t1; the
+// crossing is near k5 = 0.9423811. Each event's point must be the SPP there (independent Newton from it) and
+// bracket the crossing.
+TEST(Continuation, StabilityEventOnASteepBranchIsOnTheBranch) {
+  const ParametricSystem ps = paper_chain_k5(0.9, 1.0);
+  ContinueOptions o;
+  o.t1_max = 12.0;
+  o.t2_max = 12.0;
+  const ContinuationResult r = continue_branches(ps, o);
+  int steep = 0;
+  for (const Branch& b : r.branches)
+    for (const BranchEvent& e : b.events) {
+      if (e.kind != BranchEventKind::StabilityLost && e.kind != BranchEventKind::StabilityGained) continue;
+      const System sys = ps.at(e.at.mu);
+      const SolutionAt s = solution_at(sys, e.at.t1, e.at.t2);
+      ASSERT_TRUE(s.found) << s.brief_report();
+      EXPECT_NEAR(s.solution.t1(), e.at.t1, 1e-9 * e.at.t1) << "k5 = " << e.at.mu;
+      EXPECT_NEAR(s.solution.t2(), e.at.t2, 1e-9 * e.at.t2) << "k5 = " << e.at.mu;
+      EXPECT_NEAR(e.at.spectral_radius, 1.0, 1e-7) << e.at.mu;
+      if (std::abs(e.at.t1 - 10.2828) < 1e-2 && std::abs(e.at.mu - 0.942381) < 1e-5) ++steep;
+    }
+  EXPECT_EQ(steep, 1) << r.brief_report();
+}
+
 namespace {
 // The multipliers outside the unit circle at the SPP near (t1, t2) of ps.at(mu) (independent Newton and floquet();
 // the structural 1s are exactly 1 there and never outside).
