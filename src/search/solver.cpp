@@ -568,7 +568,8 @@ WindowPlan plan_search(const ModalForm& md, const SolveOptions& options, const S
        << " or t2 <= " << band2 << ": 5% of the fastest quarter period of each phase): raise t1_max / t2_max";
     detail::invalid(os.str());
   }
-  check_window_size(md, options);  // refused naming the user's window; the plan below counts the same cells
+  // refused naming the window as planned in the user's time; the plan below counts the same cells
+  check_window_size(md, planned_window(md, options));
   return plan_window(time.modal, time.options);
 }
 

@@ -124,6 +124,20 @@ void check_window_size(const ModalForm& md, const SolveOptions& opt, const std::
   }
 }
 
+SolveOptions planned_window(const ModalForm& md, const SolveOptions& options) {
+  SolveOptions planned = options;
+  const auto [t1_auto, t2_auto] = default_lower_ends(md, options.t1_max, options.t2_max);
+  if (options.t1_min == 0.0) planned.t1_min = t1_auto;
+  if (options.t2_min == 0.0) planned.t2_min = t2_auto;
+  // Nothing within axis_band() of an axis is reported: a window reaching into the band is searched from half of it
+  // (the max_cells refusal printed the default lower ends, 1e-4 quarter periods, while the plan starts at 0.5
+  // axis_band; found by an independent attack)
+  const auto [band1, band2] = axis_band(md);
+  if (planned.t1_min < 0.5 * band1 && 0.5 * band1 < planned.t1_max) planned.t1_min = 0.5 * band1;
+  if (planned.t2_min < 0.5 * band2 && 0.5 * band2 < planned.t2_max) planned.t2_min = 0.5 * band2;
+  return planned;
+}
+
 WindowPlan plan_window(const ModalForm& md, const SolveOptions& options) {
   WindowPlan w;
   w.options = options;
@@ -133,17 +147,10 @@ WindowPlan plan_window(const ModalForm& md, const SolveOptions& options) {
   w.axis2 = opt.t2_min == 0.0;
   if (w.axis1) opt.t1_min = t1_auto;
   if (w.axis2) opt.t2_min = t2_auto;
-  // Nothing within axis_band() of an axis is reported: a window reaching into the band is searched from half of it.
   const auto [band1, band2] = axis_band(md);
   const bool cut1 = opt.t1_min < 0.5 * band1 && 0.5 * band1 < opt.t1_max;
   const bool cut2 = opt.t2_min < 0.5 * band2 && 0.5 * band2 < opt.t2_max;
-  // counted, and named when refused, as planned: from the band's half where it cuts the window (the refusal printed
-  // the default lower ends, 1e-4 quarter periods, while the plan starts at 0.5 axis_band; found by an independent
-  // attack)
-  SolveOptions planned = opt;
-  if (cut1) planned.t1_min = 0.5 * band1;
-  if (cut2) planned.t2_min = 0.5 * band2;
-  check_window_size(md, planned);
+  check_window_size(md, planned_window(md, options));  // counted, and named when refused, as planned
   const double max_lines = static_cast<double>(opt.max_cells) + 16.0;
   w.t1 = plan_axis(md.omega(), cut1 ? 0.5 * band1 : opt.t1_min, opt.t1_max, !(w.axis1 || cut1), opt.pole_margin,
                    max_lines);

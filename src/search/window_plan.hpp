@@ -36,6 +36,10 @@ void check_window_size(
     const ModalForm& md, const SolveOptions& opt, const std::string& where = "options",
     const std::string& remedy = "narrow the window, or raise max_cells (--max-cells) if the work is intended");
 
+/// The window as planned: lower ends 0 ("from the axis") replaced by default_lower_ends, and a lower end inside
+/// axis_band() raised to half the band (nothing within the band is reported). In md's time unit. O(m).
+SolveOptions planned_window(const ModalForm& md, const SolveOptions& options);
+
 struct WindowPlan {
   SolveOptions options;               ///< the caller's, with the automatic lower ends filled in
   bool axis1 = false, axis2 = false;  ///< lower ends automatic ("from the axis")
