@@ -33,8 +33,9 @@ struct SolveProgress {
   long cells_done = 0, cells_total = 0;
   long candidates = 0;
   double seconds = 0.0;
-  /// "cells 120 / 460 (26%), 17 sign changes of g, 1.2 s, ~3 s left": the line the CLI and Python show (time left
-  /// assuming the cells left cost what the cells done did).
+  /// "cells 120 / 460 (26%), 17 sign changes of g, 1.2 s elapsed, ~3 s left": the line the CLI and Python show. The
+  /// time left assumes the cells left cost what the cells done did; it is left out before the first cell is done,
+  /// and once every cell has started the line ends "finishing the last cells" instead.
   std::string line() const;
 };
 
