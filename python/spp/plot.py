@@ -297,7 +297,9 @@ def frequency_energy_figure(solutions, path=None, ax=None):
     ax.set_xscale("log")
     ax.set_xlabel("energy $E$ (-)")
     ax.set_ylabel(r"frequency $2\pi/T$ (-)")
-    ax.legend(fontsize=7, frameon=False)
+    # Below the axes, as the root map's: inside them "best" still covered chain5's SPP #0 (E = 20, f = 0.956).
+    ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
+              handletextpad=0.2, columnspacing=1.0)
     if own:
         fig.tight_layout()
     return _save(fig, path)

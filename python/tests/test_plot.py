@@ -269,3 +269,16 @@ def test_ctrl_c_in_plot_command_prints_one_line_and_leaves_nothing(tmp_path):
     assert stderr == "interrupted\n", stderr
     assert stdout == ""
     assert not out.exists()
+
+
+def test_frequency_energy_legend_covers_no_spp(tmp_path):
+    # chain5's SPP #0 (E = 20, f = 0.956) was hidden under the legend placed inside the axes by loc="best".
+    _, r = result()
+    fig = plot.frequency_energy_figure(r.solutions, path=tmp_path / "fe.png")
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    box = ax.get_legend().get_window_extent()
+    pts = ax.transData.transform([(x.energy, 2 * np.pi / x.period) for x in r.solutions])
+    inside = [k for k, (u, v) in enumerate(pts) if box.x0 <= u <= box.x1 and box.y0 <= v <= box.y1]
+    assert inside == []
+    assert box.x0 >= 0 and box.y0 >= 0 and box.x1 <= fig.bbox.x1  # and on the figure, not cut off
