@@ -160,6 +160,19 @@ def _scatter_spps(ax, solutions, x, y):
             ax.scatter(a, b, s=16, lw=0.8, zorder=3, gid="admissible" if admissible else "potential", **style)
 
 
+def _frequency_energy_spps(ax, sols, stable_label):
+    """SPPs on frequency-energy axes (log energy): _scatter_spps' markers plus, when the solutions carry their
+    stability (Solution, docs/stability.md), a black ring around each transversally stable one (gid "stable")."""
+    _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
+    stable = [(s.energy, 2 * np.pi / s.period) for s in sols if getattr(s, "stable", False)]
+    if stable:
+        a, b = np.array(stable).T
+        ax.scatter(a, b, s=70, facecolors="none", edgecolors="k", lw=1.0, zorder=4, gid="stable", label=stable_label)
+    ax.set_xscale("log")
+    ax.set_xlabel("energy $E$ (-)")
+    ax.set_ylabel(r"frequency $2\pi/T$ (-)")
+
+
 def _merged_cells(rm):
     """The root map's cells as one grid (t1, t2, symmetric, onset) for a single contour call per condition: the
     cells tile the window as a tensor product (rows of equal t2 grids, columns of equal t1 grids), so their grids are
@@ -286,17 +299,7 @@ def frequency_energy_figure(solutions, path=None, ax=None):
     admissible); admissible ones filled. ax: axes to draw into (default a new figure)."""
     sols = list(solutions)
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN, 2.8))
-    _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
-    # Stability (docs/stability.md), when the solutions carry it (Solution): a black ring around
-    # each stable admissible SPP (gid "stable"); unstable ones keep their plain marker.
-    stable = [(s.energy, 2 * np.pi / s.period) for s in sols if getattr(s, "stable", False)]
-    if stable:
-        a, b = np.array(stable).T
-        ax.scatter(a, b, s=70, facecolors="none", edgecolors="k", lw=1.0, zorder=4, gid="stable",
-                   label="transversally stable (Floquet)")
-    ax.set_xscale("log")
-    ax.set_xlabel("energy $E$ (-)")
-    ax.set_ylabel(r"frequency $2\pi/T$ (-)")
+    _frequency_energy_spps(ax, sols, "transversally stable (Floquet)")
     # Below the axes, as the root map's: inside them "best" still covered chain5's SPP #0 (E = 20, f = 0.956).
     ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
               handletextpad=0.2, columnspacing=1.0)
@@ -358,16 +361,7 @@ def modes_figure(result, solutions=(), path=None, ax=None, admissible_spps_only=
     for w in result.linear_frequencies:
         ax.axhline(w, ls=":", color="0.3", lw=0.6, gid="linear")
     sols = [s for s in solutions if s.admissible or not admissible_spps_only]
-    if sols:
-        _scatter_spps(ax, sols, lambda s: s.energy, lambda s: 2 * np.pi / s.period)
-        stable = [(s.energy, 2 * np.pi / s.period) for s in sols if getattr(s, "stable", False)]
-        if stable:
-            a, b = np.array(stable).T
-            ax.scatter(a, b, s=70, facecolors="none", edgecolors="k", lw=1.0, zorder=4, gid="stable",
-                       label="transversally stable SPP")
-    ax.set_xscale("log")
-    ax.set_xlabel("energy $E$ (-)")
-    ax.set_ylabel(r"frequency $2\pi/T$ (-)")
+    _frequency_energy_spps(ax, sols, "transversally stable SPP")
     ax.legend(fontsize=6, frameon=False, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     if own:
         fig.tight_layout()
