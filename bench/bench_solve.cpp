@@ -23,23 +23,7 @@ spp::System chain_system(int n) {
   return spp::chain(n, {1.0}, {1.0}, n - 1, spp::ContactSide::Upper, 1.0);
 }
 
-spp::System random_system(int n) {
-  std::mt19937 rng(static_cast<unsigned>(n));
-  std::normal_distribution<double> nd;
-  auto spd = [&](double lo, double hi) {
-    Eigen::MatrixXd A(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) A(i, j) = nd(rng);
-    const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ();
-    std::uniform_real_distribution<double> u(lo, hi);
-    Eigen::VectorXd e(n);
-    for (int i = 0; i < n; ++i) e(i) = u(rng);
-    return Eigen::MatrixXd(Q * e.asDiagonal() * Q.transpose());
-  };
-  Eigen::VectorXd w(n);
-  for (int i = 0; i < n; ++i) w(i) = nd(rng);
-  return spp::System(spd(0.5, 2.0), spd(0.5, 2.0 * n), w, 1.0, "random" + std::to_string(n));
-}
+spp::System random_system(int n) { return spp::random_dense(n, static_cast<unsigned>(n)); }
 
 void run(benchmark::State& state, const spp::System& s, const spp::SolveOptions& o) {
   spp::SolveResult r;

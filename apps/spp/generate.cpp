@@ -1,6 +1,6 @@
-// spp generate: system files of the paper's models (chain, rod, two-dof), optionally with one value left free as the
-// parameter of a parametric system; and a large sparse model (bar: a finite-element rod, M and K in Matrix Market
-// files beside the JSON, to reduce with spp reduce).
+// spp generate: system files of the paper's models (chain, rod, two-dof) and of random dense systems, optionally with
+// one value left free as the parameter of a parametric system; and a large sparse model (bar: a finite-element rod, M
+// and K in Matrix Market files beside the JSON, to reduce with spp reduce).
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -18,8 +18,10 @@ namespace {
 
 struct GenerateArgs {
   std::string out, parameter, range;
-  CLI::App *chain = nullptr, *rod = nullptr, *bar = nullptr;
+  CLI::App *chain = nullptr, *rod = nullptr, *bar = nullptr, *random = nullptr;
   int bar_n = 1000, bar_contact_node = 0;  // 0: the free end
+  int random_n = 10;
+  unsigned seed = 1;
   bool bar_lumped = false;
   int n = 5, contact_dof = 0;  // contact_dof 1-based, 0: the last
   std::string masses = "1", stiffnesses = "1", side = "upper";
@@ -61,6 +63,7 @@ System make(const GenerateArgs& g, const std::optional<std::pair<std::string, do
     return chain(g.n, ms, ks, dof, g.side == "upper" ? ContactSide::Upper : ContactSide::Lower, g.chain_g0);
   }
   if (*g.rod) return rod_with_slip(g.a, g.b);
+  if (*g.random) return random_dense(g.random_n, g.seed, g.chain_g0);
   return two_dof(take("m1", g.m1, "--m1"), take("m2", g.m2, "--m2"), take("k1", g.k1, "--k1"), take("k2", g.k2, "--k2"),
                  g.two_dof_g0);
 }
@@ -99,8 +102,8 @@ int run(const GenerateArgs& g) {
   for (int i = 1; i <= n; ++i)
     known |= g.parameter == "m" + std::to_string(i) || g.parameter == "k" + std::to_string(i);
   if (!known)
-    detail::invalid("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) + ", got \"" +
-                                g.parameter + "\"");
+    detail::invalid("--parameter: expected m<i> or k<i> with i in 1.." + std::to_string(n) + ", got \"" + g.parameter +
+                    "\"");
   const ParametricSystem ps =
       parametrize([&](double v) { return make(g, std::make_pair(g.parameter, v)); }, {g.parameter, range[0], range[1]});
   write_file_atomic(g.out, parametric_system_json(ps));
@@ -145,6 +148,13 @@ Subcommand add_generate(CLI::App& app) {
       ->check(CLI::IsMember({"upper", "lower"}));
   g->bar->add_option("--g0", g->chain_g0, "gap at rest (default 1)");
   g->bar->add_option("--out", g->out, "output JSON (the .mtx files go beside it)")->required();
+  g->random = gen->add_subcommand("random",
+                                  "random dense system (spp::random_dense: w ~ N(0, I), K and M with random "
+                                  "eigenvectors and eigenvalues uniform in [0.5, 2n] and [0.5, 2]), one per --seed");
+  g->random->add_option("--n", g->random_n, "number of dofs (default 10)")->check(CLI::Range(1, kMaxDenseDofs));
+  g->random->add_option("--seed", g->seed, "seed of the random draws (default 1)");
+  g->random->add_option("--g0", g->chain_g0, "gap at rest (default 1)");
+  g->random->add_option("--out", g->out, "output JSON")->required();
   auto* two = gen->add_subcommand("two-dof", "2-dof system of paper §2.3");
   two->add_option("--m1", g->m1);
   two->add_option("--m2", g->m2);

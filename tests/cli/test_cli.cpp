@@ -261,6 +261,8 @@ TEST(Cli, GenerateThenSolve) {
   ASSERT_EQ(run("generate rod --a -0.25 --b 0.25 --out " + g.string()).code, 0);
   EXPECT_EQ(run("solve " + g.string() + " --t1-max 6 --t2-max 6 --quiet").code, 0);
   ASSERT_EQ(run("generate two-dof --k2 5.716 --out " + g.string()).code, 0);
+  ASSERT_EQ(run("generate random --n 6 --seed 2 --out " + g.string()).code, 0);
+  EXPECT_EQ(run("solve " + g.string() + " --t1-max 3 --t2-max 3 --quiet").code, 0);
   const CliRun bad = run("generate chain --n 3 --masses 1,2 --out " + (dir() / "bad.json").string());
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.out.find("masses must have 1 or n = 3 values, got 2"), std::string::npos) << bad.out;
@@ -1771,4 +1773,21 @@ TEST(Cli, WholeNumberBeyondAnIntOptionIsRefusedWithItsRangeNotCouldNotConvert) {
   const CliRun p = run("verify " + kChain + " --periods 1e12");
   EXPECT_NE(p.out.find("--periods: expected a whole number from -2147483648 to 2147483647"), std::string::npos)
       << p.out;
+}
+
+// spp generate random: one file per (n, seed), another for another seed; n outside [1, 10000] refused, no file.
+TEST(Cli, GenerateRandomIsOneSystemPerSeed) {
+  const fs::path a = dir() / "rand_a.json", b = dir() / "rand_b.json", c = dir() / "rand_c.json";
+  ASSERT_EQ(run("generate random --n 5 --seed 7 --out " + a.string()).code, 0);
+  ASSERT_EQ(run("generate random --n 5 --seed 7 --out " + b.string()).code, 0);
+  ASSERT_EQ(run("generate random --n 5 --seed 8 --out " + c.string()).code, 0);
+  EXPECT_EQ(slurp(a), slurp(b));
+  EXPECT_NE(read_json(a)["K"], read_json(c)["K"]);
+  for (const char* n : {"0", "10001"}) {
+    const fs::path bad = dir() / "rand_bad.json";
+    const CliRun r = run(std::string("generate random --n ") + n + " --out " + bad.string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("--n"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(bad));
+  }
 }

@@ -124,3 +124,32 @@ TEST(Generators, OutOfMemoryNamesWhatWasTooLarge) {
     EXPECT_EQ(std::string(e.what()), "out of memory: inner");
   }
 }
+
+// One seed, one system; M's and K's spectra in their documented ranges; n refused outside [1, kMaxDenseDofs] before
+// any allocation. (The benchmarks and test_evaluator had their own copies of this generator.)
+TEST(Generators, RandomDenseIsReproducibleWithItsSpectraInRange) {
+  const System a = random_dense(7, 3), b = random_dense(7, 3), c = random_dense(7, 4);
+  EXPECT_EQ((a.M() - b.M()).norm(), 0.0);
+  EXPECT_EQ((a.K() - b.K()).norm(), 0.0);
+  EXPECT_EQ((a.w() - b.w()).norm(), 0.0);
+  EXPECT_GT((a.K() - c.K()).norm(), 0.1);
+  const Eigen::VectorXd em = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a.M()).eigenvalues();
+  const Eigen::VectorXd ek = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a.K()).eigenvalues();
+  EXPECT_GE(em.minCoeff(), 0.5 - 1e-12);
+  EXPECT_LE(em.maxCoeff(), 2.0 + 1e-12);
+  EXPECT_GE(ek.minCoeff(), 0.5 - 1e-12);
+  EXPECT_LE(ek.maxCoeff(), 14.0 + 1e-12);
+  EXPECT_GT(ek.maxCoeff() - ek.minCoeff(), 1.0);  // K drawn over [0.5, 2 n], not M's range
+  EXPECT_NEAR(a.g0() * a.w_input_norm(), 1.0, 1e-15);  // g0 as given (System divides it by |w|)
+  const System q = random_dense(3, 1, 0.25);
+  EXPECT_NEAR(q.g0() * q.w_input_norm(), 0.25, 1e-15);
+  // The system the benchmarks' own copy drew for n = 3 (printed by that copy, built with GCC 12): the draw order
+  // w, K, M keeps the systems README's benchmark rows were measured on.
+  const System r3 = random_dense(3, 3);
+  const Eigen::Vector3d m3 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(r3.M()).eigenvalues();
+  const Eigen::Vector3d k3 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(r3.K()).eigenvalues();
+  EXPECT_LT((m3 - Eigen::Vector3d(0.530922, 0.714076, 0.987959)).norm(), 1e-5) << m3.transpose();
+  EXPECT_LT((k3 - Eigen::Vector3d(2.71298, 4.71205, 5.85507)).norm(), 1e-4) << k3.transpose();
+  EXPECT_THROW(random_dense(0, 1), std::invalid_argument);
+  EXPECT_THROW(random_dense(kMaxDenseDofs + 1, 1), std::invalid_argument);
+}

@@ -28,6 +28,13 @@ System rod_with_slip(double a, double b);
 /// 2-dof system of paper §2.3 (eq. 2.5), obstacle on the second mass: g = g0 - x2.
 System two_dof(double m1, double m2, double k1, double k2, double g0);
 
+/// A random dense system (benchmarks, tests, cross-checks): w ~ N(0, I_n), then K = Q_K diag(e_K) Q_K^T with e_K
+/// uniform in [0.5, 2 n], then M = Q_M diag(e_M) Q_M^T with e_M uniform in [0.5, 2], each Q the orthogonal factor of
+/// the Householder QR of an n x n matrix of N(0, 1) entries; gap g0. Drawn in that order from std::mt19937(seed)
+/// through std::normal_distribution / std::uniform_real_distribution, so one seed gives one system with a given
+/// standard library (libstdc++ here; another library may draw other values). n in [1, kMaxDenseDofs]. Cost O(n^3).
+System random_dense(int n, unsigned seed, double g0 = 1.0);
+
 enum class BarMass {
   Consistent,  ///< element mass rho A h / 6 [[2, 1], [1, 2]] (frequencies from above)
   Lumped,      ///< rho A h / 2 on each node (frequencies from below)
