@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "spp/core/names.hpp"
 #include "spp/detail/invalid.hpp"
 
 namespace spp {
@@ -33,6 +34,9 @@ ParametricSystem::ParametricSystem(Eigen::MatrixXd M_constant, Eigen::MatrixXd M
       name_(std::move(name)) {
   const std::string& p = parameter_.name;
   if (p.empty()) detail::invalid("parametric system: the parameter needs a name: expected one, got the empty string");
+  // (the parameter's name is a key of M, K and w in a file and a column title)
+  check_name(p, "parametric system: parameter name");
+  check_name(name_, "parametric system: name");
   if (!(std::isfinite(parameter_.min) && std::isfinite(parameter_.max) && parameter_.min < parameter_.max)) {
     std::ostringstream os;
     os << "parametric system: parameter \"" << p << "\" needs finite min < max, got min = " << parameter_.min

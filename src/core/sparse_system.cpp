@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "spp/core/names.hpp"
 #include "spp/core/system.hpp"
 #include "spp/detail/invalid.hpp"
 
@@ -49,6 +50,7 @@ void check_matrix(const Eigen::SparseMatrix<double>& A, const char* name, int n)
 SparseSystem::SparseSystem(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> K, Eigen::VectorXd w, double g0,
                            std::string name)
     : M_(std::move(M)), K_(std::move(K)), w_(std::move(w)), g0_(g0), name_(std::move(name)) {
+  check_name(name_, "SparseSystem: name");
   if (M_.rows() < 1 || M_.rows() != M_.cols())
     detail::invalid("SparseSystem: M must be square and non-empty, got " + std::to_string(M_.rows()) + " x " +
                     std::to_string(M_.cols()));

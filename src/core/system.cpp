@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "spp/core/names.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/detail/out_of_memory.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
@@ -69,8 +70,26 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
 
 }  // namespace
 
+void check_text(const std::string& text, const std::string& where, std::size_t max_bytes, bool line_breaks,
+                const char* kind) {
+  if (text.size() > max_bytes)
+    detail::invalid(where + ": expected at most " + std::to_string(max_bytes) + " bytes, got " +
+                    std::to_string(text.size()) + " (" + kind + ")");
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 0x20 && !(line_breaks && (c == '\t' || c == '\n' || c == '\r'))) || c == 0x7f)
+      detail::invalid(where + ": expected printable text, got the control character " +
+                      std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i));
+  }
+}
+
+void check_name(const std::string& name, const std::string& where) {
+  check_text(name, where, kMaxNameBytes, /*line_breaks=*/false, "a name is a title");
+}
+
 System::System(Eigen::MatrixXd M, Eigen::MatrixXd K, Eigen::VectorXd w, double g0, std::string name)
     : name_(std::move(name)) {
+  check_name(name_, "system: name");
   if (M.rows() == 0) detail::invalid("system: M must have at least one row, got an empty matrix");
   if (M.rows() != M.cols()) {
     std::ostringstream os;

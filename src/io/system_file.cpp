@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "io/json.hpp"
+#include "spp/core/names.hpp"
 #include "spp/io/files.hpp"
 #include "spp/io/matrix_market.hpp"
 
@@ -12,11 +13,13 @@ namespace spp::io {
 namespace fs = std::filesystem;
 
 namespace {
-// Longest "name" and "description" a system file may hold, in bytes: a name is a title (tables, figure titles, the
-// result files that embed it), a description a paragraph or a few; a 100 MB name was read whole and copied into every
-// output (found by an independent attack). Documented in the README.
-constexpr size_t kMaxNameBytes = 4096;
+// Longest "description" a system file may hold, in bytes: a paragraph or a few (the name's limit is kMaxNameBytes,
+// core/names.hpp). Documented in the README.
 constexpr size_t kMaxDescriptionBytes = 65536;
+
+void check_description(const std::string& description, const std::string& where) {
+  check_text(description, where, kMaxDescriptionBytes, /*line_breaks=*/true, "a description is a few paragraphs");
+}
 
 double g0_field(const json& j, const std::string& where) {
   if (!j.contains("g0"))
@@ -31,24 +34,10 @@ std::string name_field(const json& j, const std::string& where) {
   for (const char* k : {"name", "description"})
     if (j.contains(k) && !j.at(k).is_string())
       invalid(where + ": field \"" + k + "\" must be a string, got " + describe(j.at(k)));
-  // control characters (a NUL cut the name short in every table and figure title; found by an independent attack),
-  // except tabs and line breaks in the description
-  for (const char* k : {"name", "description"}) {
-    if (!j.contains(k)) continue;
-    const std::string& t = j.at(k).get_ref<const std::string&>();
-    const bool text = std::string(k) == "description";
-    const size_t limit = text ? kMaxDescriptionBytes : kMaxNameBytes;
-    if (t.size() > limit)
-      invalid(where + ": field \"" + k + "\": expected at most " + std::to_string(limit) + " bytes, got " +
-              std::to_string(t.size()) + " (" + (text ? "a description is a few paragraphs" : "a name is a title") +
-              ")");
-    for (size_t i = 0; i < t.size(); ++i) {
-      const auto c = static_cast<unsigned char>(t[i]);
-      if ((c < 0x20 && !(text && (c == '\t' || c == '\n' || c == '\r'))) || c == 0x7f)
-        invalid(where + ": field \"" + k + "\": expected printable text, got the control character " +
-                std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i));
-    }
-  }
+  // the checks of the constructors (core/names.hpp), naming the file; tabs and line breaks kept in the description
+  if (j.contains("name")) check_name(j.at("name").get_ref<const std::string&>(), where + ": field \"name\"");
+  if (j.contains("description"))
+    check_description(j.at("description").get_ref<const std::string&>(), where + ": field \"description\"");
   return j.contains("name") ? j.at("name").get<std::string>() : "";
 }
 
@@ -79,9 +68,12 @@ System system_fields(const json& j, const std::string& where, const std::string&
   if (!j.is_object()) invalid(where + ": expected a JSON object with fields M, K, w, g0");
   if (embedded)
     check_fields(j, {"name", "description", "M", "K", "w", "g0", "n", "w_normalized", "w_input_norm"}, where);
-  else if (const char* k = j.contains("n") ? "n" : j.contains("w_input_norm") ? "w_input_norm"
-                           : j.contains("w_normalized") ? "w_normalized" : nullptr)
-    invalid(where + ": field \"" + k + "\" belongs to the system a result file embeds, not to a system file "
+  else if (const char* k = j.contains("n")              ? "n"
+                           : j.contains("w_input_norm") ? "w_input_norm"
+                           : j.contains("w_normalized") ? "w_normalized"
+                                                        : nullptr)
+    invalid(where + ": field \"" + k +
+            "\" belongs to the system a result file embeds, not to a system file "
             "(expected name, description, M, K, w, g0): remove it, or give the result file itself where a result is "
             "taken");
   else
@@ -175,14 +167,7 @@ ParametricSystem parametric_system_from_json(const json& j, const std::string& w
   check_fields(p, {"name", "min", "max"}, where + ": field \"parameter\"");
   Parameter par;
   par.name = p.at("name").get<std::string>();
-  // (the parameter's name is a key of M, K and w and a column title: the limit and the characters of a name)
-  if (par.name.size() > kMaxNameBytes)
-    invalid(where + ": field \"parameter\": field \"name\": expected at most " + std::to_string(kMaxNameBytes) +
-            " bytes, got " + std::to_string(par.name.size()));
-  for (size_t i = 0; i < par.name.size(); ++i)
-    if (const auto c = static_cast<unsigned char>(par.name[i]); c < 0x20 || c == 0x7f)
-      invalid(where + ": field \"parameter\": field \"name\": expected printable text, got the control character " +
-              std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i));
+  check_name(par.name, where + ": field \"parameter\": field \"name\"");  // (as the constructor checks it)
   for (const char* k : {"min", "max"})
     if (!p.contains(k) || !p.at(k).is_number())
       invalid(where + ": field \"parameter\" needs the number \"" + std::string(k) + "\": expected a number, got " +
@@ -326,6 +311,7 @@ std::vector<std::string> sparse_system_matrix_files(const std::string& json_path
 
 void write_sparse_system(const SparseSystem& system, const std::string& json_path, const std::string& description) {
   namespace fs = std::filesystem;
+  io::check_description(description, "write_sparse_system: description");  // (what the reader takes back)
   const std::vector<std::string> files = sparse_system_matrix_files(json_path);
   const std::string comment = system.name() + ", n = " + std::to_string(system.n());
   const std::string m_text = matrix_market_text(system.M(), true, "M of " + comment);

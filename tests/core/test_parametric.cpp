@@ -41,3 +41,28 @@ TEST(Parametric, RefusesWhatIsNotAFamilyOfSystems) {
   EXPECT_NE(message(1.0, 2.0, Eigen::MatrixXd::Zero(2, 2)).find("do not depend"), std::string::npos);
   EXPECT_NE(message(1.0, 2.0, Eigen::MatrixXd::Zero(3, 3)).find("3 x 3"), std::string::npos);
 }
+
+// Issue 11 (found by an independent attack): the parameter's name and the system's are checked by the constructor as
+// the system-file reader checks them (core/names.hpp): a parametric system built in Python or C++ can be written.
+TEST(Parametric, NamesAreCheckedAsTheReaderChecksThem) {
+  Eigen::MatrixXd K0(2, 2), K1(2, 2);
+  K0 << 1, 0, 0, 0;
+  K1 << 1, -1, -1, 1;
+  auto message = [&](const std::string& parameter, const std::string& name) {
+    try {
+      ParametricSystem(Eigen::MatrixXd::Identity(2, 2), {}, K0, K1, Eigen::Vector2d(0, -1), {}, 1.0,
+                       {parameter, 1.0, 2.0}, name);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("k2", std::string(4096, 'a')), "no error");
+  EXPECT_EQ(message("k\t2", ""),
+            "parametric system: parameter name: expected printable text, got the control "
+            "character 9 at byte 1");
+  EXPECT_EQ(message(std::string(4097, 'k'), ""),
+            "parametric system: parameter name: expected at most 4096 bytes, got 4097 (a name is a title)");
+  EXPECT_EQ(message("k2", std::string(4097, 'a')),
+            "parametric system: name: expected at most 4096 bytes, got 4097 (a name is a title)");
+}

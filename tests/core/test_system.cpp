@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "spp/core/names.hpp"
 #include "spp/core/system.hpp"
 
 using spp::System;
@@ -107,4 +108,17 @@ TEST(System, EntriesNearTheLargestDoubleAreNoEigenvalueFailure) {
   const System s(1e308 * I2(), K2(), w2(), 1.0);
   EXPECT_EQ(s.M()(0, 0), 1e308);
   EXPECT_EQ(s.M()(1, 0), 0.0);
+}
+
+// Found by an independent attack (issue 11): spp.System(name=5000 characters) was built, and the result file written
+// with it was refused by load_result (its reader limits names to 4096 bytes, printable). The constructor checks the
+// name as the readers do (core/names.hpp), so nothing is built that a file cannot hold.
+TEST(System, NameALongerThanAFileHoldsOrWithAControlCharacterIsRefusedByTheConstructor) {
+  EXPECT_EQ(System(I2(), K2(), w2(), 1.0, std::string(spp::kMaxNameBytes, 'a')).name().size(), spp::kMaxNameBytes);
+  expect_error([] { System(I2(), K2(), w2(), 1.0, std::string(spp::kMaxNameBytes + 1, 'a')); },
+               "system: name: expected at most 4096 bytes, got 4097 (a name is a title)");
+  expect_error([] { System(I2(), K2(), w2(), 1.0, std::string("two\nlines")); },
+               "system: name: expected printable text, got the control character 10 at byte 3");
+  expect_error([] { System(I2(), K2(), w2(), 1.0, std::string("a\0b", 3)); },
+               "system: name: expected printable text, got the control character 0 at byte 1");
 }
