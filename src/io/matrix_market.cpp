@@ -111,13 +111,13 @@ void parse_matrix_market(const std::string& path, bool dense, long expected_size
             shorten(extra) + "\" after them");
   for (auto* s : {&object, &format, &field, &symmetry})
     for (auto& ch : *s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  if (object != "matrix") invalid(path + ": expected object \"matrix\", got \"" + shorten(object) + "\"");
+  if (object != "matrix") invalid(path + ":1: expected object \"matrix\", got \"" + shorten(object) + "\"");
   if (format != "coordinate" && format != "array")
-    invalid(path + ": expected format coordinate or array, got \"" + shorten(format) + "\"");
+    invalid(path + ":1: expected format coordinate or array, got \"" + shorten(format) + "\"");
   if (field != "real" && field != "integer" && field != "double")
-    invalid(path + ": expected field real or integer, got \"" + shorten(field) + "\"");
+    invalid(path + ":1: expected field real or integer, got \"" + shorten(field) + "\"");
   if (symmetry != "general" && symmetry != "symmetric")
-    invalid(path + ": expected symmetry general or symmetric, got \"" + shorten(symmetry) + "\"");
+    invalid(path + ":1: expected symmetry general or symmetric, got \"" + shorten(symmetry) + "\"");
   int lineno = 1;
   auto next_data_line = [&](std::string& l) {  // skips comments and blank lines
     while (read_line(in, l, path, lineno + 1)) {
@@ -195,7 +195,6 @@ std::string mirror_given(long i, long j) {
   return "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
          ") of a symmetric file: its mirror was given too (expected one triangle stored, got both)";
 }
-
 
 }  // namespace
 

@@ -11,9 +11,26 @@ namespace spp::io {
 
 using detail::invalid;
 
-/// User text quoted in an error message: at most n characters of it.
+/// User text quoted in an error message: at most n characters of it, control characters escaped (\0, \t, \xNN): the
+/// message reaches the user as a C string (what()), and a NUL inside a Matrix Market line cut it short there, file
+/// and line lost (found by an independent attack).
 inline std::string shorten(const std::string& t, size_t n = 40) {
-  return t.size() > n ? t.substr(0, n) + "..." : t;
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (size_t i = 0; i < t.size() && i < n; ++i) {
+    const auto c = static_cast<unsigned char>(t[i]);
+    if (c == 0)
+      out += "\\0";
+    else if (c == '\t')
+      out += "\\t";
+    else if (c == '\r')
+      out += "\\r";
+    else if (c < 0x20 || c == 0x7f)
+      out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+    else
+      out += t[i];
+  }
+  return t.size() > n ? out + "..." : out;
 }
 
 /// Characters of a file path quoted in an error message: a real path fits (PATH_MAX is 4096, paths are far shorter in

@@ -1,8 +1,7 @@
 #include <gtest/gtest.h>
-
-#include <algorithm>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -448,7 +447,8 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   expect_refused(j, "field \"status\" is \"success\" but field \"warnings\" has 1 entry");
   j = good;
   j["solutions"][1]["admissibility_certified"] = false;
-  expect_refused(j, "field \"status\" is \"success\" but field \"solutions\"[1] has \"admissibility_certified\": false");
+  expect_refused(j,
+                 "field \"status\" is \"success\" but field \"solutions\"[1] has \"admissibility_certified\": false");
   j = good;
   j["status"] = "incomplete";
   expect_refused(j, "field \"status\" is \"incomplete\" but neither \"warnings\" nor \"uncertified\" says why");
@@ -469,7 +469,8 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   for (const char* field : {"min_gap", "energy", "residual"}) {
     j = good;
     j["solutions"][0][field] = nullptr;
-    expect_refused(j, std::string("field \"solutions\"[0]: field \"") + field + "\": expected a finite number, got null");
+    expect_refused(j,
+                   std::string("field \"solutions\"[0]: field \"") + field + "\": expected a finite number, got null");
   }
   j = good;
   j["solutions"][0]["x0"][1] = nullptr;
@@ -640,6 +641,20 @@ TEST(Io, MatrixMarketHexadecimalNumberIsRefused) {
                       "bad entry \"1 1 0x1p1\"");
 }
 
+// Found by an independent attack (issue 11): a NUL byte inside a Matrix Market line cut the message short where it
+// was quoted (what() is a C string): the line's text and the rule after it were lost. Shown escaped, file and line
+// named.
+TEST(Io, NulByteInsideAMatrixMarketLineIsShownEscapedNamingFileAndLine) {
+  using namespace std::string_literals;  // ("..."s keeps the NUL)
+  const fs::path d = tmpdir();
+  write(d / "nul.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\0junk\n2 2 1\n"s);
+  expect_load_refused(R"({"M": {"matrix_market": "nul.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "nul.mtx:3: bad entry \"1 1 1\\0junk\" (expected row col value");
+  write(d / "nul1.mtx", "%%MatrixMarket matrix coord\0inate real general\n2 2 2\n1 1 1\n2 2 1\n"s);
+  expect_load_refused(R"({"M": {"matrix_market": "nul1.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "nul1.mtx:1: expected format coordinate or array, got \"coord\\0inate\"");
+}
+
 TEST(Io, MatrixMarketIndicesAndCountsAreWholeNumbersAsWritten) {
   // "2.0" and "2e0" were read as 2 in the size line and in entries (through a double; found by an independent attack)
   const fs::path d = tmpdir();
@@ -749,9 +764,9 @@ TEST(Io, SystemFileWithAResultsEmbeddedFieldsIsRefused) {
   // "n", "w_normalized", "w_input_norm" are what a result file adds to its system: a system file took them with
   // any value, silently (found by an independent attack)
   for (const char* field : {"n", "w_normalized", "w_input_norm"})
-    expect_load_refused(std::string(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, ")") + field +
-                            "\": 99}",
-                        std::string("field \"") + field + "\" belongs to the system a result file embeds");
+    expect_load_refused(
+        std::string(R"({"M": [[1,0],[0,1]], "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1, ")") + field + "\": 99}",
+        std::string("field \"") + field + "\" belongs to the system a result file embeds");
 }
 
 // The stability verdict and its rounding bound (stability/floquet.hpp): files written before them read with the old
@@ -796,8 +811,7 @@ TEST(Io, StabilityVerdictReadsOldFilesAndRefusesContradictions) {
   j["solutions"][2]["spectral_radius_error"] = 0.02;  // rho = 0.9858: within 0.02 of 1, undecided
   EXPECT_NE(refusal(j).find("gives \"undecided\""), std::string::npos) << refusal(j);
   j["solutions"][2]["stability_verdict"] = "undecided";
-  EXPECT_NE(refusal(j).find("field \"stable\" must be admissible and stability_verdict \"stable\""),
-            std::string::npos)
+  EXPECT_NE(refusal(j).find("field \"stable\" must be admissible and stability_verdict \"stable\""), std::string::npos)
       << refusal(j);
   j["solutions"][2]["stable"] = false;
   EXPECT_EQ(refusal(j), "(accepted)");
