@@ -139,22 +139,17 @@ SolveOptions planned_window(const ModalForm& md, const SolveOptions& options) {
 }
 
 WindowPlan plan_window(const ModalForm& md, const SolveOptions& options) {
+  // the lower ends as planned_window sets them (it alone holds the rules: automatic ends, the axis band); a lower end
+  // the caller gave and the plan kept is widened by a hair like an upper end, an automatic or raised one is not
   WindowPlan w;
-  w.options = options;
-  SolveOptions& opt = w.options;
-  const auto [t1_auto, t2_auto] = default_lower_ends(md, opt.t1_max, opt.t2_max);
-  w.axis1 = opt.t1_min == 0.0;
-  w.axis2 = opt.t2_min == 0.0;
-  if (w.axis1) opt.t1_min = t1_auto;
-  if (w.axis2) opt.t2_min = t2_auto;
-  const auto [band1, band2] = axis_band(md);
-  const bool cut1 = opt.t1_min < 0.5 * band1 && 0.5 * band1 < opt.t1_max;
-  const bool cut2 = opt.t2_min < 0.5 * band2 && 0.5 * band2 < opt.t2_max;
-  check_window_size(md, planned_window(md, options));  // counted, and named when refused, as planned
+  w.options = planned_window(md, options);
+  const SolveOptions& opt = w.options;
+  w.axis1 = options.t1_min == 0.0;
+  w.axis2 = options.t2_min == 0.0;
+  const bool own1 = opt.t1_min == options.t1_min, own2 = opt.t2_min == options.t2_min;
   const double max_lines = static_cast<double>(opt.max_cells) + 16.0;
-  w.t1 = plan_axis(md.omega(), cut1 ? 0.5 * band1 : opt.t1_min, opt.t1_max, !(w.axis1 || cut1), opt.pole_margin,
-                   max_lines);
-  w.t2 = plan_axis(md.d(), cut2 ? 0.5 * band2 : opt.t2_min, opt.t2_max, !(w.axis2 || cut2), opt.pole_margin, max_lines);
+  w.t1 = plan_axis(md.omega(), opt.t1_min, opt.t1_max, own1, opt.pole_margin, max_lines);
+  w.t2 = plan_axis(md.d(), opt.t2_min, opt.t2_max, own2, opt.pole_margin, max_lines);
   return w;
 }
 

@@ -41,12 +41,14 @@ void check_window_size(
 SolveOptions planned_window(const ModalForm& md, const SolveOptions& options);
 
 struct WindowPlan {
-  SolveOptions options;               ///< the caller's, with the automatic lower ends filled in
+  SolveOptions options;               ///< planned_window(caller's options): the lower ends as searched
   bool axis1 = false, axis2 = false;  ///< lower ends automatic ("from the axis")
   AxisPlan t1, t2;
 };
 
-/// The whole plan: lower ends (0 = from the axis: default_lower_ends), size check, both axes.
+/// The whole plan: the lower ends of planned_window, both axes. The size is not checked here: the caller checks it
+/// once, before (check_window_size on the window in the user's time, whose message names it; plan_search). Each
+/// axis lists at most max_cells + 16 pole lines whatever the window.
 WindowPlan plan_window(const ModalForm& md, const SolveOptions& options);
 
 }  // namespace spp::search

@@ -162,3 +162,28 @@ TEST(WindowPlan, AnEdgeOnAPoleLineFarOutMovesPastIt) {
     EXPECT_LT(down.bp.front(), p);
   }
 }
+
+TEST(WindowPlan, PlanStartsWherePlannedWindowSaysForEveryKindOfLowerEnd) {
+  // Review (issue 11): plan_window held its own copy of planned_window's lower-end rules (automatic ends, the axis
+  // band), and its options kept the automatic end where the plan started at half the band. Now derived from it: the
+  // plan starts at planned_window's ends, the caller's own lower end widened by a hair like an upper end.
+  const ModalForm md(two_dof(1.0, 1.0, 1.0, 1.0, 1.0));
+  const auto [band1, band2] = axis_band(md);
+  for (const double lo : {0.0, 0.1 * band1, 10.0 * band1}) {  // from the axis, inside the band, the caller's own
+    SolveOptions o;
+    o.t1_max = o.t2_max = 3.0;
+    o.t1_min = o.t2_min = lo;
+    const SolveOptions planned = search::planned_window(md, o);
+    const search::WindowPlan plan = search::plan_window(md, o);
+    EXPECT_EQ(plan.options.t1_min, planned.t1_min) << lo;
+    EXPECT_EQ(plan.options.t2_min, planned.t2_min) << lo;
+    EXPECT_EQ(plan.axis1, lo == 0.0);
+    if (lo > band1) {
+      EXPECT_LT(plan.t1.bp.front(), lo);
+      EXPECT_LT(plan.t2.bp.front(), lo);
+    } else {
+      EXPECT_EQ(plan.t1.bp.front(), std::max(0.5 * band1, planned.t1_min)) << lo;
+      EXPECT_EQ(plan.t2.bp.front(), std::max(0.5 * band2, planned.t2_min)) << lo;
+    }
+  }
+}
