@@ -10,15 +10,16 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 // (every header that declares a result enum's to_string: outcome() names them qualified, so they must be seen here)
 #include "spp/continuation/continuation.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/simulation/verify.hpp"
-#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -78,50 +79,18 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
     if (std::find(known.begin(), known.end(), name) == known.end()) {
       std::string list;
       for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
-      detail::invalid(std::string(where) + ": unknown option \"" + name + "\" (" + type_name +
-                                  " fields: " + list + ")");
+      detail::invalid(std::string(where) + ": unknown option \"" + name + "\" (" + type_name + " fields: " + list +
+                      ")");
     }
-    const py::object current = o.attr(key);
-    py::object given = py::reinterpret_borrow<py::object>(value);
-    // a bool is no number here (t1_max=True solved the window (0, 1]); a whole float is a count (max_cells=1e7, as
-    // the CLI and --help write it)
-    const bool is_bool = py::isinstance<py::bool_>(given) ||
-                         py::isinstance(given, py::module_::import("numpy").attr("bool_"));
-    if (is_bool && !py::isinstance<py::bool_>(current))
-      throw py::type_error(std::string(where) + ": option " + name + " must be " +
-                           std::string(py::str(py::type::of(current).attr("__name__"))) + " like its default " +
-                           py::repr(current).cast<std::string>() + ", got " + typed_repr(given));
-    if (py::isinstance<py::int_>(current) && !py::isinstance<py::bool_>(current) && py::isinstance<py::float_>(given) &&
-        given.attr("is_integer")().cast<bool>() && std::abs(given.cast<double>()) <= 9e15)
-      given = py::int_(given);
+    // converted and checked by the field's own setter (field_value: the message an attribute set gives), named
+    // here with the function it was given to
     try {
-      py::setattr(o, key, given);
+      py::setattr(o, key, value);
     } catch (const py::error_already_set& e) {
-      if (!e.matches(PyExc_TypeError)) throw;
-      // a whole number pybind11 cannot hold in the C++ field (periods=10**12 into an int) is out of range, not of
-      // another type: "must be int, got int" said nothing (found by an independent attack). Which C++ integer the
-      // field is, asked of the binding itself: does it take 2^40?
-      if (py::isinstance<py::int_>(given) && !py::isinstance<py::bool_>(given) && py::isinstance<py::int_>(current) &&
-          !py::isinstance<py::bool_>(current)) {
-        bool wide = true;
-        try {
-          py::setattr(py::cast(Options{}), key, py::int_(1LL << 40));
-        } catch (const py::error_already_set&) {
-          wide = false;
-        }
-        const std::string lo = wide ? std::to_string(std::numeric_limits<long long>::min())
-                                    : std::to_string(std::numeric_limits<int>::min());
-        const std::string hi = wide ? std::to_string(std::numeric_limits<long long>::max())
-                                    : std::to_string(std::numeric_limits<int>::max());
-        std::string shown = py::repr(given).cast<std::string>();
-        if (shown.size() > 60) shown = shown.substr(0, 60) + "...";
-        detail::invalid(std::string(where) + ": option " + name + " must be an integer from " + lo + " to " + hi +
-                        " (the range of the C++ field; " + type_name + ".validate() then checks its own bounds), got " +
-                        shown + ": out of range");
-      }
-      throw py::type_error(std::string(where) + ": option " + name + " must be " +
-                           std::string(py::str(py::type::of(current).attr("__name__"))) + " like its default " +
-                           py::repr(current).cast<std::string>() + ", got " + typed_repr(value));
+      const std::string message = std::string(where) + ": " + py::str(e.value()).cast<std::string>();
+      if (e.matches(PyExc_TypeError)) throw py::type_error(message);
+      if (e.matches(PyExc_ValueError)) throw py::value_error(message);
+      throw;
     }
   }
   return o.cast<Options>();
@@ -144,7 +113,7 @@ inline void require_real(const py::object& a, const std::string& what) {
   const py::module_ np = py::module_::import("numpy");
   if (np.attr("iscomplexobj")(a).cast<bool>())
     detail::invalid(what + " must be real, got a complex array (dtype " +
-                                py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
+                    py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
 }
 
 // Matrix and vector input, one conversion for System and ParametricSystem: numpy arrays, nested lists, scipy.sparse
@@ -185,13 +154,129 @@ inline Eigen::VectorXd vector_input(const py::object& a, const std::string& what
   return arr.attr("ravel")().cast<Eigen::VectorXd>();
 }
 
+// An array argument of `ndim` dimensions (1: a vector, (n,); 2: a matrix, (rows, cols)) as numbers, `what` named with
+// the shape expected when it is ragged, of another shape or not numbers: simulate's x0 = [[1, 2], [3]] and chain's
+// masses = [[1, 2]] gave numpy's or pybind11's own error, naming no argument (found by an independent attack).
+inline Eigen::MatrixXd array_of_numbers(const py::handle& a, const std::string& what, int ndim) {
+  const std::string expected =
+      ndim == 1 ? "a vector of numbers, shape (n,)" : "a matrix of numbers, shape (rows, cols)";
+  py::object arr;
+  try {
+    require_real(py::reinterpret_borrow<py::object>(a), what);
+    arr = py::module_::import("numpy").attr("asarray")(a, "dtype"_a = "float64");
+  } catch (const py::error_already_set& e) {
+    std::string why = py::str(e.value()).cast<std::string>();  // numpy's reason (ragged, a string), shortened
+    if (why.size() > 160) why = why.substr(0, 160) + "...";
+    detail::invalid(what + " must be " + expected + ", got " + typed_repr(a) + " (numpy: " + why + ")");
+  }
+  if (arr.attr("ndim").cast<int>() != ndim)
+    detail::invalid(what + " must be " + expected + ", got shape " + py::str(arr.attr("shape")).cast<std::string>());
+  if (ndim == 1) return arr.cast<Eigen::VectorXd>();
+  return arr.cast<Eigen::MatrixXd>();
+}
+inline std::vector<double> vector_of_numbers(const py::handle& a, const std::string& what) {
+  const Eigen::VectorXd v = array_of_numbers(a, what, 1);
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+// A number, bool or list of numbers given to an Options field, converted here, field by field, with the field named
+// (`label`, e.g. "SolveOptions.threads"): one mechanism for every Options struct bound (OptionsBinding below), so that
+// an attribute set after construction (o.threads = 2**40, o.t1_max = 10**400) says what a keyword argument says, not
+// pybind11's "incompatible function arguments" with the signatures; numpy's integer and float scalars are taken where
+// Python's ints and floats are (o.threads = np.int64(2) was refused; found by an independent attack). A wrong type is
+// a TypeError, a number out of the C++ field's range a ValueError.
+inline bool is_python_bool(const py::handle& v) {
+  return py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
+}
+inline std::string shown_value(const py::handle& v) {
+  std::string r = py::repr(v).cast<std::string>();
+  return r.size() > 60 ? r.substr(0, 60) + "..." : r;
+}
+[[noreturn]] inline void wrong_field_type(const std::string& label, const py::object& default_value,
+                                          const py::handle& v) {
+  throw py::type_error(label + " must be " + std::string(py::str(py::type::of(default_value).attr("__name__"))) +
+                       " like its default " + py::repr(default_value).cast<std::string>() + ", got " + typed_repr(v));
+}
+// Largest whole float taken as a count (max_cells=1e7, as the CLI and --help write counts): every integer up to it is
+// exact in a double (2^53 ~ 9.007e15).
+inline constexpr double kMaxWholeFloatCount = 9e15;
+
+template <class T>
+T field_value(const py::handle& v, const std::string& label, const T& default_value) {
+  const py::object def = py::cast(default_value);
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!is_python_bool(v)) wrong_field_type(label, def, v);
+    return PyObject_IsTrue(v.ptr()) != 0;
+  } else if constexpr (std::is_integral_v<T>) {
+    static_assert(std::is_signed_v<T>, "an unsigned Options field needs its own range check");
+    if (is_python_bool(v)) wrong_field_type(label, def, v);  // (True is no count)
+    py::object whole;
+    if (PyFloat_Check(v.ptr()) || py::isinstance(v, py::module_::import("numpy").attr("floating"))) {
+      const double d = py::cast<double>(v);
+      if (!(std::floor(d) == d && std::abs(d) <= kMaxWholeFloatCount)) wrong_field_type(label, def, v);
+      whole = py::int_(static_cast<long long>(d));
+    } else if (PyIndex_Check(v.ptr())) {  // int, numpy integers
+      whole = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()));
+      if (!whole) throw py::error_already_set();
+    } else {
+      wrong_field_type(label, def, v);
+    }
+    int overflow = 0;
+    const long long x = PyLong_AsLongLongAndOverflow(whole.ptr(), &overflow);
+    if (overflow != 0 || x < std::numeric_limits<T>::min() || x > std::numeric_limits<T>::max())
+      detail::invalid(label + ": expected an integer in [" + std::to_string(std::numeric_limits<T>::min()) + ", " +
+                      std::to_string(std::numeric_limits<T>::max()) +
+                      "] (the range of the C++ field; validate() then checks its own bounds), got " +
+                      shown_value(whole));
+    return static_cast<T>(x);
+  } else if constexpr (std::is_same_v<T, double>) {
+    const py::module_ np = py::module_::import("numpy");
+    const bool number = PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr()) || py::isinstance(v, np.attr("floating")) ||
+                        py::isinstance(v, np.attr("integer"));
+    if (is_python_bool(v) || !number) wrong_field_type(label, def, v);
+    const double d = PyFloat_AsDouble(v.ptr());
+    if (d == -1.0 && PyErr_Occurred()) {  // an int beyond the doubles (10**400): OverflowError
+      PyErr_Clear();
+      detail::invalid(label + ": expected a number within the range of doubles (magnitude at most " + "1.8e308), got " +
+                      shown_value(v));
+    }
+    return d;
+  } else {
+    static_assert(std::is_same_v<T, std::vector<double>>, "an Options field of another type needs its conversion");
+    return vector_of_numbers(v, label);
+  }
+}
+
+// An Options struct bound field by field through field_value: `.field(name, &C::member, doc)` for every number,
+// bool or list of numbers; .cls() for the rest (symmetry, validate, __repr__).
+template <class C>
+class OptionsBinding {
+ public:
+  OptionsBinding(py::module_& m, const char* name, const char* doc)
+      : cls_(m, name, doc), name_(std::string("spp.") + name) {
+    cls_.def(py::init<>());
+  }
+  template <class T>
+  OptionsBinding& field(const char* name, T C::*member, const char* doc = "") {
+    const std::string label = name_ + "." + name;
+    cls_.def_property(
+        name, [member](const C& o) { return o.*member; },
+        [member, label](C& o, const py::object& v) { o.*member = field_value<T>(v, label, C{}.*member); }, doc);
+    return *this;
+  }
+  py::class_<C>& cls() { return cls_; }
+
+ private:
+  py::class_<C> cls_;
+  std::string name_;
+};
+
 // The symmetry from the enum or its name ("axial", "point").
 inline spp::Symmetry symmetry_of(const py::object& v) {
   if (py::isinstance<spp::Symmetry>(v)) return v.cast<spp::Symmetry>();
   const std::string name = py::str(v);
   if (const std::optional<spp::Symmetry> s = spp::symmetry_named(name)) return *s;
-  detail::invalid("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name +
-                              "\"");
+  detail::invalid("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name + "\"");
 }
 
 // A progress=... keyword of solve, nearest_spp or root_map (and the Ctrl-C check of continuation, modes, verify,

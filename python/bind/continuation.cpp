@@ -22,8 +22,9 @@ spp::ContinuationResult run_interruptible(const std::string& where, spp::Continu
     r = run();
   }
   hook.finish();
-  hook.warn(r.interrupted ? where + " interrupted (Ctrl-C): the result holds the branches traced before (status "
-                                    "incomplete, interrupted True)"
+  hook.warn(r.interrupted ? where +
+                                " interrupted (Ctrl-C): the result holds the branches traced before (status "
+                                "incomplete, interrupted True)"
                           : std::string("Ctrl-C came after the continuation had finished: the result is complete"));
   return r;
 }
@@ -106,8 +107,7 @@ void bind_continuation(py::module_& m) {
       .def("__repr__", [](const spp::Branch& b) {
         std::ostringstream os;
         os << "<spp.Branch " << b.points.size() << " points";
-        if (!b.points.empty())
-          os << ", mu " << b.points.front().mu << " .. " << b.points.back().mu;
+        if (!b.points.empty()) os << ", mu " << b.points.front().mu << " .. " << b.points.back().mu;
         os << ", events:";
         for (const spp::BranchEvent& e : b.events) os << " " << spp::to_string(e.kind);
         return os.str() + ">";
@@ -127,27 +127,28 @@ void bind_continuation(py::module_& m) {
           "GapClosure events sorted by mu: with g0 = 0, the SPPs of paper §6.1")
       .def(py::pickle([](const spp::ContinuationResult& x) { return state::of(x); },
                       [](const py::tuple& t) { return state::continuation_result(t); }))
-      .def("__repr__", [](const spp::ContinuationResult& r) { return "<spp.ContinuationResult " + r.brief_report() + ">"; });
-  py::class_<spp::ContinueOptions>(m, "ContinueOptions",
-                                   "Options of continue_branches (the C++ ContinueOptions, field by field; "
-                                   "continue_branches(system, t1_max, t2_max, options, **fields) also takes any field "
-                                   "as a keyword)")
-      .def(py::init<>())
-      .def_readwrite("t1_max", &spp::ContinueOptions::t1_max, "upper end of the window in t1 (> 0)")
-      .def_readwrite("t2_max", &spp::ContinueOptions::t2_max, "upper end of the window in t2 (> 0)")
-      .def_readwrite("t1_min", &spp::ContinueOptions::t1_min, "lower end (0: as solve)")
-      .def_readwrite("t2_min", &spp::ContinueOptions::t2_min, "lower end (0: as solve)")
-      .def_readwrite("seeds", &spp::ContinueOptions::seeds,
-                     "parameter values (min, max and evenly between) where solve seeds branches")
-      .def_readwrite("max_step", &spp::ContinueOptions::max_step,
-                     "largest step, in arclength of (t1/t1_max, t2/t2_max, mu/(max - min))")
-      .def_readwrite("min_step", &spp::ContinueOptions::min_step,
-                     "a branch whose step falls below this stops with a \"stalled\" event")
-      .def_readwrite("max_turn", &spp::ContinueOptions::max_turn, "largest angle (rad) between successive tangents")
-      .def_readwrite("max_points", &spp::ContinueOptions::max_points, "per branch and direction")
-      .def_readwrite("locate_tol", &spp::ContinueOptions::locate_tol,
-                     "events located to this, in the same scaled arclength")
-      .def_readwrite("threads", &spp::ContinueOptions::threads, "for the seeding solves (0: all)")
+      .def("__repr__",
+           [](const spp::ContinuationResult& r) { return "<spp.ContinuationResult " + r.brief_report() + ">"; });
+  OptionsBinding<spp::ContinueOptions>(
+      m, "ContinueOptions",
+      "Options of continue_branches (the C++ ContinueOptions, field by field; "
+      "continue_branches(system, t1_max, t2_max, options, **fields) also takes any field "
+      "as a keyword)")
+      .field("t1_max", &spp::ContinueOptions::t1_max, "upper end of the window in t1 (> 0)")
+      .field("t2_max", &spp::ContinueOptions::t2_max, "upper end of the window in t2 (> 0)")
+      .field("t1_min", &spp::ContinueOptions::t1_min, "lower end (0: as solve)")
+      .field("t2_min", &spp::ContinueOptions::t2_min, "lower end (0: as solve)")
+      .field("seeds", &spp::ContinueOptions::seeds,
+             "parameter values (min, max and evenly between) where solve seeds branches")
+      .field("max_step", &spp::ContinueOptions::max_step,
+             "largest step, in arclength of (t1/t1_max, t2/t2_max, mu/(max - min))")
+      .field("min_step", &spp::ContinueOptions::min_step,
+             "a branch whose step falls below this stops with a \"stalled\" event")
+      .field("max_turn", &spp::ContinueOptions::max_turn, "largest angle (rad) between successive tangents")
+      .field("max_points", &spp::ContinueOptions::max_points, "per branch and direction")
+      .field("locate_tol", &spp::ContinueOptions::locate_tol, "events located to this, in the same scaled arclength")
+      .field("threads", &spp::ContinueOptions::threads, "for the seeding solves (0: all)")
+      .cls()
       .def_property(
           "symmetry", [](const spp::ContinueOptions& o) { return o.symmetry; },
           [](spp::ContinueOptions& o, const py::object& v) { o.symmetry = symmetry_of(v); },

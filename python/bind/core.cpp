@@ -6,19 +6,19 @@
 #include "spp/core/generators.hpp"
 #include "spp/core/parametric.hpp"
 #include "spp/core/system.hpp"
-#include "spp/io.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/io.hpp"
 
 namespace spp::python {
 
 void bind_core(py::module_& m) {
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
-      .def(py::init([](const py::object& M, const py::object& K, const py::object& w, double g0,
-                       const std::string& name) {
-             // (python/bind/common.hpp: numpy, lists, scipy.sparse; w as (n,), (1, n) or (n, 1))
-             return spp::System(matrix_input(M, "System: M"), matrix_input(K, "System: K"),
-                                vector_input(w, "System: w"), g0, name);
-           }),
+      .def(py::init(
+               [](const py::object& M, const py::object& K, const py::object& w, double g0, const std::string& name) {
+                 // (python/bind/common.hpp: numpy, lists, scipy.sparse; w as (n,), (1, n) or (n, 1))
+                 return spp::System(matrix_input(M, "System: M"), matrix_input(K, "System: K"),
+                                    vector_input(w, "System: w"), g0, name);
+               }),
            "M"_a, "K"_a, "w"_a, "g0"_a, "name"_a = "",
            "M, K: (n, n) symmetric positive definite (numpy, lists or scipy.sparse); w: non-zero, (n,), (1, n) or "
            "(n, 1); g0: gap at rest. Raises ValueError.")
@@ -43,17 +43,19 @@ void bind_core(py::module_& m) {
 
   m.def(
       "chain",
-      [](int n, std::vector<double> masses, std::vector<double> stiffnesses, int contact_dof, bool upper, double g0) {
+      [](int n, const py::object& masses, const py::object& stiffnesses, int contact_dof, bool upper, double g0) {
         // checked here, 0-based as the docstring says (the C++ message is the CLI's, 1-based: "in [1, 5], got 6"
         // for contact_dof=5 confused; found by an independent attack)
         if (n >= 1 && (contact_dof < -1 || contact_dof >= n))
           detail::invalid("chain: contact_dof (0-based) must be in [0, " + std::to_string(n - 1) +
                           "] or -1 (the last), got " + std::to_string(contact_dof));
-        return spp::chain(n, masses, stiffnesses, contact_dof < 0 ? n - 1 : contact_dof,
+        // (a ragged or 2-D list named with the shape expected, not pybind11's cast failure)
+        return spp::chain(n, vector_of_numbers(masses, "chain: masses"),
+                          vector_of_numbers(stiffnesses, "chain: stiffnesses"), contact_dof < 0 ? n - 1 : contact_dof,
                           upper ? spp::ContactSide::Upper : spp::ContactSide::Lower, g0);
       },
-      "n"_a, "masses"_a = std::vector<double>{1.0}, "stiffnesses"_a = std::vector<double>{1.0}, "contact_dof"_a = -1,
-      "upper"_a = true, "g0"_a = 1.0,
+      "n"_a, "masses"_a = py::cast(std::vector<double>{1.0}), "stiffnesses"_a = py::cast(std::vector<double>{1.0}),
+      "contact_dof"_a = -1, "upper"_a = true, "g0"_a = 1.0,
       "Spring-mass chain fixed at one end (paper §5.2); contact_dof is 0-based (default: the last).");
   m.def("rod_with_slip", &spp::rod_with_slip, "a"_a = -0.25, "b"_a = 0.25,
         "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b.");
@@ -68,10 +70,10 @@ void bind_core(py::module_& m) {
              // the same conversion as System's (scipy.sparse, lists, w as a row or column): ParametricSystem refused
              // what System accepts (found by an independent attack); an empty mu part: independent of mu
              const std::string p = "ParametricSystem: ";
-             return spp::ParametricSystem(
-                 matrix_input(M0, p + "M_constant"), matrix_input(M1, p + "M_mu", true),
-                 matrix_input(K0, p + "K_constant"), matrix_input(K1, p + "K_mu", true),
-                 vector_input(w0, p + "w_constant"), vector_input(w1, p + "w_mu", true), g0, {name, lo, hi}, label);
+             return spp::ParametricSystem(matrix_input(M0, p + "M_constant"), matrix_input(M1, p + "M_mu", true),
+                                          matrix_input(K0, p + "K_constant"), matrix_input(K1, p + "K_mu", true),
+                                          vector_input(w0, p + "w_constant"), vector_input(w1, p + "w_mu", true), g0,
+                                          {name, lo, hi}, label);
            }),
            "M_constant"_a, "M_mu"_a, "K_constant"_a, "K_mu"_a, "w_constant"_a, "w_mu"_a, "g0"_a, "parameter"_a, "min"_a,
            "max"_a, "name"_a = "",
@@ -87,16 +89,16 @@ void bind_core(py::module_& m) {
       .def_property_readonly("name", &spp::ParametricSystem::name)
       .def(py::pickle(  // its parts, as the constructor takes them
           [](const spp::ParametricSystem& s) {
-            return py::make_tuple(s.M_constant(), s.M_mu(), s.K_constant(), s.K_mu(), s.w_constant(), s.w_mu(),
-                                  s.g0(), s.parameter().name, s.parameter().min, s.parameter().max, s.name());
+            return py::make_tuple(s.M_constant(), s.M_mu(), s.K_constant(), s.K_mu(), s.w_constant(), s.w_mu(), s.g0(),
+                                  s.parameter().name, s.parameter().min, s.parameter().max, s.name());
           },
           [](const py::tuple& t) {
             if (t.size() != 11) detail::invalid("ParametricSystem pickle: expected 11 fields");
-            return spp::ParametricSystem(t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(),
-                                         t[2].cast<Eigen::MatrixXd>(), t[3].cast<Eigen::MatrixXd>(),
-                                         t[4].cast<Eigen::VectorXd>(), t[5].cast<Eigen::VectorXd>(), t[6].cast<double>(),
-                                         {t[7].cast<std::string>(), t[8].cast<double>(), t[9].cast<double>()},
-                                         t[10].cast<std::string>());
+            return spp::ParametricSystem(
+                t[0].cast<Eigen::MatrixXd>(), t[1].cast<Eigen::MatrixXd>(), t[2].cast<Eigen::MatrixXd>(),
+                t[3].cast<Eigen::MatrixXd>(), t[4].cast<Eigen::VectorXd>(), t[5].cast<Eigen::VectorXd>(),
+                t[6].cast<double>(), {t[7].cast<std::string>(), t[8].cast<double>(), t[9].cast<double>()},
+                t[10].cast<std::string>());
           }))
       .def("__repr__", [](const spp::ParametricSystem& s) {
         std::ostringstream os;

@@ -5,9 +5,9 @@
 
 #include "common.hpp"
 #include "spp/detail/dense_products.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/distributed/sweep.hpp"
 #include "spp/io/files.hpp"
-#include "spp/detail/invalid.hpp"
 
 namespace spp::python {
 
@@ -23,8 +23,8 @@ Sweep plan(const std::vector<std::string>& systems, const py::object& parameter,
   if (parameter.is_none()) return Sweep::over_files(systems, out_dir);
   if (systems.size() != 1)
     detail::invalid("sweep: a sweep over values takes one parametric system file, got " +
-                                std::to_string(systems.size()));
-  return Sweep::over_values(systems.front(), parameter.cast<std::string>(), values.cast<std::vector<double>>(),
+                    std::to_string(systems.size()));
+  return Sweep::over_values(systems.front(), parameter.cast<std::string>(), vector_of_numbers(values, "sweep: values"),
                             out_dir);
 }
 
@@ -98,8 +98,7 @@ void bind_distributed(py::module_& m) {
          const std::string& out_dir, const std::vector<std::string>& outcomes, const std::vector<std::string>& messages,
          const std::string& csv, const std::string& json) {
         const Sweep s = plan(systems, parameter, values, out_dir);
-        if (outcomes.size() != messages.size())
-          detail::invalid("sweep: as many messages as outcomes expected");
+        if (outcomes.size() != messages.size()) detail::invalid("sweep: as many messages as outcomes expected");
         std::vector<SweepItemOutcome> o;
         for (size_t i = 0; i < outcomes.size(); ++i) o.push_back({status_named(outcomes[i]), messages[i]});
         const SweepTable t = sweep_table(s, o);

@@ -13,7 +13,8 @@ void bind_modes(py::module_& m) {
                 md::ModeEventKind::Stalled, md::ModeEventKind::NoAdmissibleSide},
                "ModeEvent.kind");
   bind_outcome(m, "ModesStatus", {md::ModesStatus::NotRun, md::ModesStatus::Traced, md::ModesStatus::Incomplete},
-               "ModesResult.status: traced (every family found followed to a located end; NOT every k-IPP family: docs/modes.md §5) or incomplete (a family stalled)");
+               "ModesResult.status: traced (every family found followed to a located end; NOT every k-IPP family: "
+               "docs/modes.md §5) or incomplete (a family stalled)");
   // Nonsmooth modes: k-IPP families (docs/modes.md). Kinds and statuses as their C++ to_string names.
   py::class_<md::ModePoint>(m, "ModePoint", "One k-IPP of a family (state just after its first impact)")
       .def_readonly("energy", &md::ModePoint::energy)
@@ -60,10 +61,17 @@ void bind_modes(py::module_& m) {
       "modes",
       [](const spp::System& s, const py::object& k, double energy_max, double max_step, bool branch_points) {
         md::ModesOptions o;
-        if (py::isinstance<py::int_>(k))
-          o.k_values = {k.cast<int>()};
-        else
-          o.k_values = k.cast<std::vector<int>>();
+        // a whole number or a list of them (a ragged or 2-D list named with the shape expected, not pybind11's cast
+        // failure); each k's own range is checked by validate()
+        if (py::isinstance<py::int_>(k) || PyIndex_Check(k.ptr())) {
+          o.k_values = {field_value<int>(k, "modes: k", 1)};
+        } else {
+          for (const double x : vector_of_numbers(k, "modes: k")) {
+            if (!(std::floor(x) == x && std::abs(x) <= std::numeric_limits<int>::max()))
+              detail::invalid("modes: k must be a whole number or a list of them, got " + typed_repr(k));
+            o.k_values.push_back(static_cast<int>(x));
+          }
+        }
         o.energy_max = energy_max;
         o.max_step = max_step;
         o.branch_points = branch_points;

@@ -3,11 +3,11 @@
 #include <sstream>
 
 #include "common.hpp"
-#include "state.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/io.hpp"
 #include "spp/search/root_map.hpp"
 #include "spp/search/solver.hpp"
-#include "spp/detail/invalid.hpp"
+#include "state.hpp"
 
 namespace spp::python {
 
@@ -130,26 +130,26 @@ void bind_search(py::module_& m) {
           "system: the status, solutions, stats, uncertified regions and warnings that were written. Raises "
           "ValueError naming the file and the field.");
 
-  py::class_<spp::SolveOptions>(m, "SolveOptions",
-                                "Options of solve (the C++ SolveOptions, field by field; solve(system, options, "
-                                "**fields) also takes any field as a keyword)")
-      .def(py::init<>())
-      .def_readwrite("t1_max", &spp::SolveOptions::t1_max, "upper end of the flight half-duration window (> 0)")
-      .def_readwrite("t2_max", &spp::SolveOptions::t2_max, "upper end of the contact half-duration window (> 0)")
-      .def_readwrite("t1_min", &spp::SolveOptions::t1_min, "lower end (0: from the axis)")
-      .def_readwrite("t2_min", &spp::SolveOptions::t2_min, "lower end (0: from the axis)")
-      .def_readwrite("max_cells", &spp::SolveOptions::max_cells, "refuse windows with more cells than this")
-      .def_readwrite("certify_steps", &spp::SolveOptions::certify_steps,
-                     "prove every trace step (default True: status success only if all are; False: the midpoint "
-                     "check, 3-25x faster, a heuristic, so the status is incomplete)")
-      .def_readwrite("pole_margin", &spp::SolveOptions::pole_margin)
-      .def_readwrite("max_turn", &spp::SolveOptions::max_turn)
-      .def_readwrite("min_step", &spp::SolveOptions::min_step)
-      .def_readwrite("admissibility_tol", &spp::SolveOptions::admissibility_tol)
-      .def_readwrite("admissible_only", &spp::SolveOptions::admissible_only)
-      .def_readwrite("compute_return_error", &spp::SolveOptions::compute_return_error)
-      .def_readwrite("compute_stability", &spp::SolveOptions::compute_stability)
-      .def_readwrite("threads", &spp::SolveOptions::threads, "worker threads (0: all)")
+  OptionsBinding<spp::SolveOptions>(m, "SolveOptions",
+                                    "Options of solve (the C++ SolveOptions, field by field; solve(system, options, "
+                                    "**fields) also takes any field as a keyword)")
+      .field("t1_max", &spp::SolveOptions::t1_max, "upper end of the flight half-duration window (> 0)")
+      .field("t2_max", &spp::SolveOptions::t2_max, "upper end of the contact half-duration window (> 0)")
+      .field("t1_min", &spp::SolveOptions::t1_min, "lower end (0: from the axis)")
+      .field("t2_min", &spp::SolveOptions::t2_min, "lower end (0: from the axis)")
+      .field("max_cells", &spp::SolveOptions::max_cells, "refuse windows with more cells than this")
+      .field("certify_steps", &spp::SolveOptions::certify_steps,
+             "prove every trace step (default True: status success only if all are; False: the midpoint "
+             "check, 3-25x faster, a heuristic, so the status is incomplete)")
+      .field("pole_margin", &spp::SolveOptions::pole_margin)
+      .field("max_turn", &spp::SolveOptions::max_turn)
+      .field("min_step", &spp::SolveOptions::min_step)
+      .field("admissibility_tol", &spp::SolveOptions::admissibility_tol)
+      .field("admissible_only", &spp::SolveOptions::admissible_only)
+      .field("compute_return_error", &spp::SolveOptions::compute_return_error)
+      .field("compute_stability", &spp::SolveOptions::compute_stability)
+      .field("threads", &spp::SolveOptions::threads, "worker threads (0: all)")
+      .cls()
       .def_property(
           "symmetry", [](const spp::SolveOptions& o) { return o.symmetry; },
           [](spp::SolveOptions& o, const py::object& v) { o.symmetry = symmetry_of(v); },
@@ -294,20 +294,20 @@ void bind_search(py::module_& m) {
       .def_readonly("evaluations", &spp::RootMapProgress::evaluations, "grid points evaluated so far")
       .def_readonly("seconds", &spp::RootMapProgress::seconds, "time since the map started")
       .def("__repr__", [](const spp::RootMapProgress& p) { return "<spp.RootMapProgress " + p.line() + ">"; });
-  py::class_<spp::RootMapOptions>(m, "RootMapOptions",
-                                  "Options of root_map (the C++ RootMapOptions, field by field; root_map(system, "
-                                  "t1_max, t2_max, options, **fields) also takes any field as a keyword)")
-      .def(py::init<>())
-      .def_readwrite("t1_min", &spp::RootMapOptions::t1_min, "lower end of the window in t1 (>= 0)")
-      .def_readwrite("t1_max", &spp::RootMapOptions::t1_max, "upper end of the window in t1 (> t1_min)")
-      .def_readwrite("t2_min", &spp::RootMapOptions::t2_min, "lower end of the window in t2 (>= 0)")
-      .def_readwrite("t2_max", &spp::RootMapOptions::t2_max, "upper end of the window in t2 (> t2_min)")
-      .def_readwrite("t1_points", &spp::RootMapOptions::t1_points, "grid points across the window along t1 (>= 16)")
-      .def_readwrite("t2_points", &spp::RootMapOptions::t2_points, "grid points across the window along t2 (>= 16)")
-      .def_readwrite("min_cell_points", &spp::RootMapOptions::min_cell_points,
-                     "at least this many points per cell and axis (>= 2)")
-      .def_readwrite("pole_margin", &spp::RootMapOptions::pole_margin,
-                     "distance kept from pole lines, relative to the cell width (in [0, 0.25))")
+  OptionsBinding<spp::RootMapOptions>(m, "RootMapOptions",
+                                      "Options of root_map (the C++ RootMapOptions, field by field; root_map(system, "
+                                      "t1_max, t2_max, options, **fields) also takes any field as a keyword)")
+      .field("t1_min", &spp::RootMapOptions::t1_min, "lower end of the window in t1 (>= 0)")
+      .field("t1_max", &spp::RootMapOptions::t1_max, "upper end of the window in t1 (> t1_min)")
+      .field("t2_min", &spp::RootMapOptions::t2_min, "lower end of the window in t2 (>= 0)")
+      .field("t2_max", &spp::RootMapOptions::t2_max, "upper end of the window in t2 (> t2_min)")
+      .field("t1_points", &spp::RootMapOptions::t1_points, "grid points across the window along t1 (>= 16)")
+      .field("t2_points", &spp::RootMapOptions::t2_points, "grid points across the window along t2 (>= 16)")
+      .field("min_cell_points", &spp::RootMapOptions::min_cell_points,
+             "at least this many points per cell and axis (>= 2)")
+      .field("pole_margin", &spp::RootMapOptions::pole_margin,
+             "distance kept from pole lines, relative to the cell width (in [0, 0.25))")
+      .cls()
       .def("validate", &spp::RootMapOptions::validate, "Raises ValueError naming the first invalid field.")
       .def("__repr__", [](const py::object& o) { return fields_repr(o, "RootMapOptions"); });
   m.def(

@@ -3,11 +3,11 @@
 #include <sstream>
 
 #include "common.hpp"
-#include "state.hpp"
 #include "spp/detail/invalid.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/simulation/verify.hpp"
+#include "state.hpp"
 
 namespace spp::python {
 
@@ -77,32 +77,35 @@ void bind_simulation(py::module_& m) {
       .def("brief_report", &spp::SimulationResult::brief_report)
       .def(py::pickle([](const spp::SimulationResult& x) { return state::of(x); },
                       [](const py::tuple& t) { return state::simulation_result(t); }))
-      .def("__repr__", [](const spp::SimulationResult& r) { return "<spp.SimulationResult " + r.brief_report() + ">"; });
+      .def("__repr__",
+           [](const spp::SimulationResult& r) { return "<spp.SimulationResult " + r.brief_report() + ">"; });
 
-  py::class_<spp::SimulateOptions>(m, "SimulateOptions",
-                                   "Options of simulate (the C++ SimulateOptions, field by field; simulate(system, x0, "
-                                   "v0, duration, options=..., **fields) also takes any field as a keyword)")
-      .def(py::init<>())
-      .def_readwrite("duration", &spp::SimulateOptions::duration,
-                     "simulated time T > 0; the last sample is at t = T exactly")
-      .def_readwrite("restitution", &spp::SimulateOptions::restitution,
-                     "Newton's coefficient e in [0, 1]: normal velocity after = -e * before")
-      .def_readwrite("sample_times", &spp::SimulateOptions::sample_times,
-                     "samples at these times (sorted, in [0, duration]); empty: samples_per_unit of simulate")
-      .def_readwrite("sample_events", &spp::SimulateOptions::sample_events,
-                     "add a sample with the state just after each event")
-      .def_readwrite("max_events", &spp::SimulateOptions::max_events)
-      .def_readwrite("event_rel_tol", &spp::SimulateOptions::event_rel_tol,
-                     "excursions below zero shallower than this (relative to the phase's amplitude) are not events")
-      .def_readwrite("rest_velocity_rel_tol", &spp::SimulateOptions::rest_velocity_rel_tol,
-                     "impacts slower than this (relative) are plastic: where chattering ends in lasting contact")
+  OptionsBinding<spp::SimulateOptions>(
+      m, "SimulateOptions",
+      "Options of simulate (the C++ SimulateOptions, field by field; simulate(system, x0, "
+      "v0, duration, options=..., **fields) also takes any field as a keyword)")
+      .field("duration", &spp::SimulateOptions::duration, "simulated time T > 0; the last sample is at t = T exactly")
+      .field("restitution", &spp::SimulateOptions::restitution,
+             "Newton's coefficient e in [0, 1]: normal velocity after = -e * before")
+      .field("sample_times", &spp::SimulateOptions::sample_times,
+             "samples at these times (sorted, in [0, duration]); empty: samples_per_unit of simulate")
+      .field("sample_events", &spp::SimulateOptions::sample_events, "add a sample with the state just after each event")
+      .field("max_events", &spp::SimulateOptions::max_events)
+      .field("event_rel_tol", &spp::SimulateOptions::event_rel_tol,
+             "excursions below zero shallower than this (relative to the phase's amplitude) are not events")
+      .field("rest_velocity_rel_tol", &spp::SimulateOptions::rest_velocity_rel_tol,
+             "impacts slower than this (relative) are plastic: where chattering ends in lasting contact")
+      .cls()
       .def("validate", &spp::SimulateOptions::validate, "Raises ValueError naming the first invalid field.")
       .def("__repr__", [](const py::object& o) { return fields_repr(o, "SimulateOptions"); });
   m.def(
       "simulate",
-      [](const spp::System& s, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, std::optional<double> duration,
+      [](const spp::System& s, const py::object& x0_arg, const py::object& v0_arg, std::optional<double> duration,
          std::optional<double> restitution, double samples_per_unit, const py::object& options,
          const py::kwargs& fields) {
+        // (a ragged or 2-D list named with the shape expected, not pybind11's cast failure)
+        const Eigen::VectorXd x0 = array_of_numbers(x0_arg, "simulate: x0", 1);
+        const Eigen::VectorXd v0 = array_of_numbers(v0_arg, "simulate: v0", 1);
         spp::SimulateOptions o = with_fields<spp::SimulateOptions>(options, fields, "simulate", "SimulateOptions");
         if (duration) o.duration = *duration;
         if (restitution) o.restitution = *restitution;
@@ -143,7 +146,8 @@ void bind_simulation(py::module_& m) {
       .def_readonly("contact_onsets", &spp::SppCheck::contact_onsets)
       .def_readonly("releases", &spp::SppCheck::releases)
       .def_readonly("growth_per_period", &spp::SppCheck::growth_per_period)
-      .def_property_readonly("solution", [](const spp::SppCheck& c) { return c.spp; }, "the SPP checked")
+      .def_property_readonly(
+          "solution", [](const spp::SppCheck& c) { return c.spp; }, "the SPP checked")
       .def(py::pickle([](const spp::SppCheck& x) { return state::of(x); },
                       [](const py::tuple& t) { return state::spp_check(t); }))
       .def("__repr__", [](const spp::SppCheck& c) {
@@ -166,23 +170,23 @@ void bind_simulation(py::module_& m) {
                       [](const py::tuple& t) { return state::verify_result(t); }))
       .def("__repr__", [](const spp::VerifyResult& r) { return "<spp.VerifyResult " + r.brief_report() + ">"; });
 
-  py::class_<spp::VerifyOptions>(m, "VerifyOptions",
-                                 "Options of verify (the C++ VerifyOptions, field by field; verify(system, result, "
-                                 "options, **fields) also takes any field as a keyword)")
-      .def(py::init<>())
-      .def_readwrite("periods", &spp::VerifyOptions::periods, "simulated periods (>= 1)")
-      .def_readwrite("perturbation", &spp::VerifyOptions::perturbation,
-                     "relative size of the perturbation of the mid-flight state; 0: none")
-      .def_readwrite("restitution", &spp::VerifyOptions::restitution,
-                     "Newton's e for the simulations (matters only once the orbit is left)")
-      .def_readwrite("return_tol", &spp::VerifyOptions::return_tol,
-                     "an admissible SPP must come back to this relative error after one period")
-      .def_readwrite("follow_tol", &spp::VerifyOptions::follow_tol,
-                     "later periods count as followed while the return error stays below this")
-      .def_readwrite("potential_return_tol", &spp::VerifyOptions::potential_return_tol,
-                     "every SPP must come back to this relative error along its potential orbit (events ignored)")
-      .def_readwrite("event_time_tol", &spp::VerifyOptions::event_time_tol,
-                     "relative to the period: events within it of the expected times match")
+  OptionsBinding<spp::VerifyOptions>(m, "VerifyOptions",
+                                     "Options of verify (the C++ VerifyOptions, field by field; verify(system, result, "
+                                     "options, **fields) also takes any field as a keyword)")
+      .field("periods", &spp::VerifyOptions::periods, "simulated periods (>= 1)")
+      .field("perturbation", &spp::VerifyOptions::perturbation,
+             "relative size of the perturbation of the mid-flight state; 0: none")
+      .field("restitution", &spp::VerifyOptions::restitution,
+             "Newton's e for the simulations (matters only once the orbit is left)")
+      .field("return_tol", &spp::VerifyOptions::return_tol,
+             "an admissible SPP must come back to this relative error after one period")
+      .field("follow_tol", &spp::VerifyOptions::follow_tol,
+             "later periods count as followed while the return error stays below this")
+      .field("potential_return_tol", &spp::VerifyOptions::potential_return_tol,
+             "every SPP must come back to this relative error along its potential orbit (events ignored)")
+      .field("event_time_tol", &spp::VerifyOptions::event_time_tol,
+             "relative to the period: events within it of the expected times match")
+      .cls()
       .def("validate", &spp::VerifyOptions::validate, "Raises ValueError naming the first invalid field.")
       .def("__repr__", [](const py::object& o) { return fields_repr(o, "VerifyOptions"); });
   m.def(

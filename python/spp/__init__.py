@@ -21,7 +21,6 @@ from ._progress import Bar as _Bar
 from ._sweep import sweep  # one solve per parameter value or system file: mpi4py or a process pool
 from ._args import named_constructor_type_errors as _named_constructor_type_errors
 from ._args import named_type_errors as _named_type_errors
-from ._args import named_option_setters as _named_option_setters
 from . import _frames
 
 # every bound function and constructor: an argument of the wrong type is named (spp._args)
@@ -34,8 +33,6 @@ for _name, _value in list(globals().items()):
         if "from_json" in vars(_value):  # System.from_json(pathlib.Path(...)) and the like
             setattr(_value, "from_json",
                     staticmethod(_named_type_errors(_value.from_json, f"spp.{_name}.from_json")))
-for _options in (SolveOptions, SimulateOptions, VerifyOptions, RootMapOptions, ContinueOptions):
-    _named_option_setters(_options)
 _solve = _named_type_errors(_spp.solve, "spp.solve")
 
 # one row per SPP, check or branch point (pandas), each column with its dtype (spp._frames)

@@ -112,6 +112,31 @@ def _explain(label, signatures, args, kwargs):
     return None
 
 
+# The range of the C++ int behind an "int" of pybind11's signatures: a Python int beyond it fits no overload, and
+# pybind11 dumped the signatures (spp.chain(2**70); found by an independent attack). (A size_t shows as "int" too: it
+# takes more, so a call that failed with a value past the int range is named by this range; none of spp's functions
+# takes a size_t but sweep's internal item index.)
+_INT_MIN, _INT_MAX = -2**31, 2**31 - 1
+
+
+def _out_of_range(label, signatures, args, kwargs):
+    """'spp.chain: argument n: expected an integer in [-2147483648, 2147483647], got 2**70' (a ValueError's message),
+    for the first whole number beyond a C++ int after a failed call (a single signature only), or None."""
+    if len(signatures) != 1:
+        return None
+    params = signatures[0]
+    given = dict(zip((p[0] for p in params), args))
+    given.update(kwargs)
+    for name, type_name in params:
+        value = given.get(name)
+        if type_name == "int" and isinstance(value, numbers.Integral) and not isinstance(value, bool) \
+                and not _INT_MIN <= int(value) <= _INT_MAX:
+            shown = repr(int(value))
+            shown = shown if len(shown) <= 60 else shown[:60] + "..."
+            return f"{label}: argument {name}: expected an integer in [{_INT_MIN}, {_INT_MAX}], got {shown}"
+    return None
+
+
 def _complex(value):
     try:
         import numpy
@@ -155,6 +180,9 @@ def named_type_errors(fn, label):
         except TypeError as e:
             if not any(m in str(e) for m in _PYBIND_MESSAGES):
                 raise
+            too_large = _out_of_range(label, signatures, args, kwargs)
+            if too_large is not None:
+                raise ValueError(too_large) from None
             message = _explain(label, signatures, args, kwargs)
             if message is None:
                 raise
@@ -177,6 +205,9 @@ def named_constructor_type_errors(cls):
         except TypeError as e:
             if not any(m in str(e) for m in _PYBIND_MESSAGES):
                 raise
+            too_large = _out_of_range(f"spp.{cls.__name__}", signatures, args, kwargs)
+            if too_large is not None:
+                raise ValueError(too_large) from None
             message = _explain(f"spp.{cls.__name__}", signatures, args, kwargs)
             if message is None:
                 raise
@@ -184,25 +215,3 @@ def named_constructor_type_errors(cls):
 
     __init__.__doc__ = init.__doc__
     cls.__init__ = __init__
-
-
-def named_option_setters(cls):
-    """An Options class's fields (SolveOptions().t1_max = "x") refuse a wrong type by naming the field, its type and
-    default, instead of pybind11's signature dump (found by an independent attack)."""
-    defaults = cls()
-    for name, attr in list(vars(cls).items()):
-        if not isinstance(attr, property) or attr.fset is None:
-            continue
-
-        def fset(self, value, _set=attr.fset, _name=name, _default=getattr(defaults, name)):
-            try:
-                _set(self, value)
-            except TypeError as e:
-                if not any(m in str(e) for m in _PYBIND_MESSAGES):
-                    raise
-                shown = repr(value)
-                shown = shown if len(shown) <= 60 else shown[:60] + "..."
-                raise TypeError(f"spp.{cls.__name__}.{_name} must be {type(_default).__name__} like its default "
-                                f"{_default!r}, got {type(value).__name__} {shown}") from None
-
-        setattr(cls, name, property(attr.fget, fset, attr.fdel, attr.__doc__))

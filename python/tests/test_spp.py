@@ -611,7 +611,8 @@ def test_arguments_of_the_wrong_type_are_named_not_dumped():
         spp.solve(s, 5)
     with pytest.raises(TypeError, match=r"got a dict: pass its entries as keywords \(\*\*options\)"):
         spp.solve(s, {"t1_max": 3, "t2_max": 3})
-    with pytest.raises(TypeError, match=r"^solve: option t1_max must be float like its default 0.0, got str '3'"):
+    with pytest.raises(TypeError,
+                       match=r"^solve: spp.SolveOptions.t1_max must be float like its default 0.0, got str '3'"):
         spp.solve(s, t1_max="3", t2_max=3)
     with pytest.raises(TypeError, match=r"^solve: progress must be True, False, None, a callable or \"bar\", got int 5"):
         spp.solve(s, t1_max=3, t2_max=3, progress=5)
@@ -647,7 +648,8 @@ def test_continue_branch_follows_the_branch_through_one_solution():
 def test_second_attack_bools_paths_counts_classes_and_complex(tmp_path):
     import pathlib
     s = spp.two_dof()
-    with pytest.raises(TypeError, match=r"^solve: option t1_max must be float like its default 0.0, got bool True"):
+    with pytest.raises(TypeError,
+                       match=r"^solve: spp.SolveOptions.t1_max must be float like its default 0.0, got bool True"):
         spp.solve(s, t1_max=True, t2_max=3)
     with pytest.raises(TypeError, match=r"^spp.chain: argument n must be int, got bool True$"):
         spp.chain(True)
@@ -662,7 +664,7 @@ def test_second_attack_bools_paths_counts_classes_and_complex(tmp_path):
     assert len(spp.load_result(path).solutions) == len(r.solutions)  # a pathlib.Path is a path
     sys_path = pathlib.Path(SRC) / "examples" / "chain5.json"
     assert spp.System.from_json(sys_path).n == 5
-    with pytest.raises(ValueError, match=r"^spp.simulate: argument x0 must be real, got a complex array$"):
+    with pytest.raises(ValueError, match=r"^simulate: x0 must be real, got a complex array \(dtype complex128\)$"):
         spp.simulate(s, np.zeros(2, complex), np.zeros(2), 1.0)
 
 
@@ -903,11 +905,11 @@ def test_parametric_system_takes_what_system_takes():
 # Issue 11, found by an independent attack: periods=10**12 said "must be int ..., got int 1000000000000".
 def test_periods_of_10_to_12_says_out_of_range_and_the_range():
     s, r = _chain5_result()
-    with pytest.raises(ValueError, match=r"verify: option periods must be an integer from -2147483648 to 2147483647 "
-                                         r".*got 1000000000000: out of range"):
+    with pytest.raises(ValueError, match=r"^verify: spp.VerifyOptions.periods: expected an integer in \[-2147483648, "
+                                         r"2147483647\] .*got 1000000000000$"):
         spp.verify(s, r, periods=10**12)
-    with pytest.raises(ValueError, match=r"option max_cells must be an integer from -9223372036854775808 to "
-                                         r"9223372036854775807 .*got 100000000000000000000: out of range"):
+    with pytest.raises(ValueError, match=r"^solve: spp.SolveOptions.max_cells: expected an integer in "
+                                         r"\[-9223372036854775808, 9223372036854775807\] .*got 100000000000000000000$"):
         spp.solve(s, t1_max=4, t2_max=2, max_cells=10**20)
 
 
@@ -973,3 +975,83 @@ def test_ctrl_c_stops_trajectory():
         "    print('INTERRUPTED')\n", skip_until_start=True)
     assert "INTERRUPTED" in out, out
     assert secs < 3, secs
+
+
+# Issue 11, found by an independent attack: spp.System(name=5000 characters) was built, and the result file written
+# with it was refused by load_result (names are limited to 4096 bytes, printable). The constructor checks the name as
+# the reader does: what Python writes, Python reads back.
+def test_system_name_python_writes_is_one_load_result_reads(tmp_path):
+    K = np.array([[2.0, -1.0], [-1.0, 1.0]])
+    s = spp.System(np.eye(2), K, [0.0, -1.0], 1.0, name="a" * 4096)
+    path = tmp_path / "r.json"
+    path.write_text(spp.solve(s, t1_max=3, t2_max=3).to_json())
+    assert spp.load_result(str(path)).system.name == "a" * 4096
+    with pytest.raises(ValueError, match=r"^system: name: expected at most 4096 bytes, got 4097 \(a name is a title\)"):
+        spp.System(np.eye(2), K, [0.0, -1.0], 1.0, name="a" * 4097)
+    with pytest.raises(ValueError, match=r"^system: name: expected printable text, got the control character 0 at"):
+        spp.System(np.eye(2), K, [0.0, -1.0], 1.0, name="a\0b")
+    with pytest.raises(ValueError, match=r"^parametric system: parameter name: expected printable text, got the "):
+        spp.ParametricSystem(np.eye(2), [], K, K, [0.0, -1.0], [], 1.0, "k\n", 0.0, 1.0)
+
+
+# Issue 11, found by an independent attack: an Options field set as an attribute gave pybind11's TypeError with the
+# signatures (o.threads = 2**40, o.t1_max = 10**400) or refused numpy's integers; the message is the keyword path's.
+def test_options_attributes_say_the_range_and_take_numpy_scalars():
+    for cls, field in [(spp.SolveOptions, "threads"), (spp.ContinueOptions, "seeds"), (spp.VerifyOptions, "periods"),
+                       (spp.RootMapOptions, "t1_points"), (spp.ContinueOptions, "max_points")]:
+        o = cls()
+        with pytest.raises(ValueError, match=rf"^spp.{cls.__name__}.{field}: expected an integer in \[-2147483648, "
+                                             rf"2147483647\] .*got 1099511627776$"):
+            setattr(o, field, 2**40)
+        setattr(o, field, np.int64(20))
+        assert getattr(o, field) == 20
+    o = spp.SimulateOptions()
+    with pytest.raises(ValueError, match=r"^spp.SimulateOptions.max_events: expected an integer in "
+                                         r"\[-9223372036854775808, 9223372036854775807\]"):
+        o.max_events = 2**70
+    for cls, field in [(spp.SolveOptions, "t1_max"), (spp.ContinueOptions, "max_step"), (spp.VerifyOptions,
+                       "return_tol"), (spp.SimulateOptions, "duration"), (spp.RootMapOptions, "pole_margin")]:
+        o = cls()
+        with pytest.raises(ValueError, match=rf"^spp.{cls.__name__}.{field}: expected a number within the range of "
+                                             rf"doubles \(magnitude at most 1.8e308\), got 1000"):
+            setattr(o, field, 10**400)
+        setattr(o, field, np.float32(0.5))
+        assert getattr(o, field) == 0.5
+    o = spp.SolveOptions()
+    o.max_cells = 1e7  # a whole float is a count, as in the keywords
+    assert o.max_cells == 10**7
+    o.certify_steps = np.bool_(False)
+    assert o.certify_steps is False
+    with pytest.raises(TypeError, match=r"^spp.SolveOptions.threads must be int like its default 0, got float 2.5$"):
+        o.threads = 2.5
+    with pytest.raises(TypeError, match=r"^spp.SolveOptions.threads must be int like its default 0, got bool True$"):
+        o.threads = True
+    # the keyword path gives the same message, named with the function
+    with pytest.raises(ValueError, match=r"^solve: spp.SolveOptions.threads: expected an integer in \[-2147483648, "):
+        spp.solve(spp.two_dof(), t1_max=3, t2_max=3, threads=2**40)
+    with pytest.raises(ValueError, match=r"^spp.chain: argument n: expected an integer in \[-2147483648, 2147483647\], "
+                                         r"got 1180591620717411303424$"):
+        spp.chain(2**70)
+
+
+# Issue 11, found by an independent attack: a ragged or 2-D array argument gave pybind11's "incompatible function
+# arguments" (simulate's x0, chain's masses), a cast failure (modes' k) or took any list (sample_times).
+def test_ragged_or_misshapen_array_arguments_name_the_argument_and_the_shape():
+    s = spp.two_dof()
+    ragged = r"must be a vector of numbers, shape \(n,\), got list \[\[1, 2\], \[3\]\] \(numpy: "
+    with pytest.raises(ValueError, match=r"^simulate: x0 " + ragged):
+        spp.simulate(s, x0=[[1, 2], [3]], v0=[0, 0], duration=1)
+    with pytest.raises(ValueError,
+                       match=r"^simulate: v0 must be a vector of numbers, shape \(n,\), got shape \(1, 2\)$"):
+        spp.simulate(s, x0=[0, 0], v0=[[0, 0]], duration=1)
+    with pytest.raises(ValueError, match=r"^chain: masses " + ragged):
+        spp.chain(2, masses=[[1, 2], [3]])
+    with pytest.raises(ValueError, match=r"^chain: stiffnesses must be a vector of numbers, shape \(n,\), got shape "):
+        spp.chain(2, stiffnesses=np.ones((2, 2)))
+    assert spp.chain(2, masses=np.array([1.0, 2.0])).n == 2
+    with pytest.raises(ValueError, match=r"^modes: k " + ragged.replace("1, 2", "1").replace("\\[3\\]", "\\[2, 3\\]")):
+        spp.modes(s, k=[[1], [2, 3]], energy_max=5)
+    with pytest.raises(ValueError, match=r"^spp.SimulateOptions.sample_times " + ragged.replace("1, 2", "0, 1")):
+        spp.SimulateOptions().sample_times = [[0, 1], [3]]
+    with pytest.raises(ValueError, match=r"^simulate: spp.SimulateOptions.sample_times must be a vector of numbers"):
+        spp.simulate(s, x0=[0, 0], v0=[0, 0], duration=1, sample_times=np.zeros((2, 2)))
