@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -33,14 +34,18 @@ std::string bounded(const char* what) {
 
 namespace spp::cli {
 // Every option that takes a value, the files and directories written (and --parameter, --values) worded as such: an
-// empty text is refused naming the option (`--json ""` was silently ignored, `spp trajectory --csv ""` failed with 'cannot write "": rename failed';
-// found by an independent attack), on every subcommand, nested ones (generate chain) included.
+// empty text is refused naming the option (`--json ""` was silently ignored, `spp trajectory --csv ""` failed with
+// 'cannot write "": rename failed'; found by an independent attack), on every subcommand, nested ones (generate chain)
+// included.
 void refuse_empty_texts(CLI::App& app) {
-  static const std::map<std::string, std::string> kExpected = {
-      {"json", "a file path"},     {"csv", "a file path"},
-      {"out", "a path"},           {"out-dir", "a directory's path"},
-      {"events", "a file path"},   {"spp-csv", "a file path"},
-      {"parameter", "the parameter's name"}, {"values", "values (start:stop:step or 1,2.5,3)"}};
+  static const std::map<std::string, std::string> kExpected = {{"json", "a file path"},
+                                                               {"csv", "a file path"},
+                                                               {"out", "a path"},
+                                                               {"out-dir", "a directory's path"},
+                                                               {"events", "a file path"},
+                                                               {"spp-csv", "a file path"},
+                                                               {"parameter", "the parameter's name"},
+                                                               {"values", "values (start:stop:step or 1,2.5,3)"}};
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
     for (CLI::Option* opt : sub->get_options([](CLI::Option*) { return true; })) {
       if (opt->get_type_size_min() <= 0) continue;  // a flag
@@ -142,7 +147,8 @@ int main(int argc, char** argv) {
     // a whole number that passed whole_number (|n| <= 1e15) but that the option's int cannot hold: said with the range
     // (--periods 1e12 and --threads 99999999999 said "Could not convert"; found by fuzzing, issue 11)
     if (spp::cli::is_root())
-      std::cerr << "spp: error: " << bounded(out_of_int_range(e.what()).c_str()) << "\n(run with --help for the usage)\n";
+      std::cerr << "spp: error: " << bounded(out_of_int_range(e.what()).c_str())
+                << "\n(run with --help for the usage)\n";
     return 1;
   } catch (const CLI::ParseError& e) {
     if (spp::cli::is_root()) std::cerr << "spp: error: " << bounded(e.what()) << "\n(run with --help for the usage)\n";
@@ -167,6 +173,12 @@ int main(int argc, char** argv) {
           spp::detail::invalid("spp " + c.app->get_name() +
                                " does not run on several MPI ranks (only solve and sweep do): run it with "
                                "build/spp, or with one rank");
+        // the subcommands that build modal forms and solve eigenproblems (plot and animate through the Python
+        // package, which inherits the variable); generate, --help and --version start at once (they re-executed
+        // the binary too, found by a review)
+        static const std::set<std::string> kDenseAlgebra = {"solve",  "continue", "modes",   "trajectory", "simulate",
+                                                            "verify", "plot",     "animate", "reduce",     "sweep"};
+        if (kDenseAlgebra.count(c.app->get_name()) != 0) spp::cli::prefer_fast_blas(argv);
         return c.run();
       }
   } catch (const spp::detail::OutOfMemory& e) {  // names what was too large and its size

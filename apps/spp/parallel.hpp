@@ -22,6 +22,12 @@ class Runtime {
   Runtime& operator=(const Runtime&) = delete;
 };
 
+/// Before a subcommand that runs dense linear algebra: where OpenBLAS fell back to its generic kernels, spp
+/// re-executes itself (argv: main's, unchanged) with OPENBLAS_CORETYPE set to the kernels of this CPU
+/// (detail::blas_core_advice: never when the user set the variable); nothing in spp-mpi (no exec after MPI_Init).
+/// Not called for --help, --version, usage errors and generate, which start at once.
+void prefer_fast_blas(char** argv);
+
 /// Processes of the run (1 in spp).
 int ranks();
 /// This process's rank (0 in spp).

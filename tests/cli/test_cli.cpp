@@ -371,12 +371,11 @@ TEST(Cli, PlotWritesOneFigurePerAdmissibleSpp) {
 TEST(Cli, ContinueNamesTheMultiplierThatCrossesTheUnitCircle) {
   const fs::path sys = dir() / "chain_k5.json", out = dir() / "chain_k5_cont.json";
   ASSERT_EQ(run("generate chain --n 5 --parameter k5 --range 0.98,0.99 --out " + sys.string()).code, 0);
-  const CliRun c = run("continue " + sys.string() +
-                       " --t1-min 5 --t1-max 6.5 --t2-min 2 --t2-max 3 --seeds 2 --json " + out.string());
+  const CliRun c = run("continue " + sys.string() + " --t1-min 5 --t1-max 6.5 --t2-min 2 --t2-max 3 --seeds 2 --json " +
+                       out.string());
   ASSERT_EQ(c.code, 0) << c.out;
   EXPECT_NE(c.out.find("stability_gained"), std::string::npos) << c.out;
-  EXPECT_NE(c.out.find("a Floquet multiplier crosses the unit circle through +1 (real, 1"), std::string::npos)
-      << c.out;
+  EXPECT_NE(c.out.find("a Floquet multiplier crosses the unit circle through +1 (real, 1"), std::string::npos) << c.out;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(out));
   int found = 0;
   for (const auto& b : j.at("branches"))
@@ -894,9 +893,9 @@ TEST(Cli, CountsReadAsTheHelpWritesThemAndRefusalsNameTheOptionAndFile) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(out));
   for (const char* bad : {"99999999999999999999", "2.5", "0", "-3", "many"})
-    expect_refused_without_output("solve " + kChain + " --t1-max 3 --t2-max 3 --max-cells " + bad + " --json " +
-                                      out.string(),
-                                  "--max-cells: expected a whole number from 1 to 1e+15", out);
+    expect_refused_without_output(
+        "solve " + kChain + " --t1-max 3 --t2-max 3 --max-cells " + bad + " --json " + out.string(),
+        "--max-cells: expected a whole number from 1 to 1e+15", out);
   // --solution -1 was reported as missing
   const fs::path res = dir() / "counts_res.json", csv = dir() / "counts.csv";
   ASSERT_EQ(run("solve " + kChain + " --t1-max 3 --t2-max 3 --quiet --json " + res.string()).code, 0);
@@ -948,8 +947,8 @@ TEST(Cli, OutputsAreWrittenThroughLinksAndOddOnesRefusedBeforeTheWork) {
 
 TEST(Cli, ResultsThatNoSolveAtNonzeroGapWritesAreNamedAsSuch) {
   const fs::path zg = dir() / "zg.json", csv = dir() / "zg.csv";
-  ASSERT_EQ(run("solve " + std::string(SPP_SOURCE_DIR) + "/examples/two_dof_zero_gap.json --t1-max 3 --t2-max 1 --json " +
-                zg.string())
+  ASSERT_EQ(run("solve " + std::string(SPP_SOURCE_DIR) +
+                "/examples/two_dof_zero_gap.json --t1-max 3 --t2-max 1 --json " + zg.string())
                 .code,
             0);
   expect_refused_without_output("trajectory --result " + zg.string() + " --solution 0 --csv " + csv.string(),
@@ -1051,7 +1050,6 @@ TEST(Cli, ModesRejectsBadInput) {
 // ---- spp sweep, and spp-mpi (solve and sweep over MPI ranks) ----
 
 namespace {
-
 
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
@@ -1360,7 +1358,8 @@ TEST(Cli, RealOptionsAreDecimalNumbers) {
   // reads what parse_number reads, as the lists and --values do
   for (const auto& [args, opt, got] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"solve " + kChain + " --t1-max 0x3 --t2-max 1", "--t1-max", "expected a decimal number"},
-           {"solve " + kChain + " --t1-max 3 --t2-max 1e400", "--t2-max", "expected a number within the range of a double"},
+           {"solve " + kChain + " --t1-max 3 --t2-max 1e400", "--t2-max",
+            "expected a number within the range of a double"},
            {"simulate " + kChain + " --x0 0,0,0,0,0.5 --v0 0,0,0,0,0 --duration 0x1p2 --csv " +
                 (dir() / "hex.csv").string(),
             "--duration", "expected a decimal number"}}) {
@@ -1415,8 +1414,8 @@ TEST(Cli, SweepValueMessagesNameWhatIsWrong) {
   const std::string sys = parametric_two_dof();
   const fs::path out = fresh_dir("sweep_messages");
   auto refused = [&](const std::string& values, const std::string& message) {
-    const CliRun r = run("sweep " + sys + " --parameter k2 --values " + values + " --out-dir " + out.string() +
-                         kSweepWindow);
+    const CliRun r =
+        run("sweep " + sys + " --parameter k2 --values " + values + " --out-dir " + out.string() + kSweepWindow);
     EXPECT_EQ(r.code, 1) << values << "\n" << r.out;
     EXPECT_NE(r.out.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.out;
     EXPECT_LT(r.out.size(), 600u) << r.out;  // no 300-digit count
@@ -1656,8 +1655,8 @@ TEST(CliMpi, InputErrorOnEveryRankEndsCleanlyWithoutAbort) {
   // every rank finds the same mistake: they end together (exit code 1, one message), no MPI_Abort race (about 1 run
   // in 3 printed Open MPI's "ORTE_ERROR_LOG: Data unpack had inadequate space")
   for (int k = 0; k < 6; ++k) {
-    const CliRun r = run_mpi("sweep " + kChain + " --parameter k2 --values nan --t1-max 5 --t2-max 5 --out-dir " +
-                             dir().string());
+    const CliRun r =
+        run_mpi("sweep " + kChain + " --parameter k2 --values nan --t1-max 5 --t2-max 5 --out-dir " + dir().string());
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_EQ(occurrences(r.out, "spp: error:"), 1u) << r.out;
     EXPECT_EQ(r.out.find("ORTE_ERROR_LOG"), std::string::npos) << r.out;
@@ -1790,4 +1789,32 @@ TEST(Cli, GenerateRandomIsOneSystemPerSeed) {
     EXPECT_NE(r.out.find("--n"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(bad));
   }
+}
+
+// Review (issue 11): the OpenBLAS re-execution (OPENBLAS_CORETYPE, where OpenBLAS fell back to its generic kernels)
+// ran before the arguments were read, for every subcommand: --help, --version and generate re-executed the binary
+// too. Now decided after parsing, for the subcommands that run dense linear algebra only (SPP_TRACE_BLAS says what
+// was decided); the user's own OPENBLAS_CORETYPE is kept (no re-execution).
+TEST(Cli, OnlySubcommandsWithDenseAlgebraDecideOnTheOpenBlasKernels) {
+  const std::string env = "env -u OPENBLAS_CORETYPE SPP_TRACE_BLAS=1 ";
+  const std::string trace = "spp: OpenBLAS kernels: ";
+  const std::vector<std::string> quick = {"--help", "--version", "solve --help", "solve --version",
+                                          "generate two-dof --out " + (dir() / "blas_two.json").string()};
+  for (const std::string& args : quick) {
+    const CliRun r = run(args, env);
+    EXPECT_EQ(r.code, 0) << args << ": " << r.out;
+    EXPECT_EQ(r.out.find(trace), std::string::npos) << args << ": " << r.out;
+  }
+  const CliRun solve = run("solve " + kChain + " --t1-max 2 --t2-max 2 --quiet", env);
+  EXPECT_EQ(solve.code, 0) << solve.out;
+  EXPECT_NE(solve.out.find(trace), std::string::npos) << solve.out;
+  // re-executed at most once: the second round finds the variable set and keeps its kernels
+  if (solve.out.find(trace + "re-executing") != std::string::npos) {
+    EXPECT_NE(solve.out.find(trace + "kept"), std::string::npos) << solve.out;
+  }
+  // the user's variable is theirs: kept, never replaced
+  const CliRun own =
+      run("solve " + kChain + " --t1-max 2 --t2-max 2 --quiet", "env OPENBLAS_CORETYPE=Haswell SPP_TRACE_BLAS=1 ");
+  EXPECT_EQ(own.out.find(trace + "re-executing"), std::string::npos) << own.out;
+  EXPECT_NE(own.out.find(trace + "kept"), std::string::npos) << own.out;
 }
