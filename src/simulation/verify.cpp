@@ -176,8 +176,14 @@ const char* to_string(VerifyStatus s) {
 std::string VerifyResult::brief_report() const {
   std::ostringstream os;
   os << "verify: " << to_string(status) << ", " << checks.size() << " SPPs, " << returned
-     << " return to their initial state, " << left << " leave the orbit; " << inconsistent
+     << " return to their initial state, " << left << " leave the orbit; " << admissibility_mismatches
      << " disagree with the solver's admissibility";
+  // (found by issue 14's last session: an SPP whose claimed multipliers were not the system's was counted here as
+  // disagreeing with the admissibility, which it did not)
+  if (stability_mismatches > 0)
+    os << "; " << stability_mismatches << " claim a stability (spectral radius, verdict or multipliers) that the "
+       << "recomputed Floquet multipliers contradict";
+  if (state_mismatches > 0) os << "; " << state_mismatches << " have x0, v0 that are not the orbit at (t1, t2)";
   if (unchecked > 0) os << "; " << unchecked << " not checked (interrupted)";
   return os.str();
 }
@@ -238,9 +244,10 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
   // issue 14: 253.6 per period on a stable chain SPP, without a word).
   constexpr double kElastic = 1.0;
   if (opt.perturbation > 0.0 && opt.restitution >= kElastic)
-    res.warnings.push_back("restitution 1 (elastic): the Floquet multipliers and the stability verdict are derived for "
-                           "e < 1 (docs/stability.md) and do not apply; the growth per period measured here is not "
-                           "comparable with spectral_radius");
+    res.warnings.push_back(
+        "restitution 1 (elastic): the Floquet multipliers and the stability verdict are derived for "
+        "e < 1 (docs/stability.md) and do not apply; the growth per period measured here is not "
+        "comparable with spectral_radius");
   std::optional<ModalForm> modal;  // built for the first SPP whose stability is to be checked
   for (size_t i = 0; i < spps.size(); ++i) {
     if (opt.progress && !opt.progress()) return stop(i);
@@ -296,11 +303,15 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     }
     chk.verdict = returns ? Verdict::Returns : Verdict::Leaves;
     chk.consistent = returns == c.admissible();
+    res.admissibility_mismatches += chk.consistent ? 0 : 1;
     if (chk.potential_return_error > opt.potential_return_tol) {  // NaN (not checked) passes
       chk.consistent = false;
-      chk.departure = "x0, v0 are not the SPP at (t1, t2): its own contact and flight flows (2 t2, then 2 t1) come "
-                      "back " + fmt(chk.potential_return_error) + " away (an edited result, or another system's)" +
-                      (chk.departure.empty() ? "" : "; and " + chk.departure);
+      ++res.state_mismatches;
+      chk.departure =
+          "x0, v0 are not the SPP at (t1, t2): its own contact and flight flows (2 t2, then 2 t1) come "
+          "back " +
+          fmt(chk.potential_return_error) + " away (an edited result, or another system's)" +
+          (chk.departure.empty() ? "" : "; and " + chk.departure);
     }
     // The stability the file claims must be the system's: multipliers recomputed from (t1, t2) and the system (found
     // by an attack, issue 14: a chain SPP's leading pair scaled to modulus 1.05 with rho 1.05 and verdict unstable,
@@ -310,6 +321,7 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
       const std::string why = stability_mismatch(c.floquet, floquet(*modal, c.orbit));
       if (!why.empty()) {
         chk.consistent = false;
+        ++res.stability_mismatches;
         chk.departure = why + (chk.departure.empty() ? "" : "; and " + chk.departure);
       }
     }

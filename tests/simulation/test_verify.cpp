@@ -231,6 +231,32 @@ TEST(Verify, EditedMultipliersThatAgreeWithEachOtherAreInconsistent) {
   }
 }
 
+// Found by issue 14's last session: an SPP whose claimed multipliers were edited (its admissibility right) made the
+// summary say "1 disagree with the solver's admissibility"; it is the stability claim that the recomputed Floquet
+// multipliers contradict.
+TEST(Verify, StabilityMismatchIsNotCalledAnAdmissibilityDisagreement) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0), admissible;
+  for (const Solution& c : all)
+    if (c.admissible()) admissible.push_back(c);
+  ASSERT_EQ(admissible.size(), 7u);
+  Solution edited = admissible[2];  // stable (docs/stability.md §5): claimed unstable
+  edited.floquet.spectral_radius = 1.05;
+  edited.floquet.margin = -0.05;
+  edited.floquet.verdict = StabilityVerdict::Unstable;
+  edited.floquet.stable = false;
+  const VerifyResult r = verify(chain5(), {admissible[0], edited}, VerifyOptions{});
+  EXPECT_EQ(r.status, VerifyStatus::Inconsistent);
+  EXPECT_EQ(r.inconsistent, 1);
+  EXPECT_EQ(r.admissibility_mismatches, 0);
+  EXPECT_EQ(r.stability_mismatches, 1);
+  EXPECT_EQ(r.state_mismatches, 0);
+  const std::string line = r.brief_report();
+  EXPECT_NE(line.find("; 0 disagree with the solver's admissibility; 1 claim a stability (spectral radius, verdict or "
+                      "multipliers) that the recomputed Floquet multipliers contradict"),
+            std::string::npos)
+      << line;
+}
+
 // Found by the attack of issue 14: --perturb with --restitution 1 printed a growth of 253.6 per period on a stable
 // SPP without saying that the stability theory excludes e = 1.
 TEST(Verify, PerturbationWithElasticImpactsWarnsThatFloquetDoesNotApply) {

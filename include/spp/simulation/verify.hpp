@@ -3,8 +3,8 @@
 // initial state after each period with the expected events (contact onset at 0, release at 2 t2); a potential
 // but inadmissible one must be seen to leave (an impact where its flight penetrates, or an early release where
 // its force would turn negative). Every one, admissible or not, must also come back along its potential orbit
-// (the exact contact and flight flows, events ignored): x0, v0 are then the orbit at (t1, t2). With a perturbation, the distance to the orbit is followed period by period:
-// a measured indication of stability under the given impact law.
+// (the exact contact and flight flows, events ignored): x0, v0 are then the orbit at (t1, t2). With a perturbation, the
+// distance to the orbit is followed period by period: a measured indication of stability under the given impact law.
 
 #include <Eigen/Dense>
 #include <functional>
@@ -18,11 +18,11 @@
 namespace spp {
 
 struct VerifyOptions {
-  int periods = 1;               ///< simulated periods (>= 1)
-  double perturbation = 0.0;     ///< relative size of the perturbation of the mid-flight state; 0: none
-  double restitution = 0.0;      ///< Newton's e for the simulations (matters only once the orbit is left)
-  double return_tol = 1e-9;      ///< an admissible SPP must come back to this relative error after one period
-  double follow_tol = 1e-6;      ///< later periods count as followed while the return error stays below this
+  int periods = 1;            ///< simulated periods (>= 1)
+  double perturbation = 0.0;  ///< relative size of the perturbation of the mid-flight state; 0: none
+  double restitution = 0.0;   ///< Newton's e for the simulations (matters only once the orbit is left)
+  double return_tol = 1e-9;   ///< an admissible SPP must come back to this relative error after one period
+  double follow_tol = 1e-6;   ///< later periods count as followed while the return error stays below this
   /// Every axial SPP, admissible or not, must come back to this relative error along its potential orbit (contact
   /// flow for 2 t2, then free flight for 2 t1, events ignored): looser than return_tol since a potential SPP may be
   /// strongly unstable and amplify the rounding of x0 (measured: at most 4e-14 on the chain5 and rod4 windows
@@ -76,6 +76,10 @@ struct VerifyResult {
   VerifyStatus status = VerifyStatus::Success;
   std::vector<SppCheck> checks;
   int returned = 0, left = 0, inconsistent = 0;
+  /// Why the inconsistent ones are (an SPP may count in several): the simulation's verdict is not the solver's
+  /// admissibility; x0, v0 are not the orbit at (t1, t2) (potential_return_error); the stability claimed (spectral
+  /// radius, verdict, multipliers) is not what floquet() recomputes from (t1, t2) and the system.
+  int admissibility_mismatches = 0, state_mismatches = 0, stability_mismatches = 0;
   /// SPPs not checked because VerifyOptions::progress stopped verify (0: every one was); status is that of the others.
   long unchecked = 0;
   /// Caveats on reading the results, one sentence each (e.g. a perturbation simulated with restitution 1, where the
@@ -85,9 +89,10 @@ struct VerifyResult {
   std::string brief_report() const;
 };
 
-/// Re-simulates each SPP from its state at contact onset (x0, v0, both (n)) for `periods` periods: one Simulator (O(n^3)), then O(n^2)
-/// per event, a few events per period; with a perturbation, the orbit sampled at 512 points and one golden-section
-/// search of the nearest point per period. Throws std::invalid_argument on sizes that do not match the system.
+/// Re-simulates each SPP from its state at contact onset (x0, v0, both (n)) for `periods` periods: one Simulator
+/// (O(n^3)), then O(n^2) per event, a few events per period; with a perturbation, the orbit sampled at 512 points and
+/// one golden-section search of the nearest point per period. Throws std::invalid_argument on sizes that do not match
+/// the system.
 VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& options);
 
 }  // namespace spp
