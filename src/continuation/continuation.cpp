@@ -10,9 +10,9 @@
 #include <list>
 #include <map>
 #include <memory>
-#include <tuple>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include "continuation/corrector.hpp"
 #include "search/tolerances.hpp"
@@ -115,8 +115,13 @@ using V3 = Eigen::Vector3d;
 /// balances truncation (h^2) against rounding (eps / h) of F.
 constexpr double kDifferenceStep = 1e-6;
 /// The corrector (continuation/corrector.hpp): 12 iterations (3 to 5 when converging), a step longer than 0.2 in
-/// scaled units left the branch (the arclength is halved), converged at a step of 1e-14 (~1e2 eps of y ~ 1).
-constexpr continuation::CorrectorOptions kCorrector{12, 0.2, 1e-14};
+/// scaled units left the branch (the arclength is halved), converged at a step of 1e-14 (~1e2 eps of y ~ 1), or at
+/// a step that stagnates below 1e-10: issue 14's last session found one branch of the chain with k5 in [0.9, 1],
+/// window (0, 12]^2, traced as two (branches 65 and 66), each stalled from its side between k5 = 0.99604 and 0.99631
+/// (t1 10.01 to 10.25) where F jitters by 3e-13 over an ill-conditioned J: Newton's steps never fell below 1e-14
+/// even from predictors 1e-9 away, and a stability event between the two pieces was lost. 1e-10 is far below the
+/// distances that tell SPPs apart (kSeedMatch) and far above that jitter.
+constexpr continuation::CorrectorOptions kCorrector{12, 0.2, 1e-14, 1e-10};
 /// Steps shorter than this fraction of max_step count as creeping; kCreepSteps of them in a row is a stall.
 constexpr double kCreepFraction = 1e-3;
 constexpr int kCreepSteps = 200;
@@ -759,10 +764,11 @@ ContinuationResult continue_branches(const ParametricSystem& ps, const ContinueO
     for (const BranchEvent& e : b.events) res.stalled_branches += e.kind == BranchEventKind::Stalled;
   res.interrupted = walker.interrupted;
   if (res.interrupted)
-    res.warnings.push_back("interrupted: the branches traced so far (the last one ends with a stalled event "
-                           "\"interrupted\"); the seeds not reached are not traced");
-  const bool complete = res.incomplete_seed_solves == 0 && res.stalled_branches == 0 &&
-                        res.unlisted_crossings == 0 && !res.interrupted;
+    res.warnings.push_back(
+        "interrupted: the branches traced so far (the last one ends with a stalled event "
+        "\"interrupted\"); the seeds not reached are not traced");
+  const bool complete =
+      res.incomplete_seed_solves == 0 && res.stalled_branches == 0 && res.unlisted_crossings == 0 && !res.interrupted;
   res.status = complete ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
   res.corrector_solves = tr.corrector_solves;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
@@ -776,8 +782,8 @@ ContinuationResult continue_branch(const ParametricSystem& ps, double mu, const 
   const Parameter& par = ps.parameter();
   if (!(mu >= par.min && mu <= par.max)) {
     std::ostringstream os;
-    os << "continue_branch: expected mu in the range [" << par.min << ", " << par.max << "] of " << par.name
-       << ", got " << mu;
+    os << "continue_branch: expected mu in the range [" << par.min << ", " << par.max << "] of " << par.name << ", got "
+       << mu;
     detail::invalid(os.str());
   }
   if (solution.orbit.symmetry != options.symmetry)
@@ -793,8 +799,8 @@ ContinuationResult continue_branch(const ParametricSystem& ps, double mu, const 
         solution.t2() <= res.t2_max)) {
     std::ostringstream os;
     os << "continue_branch: the solution at (t1, t2) = (" << solution.t1() << ", " << solution.t2()
-       << ") is outside the window (" << res.t1_min << ", " << res.t1_max << "] x (" << res.t2_min << ", "
-       << res.t2_max << "]: expected t1_max and t2_max that hold it";
+       << ") is outside the window (" << res.t1_min << ", " << res.t1_max << "] x (" << res.t2_min << ", " << res.t2_max
+       << "]: expected t1_max and t2_max that hold it";
     detail::invalid(os.str());
   }
   Tracer tr(ps, options, res.t1_min, res.t2_min);
@@ -824,8 +830,8 @@ ContinuationResult continue_branch(const ParametricSystem& ps, double mu, const 
   for (const BranchEvent& ev : res.branches.front().events) res.stalled_branches += ev.kind == BranchEventKind::Stalled;
   res.interrupted = walker.interrupted;
   if (res.interrupted) res.warnings.push_back("interrupted: the branch as traced so far");
-  res.status = res.stalled_branches == 0 && !res.interrupted ? ContinuationStatus::Success
-                                                             : ContinuationStatus::Incomplete;
+  res.status =
+      res.stalled_branches == 0 && !res.interrupted ? ContinuationStatus::Success : ContinuationStatus::Incomplete;
   res.corrector_solves = tr.corrector_solves;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return res;

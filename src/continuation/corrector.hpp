@@ -12,6 +12,9 @@ struct CorrectorOptions {
   int max_iterations = 12;  ///< Newton iterations; a converging corrector needs 3 to 5 (more: the predictor was off)
   double max_step = 0.2;    ///< a Newton step longer than this left the branch: not converged
   double step_tol = 1e-14;  ///< converged when a Newton step is this short (the rounding level of y ~ 1)
+  /// Also converged when a step is no shorter than the one before and below this: Newton has reached the rounding
+  /// floor of F over an ill-conditioned J, where steps jitter and never fall below step_tol. 0: off.
+  double stagnation_tol = 0.0;
 };
 
 struct CorrectorResult {
@@ -21,7 +24,8 @@ struct CorrectorResult {
 
 /// Newton on F(y) = 0, tau^T (y - y_pred) = 0 from y = y_pred (tau: unit, k + 1). `linearize(y, F, J)` fills F (k)
 /// and J (k x (k + 1)) at y. y holds the last iterate; not converged when a step is not finite, longer than
-/// max_step, or still above step_tol after max_iterations. Cost: one linearization and one (k + 1)^2 LU per iteration.
+/// max_step, or, after max_iterations, still above step_tol without having stagnated below stagnation_tol. Cost: one
+/// linearization and one (k + 1)^2 LU per iteration.
 template <class Linearize>
 CorrectorResult correct_pseudo_arclength(Linearize&& linearize, const Eigen::VectorXd& y_pred,
                                          const Eigen::VectorXd& tau, Eigen::VectorXd& y,
@@ -31,6 +35,7 @@ CorrectorResult correct_pseudo_arclength(Linearize&& linearize, const Eigen::Vec
   y = y_pred;
   Eigen::VectorXd F(k), r(k + 1);
   Eigen::MatrixXd J(k, k + 1), A(k + 1, k + 1);
+  double previous = std::numeric_limits<double>::infinity();
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     linearize(y, F, J);
     A.topRows(k) = J;
@@ -39,7 +44,9 @@ CorrectorResult correct_pseudo_arclength(Linearize&& linearize, const Eigen::Vec
     const Eigen::VectorXd dy = A.fullPivLu().solve(-r);
     if (!dy.allFinite() || dy.norm() > options.max_step) return out;
     y += dy;
-    if (dy.norm() <= options.step_tol) break;
+    const double step = dy.norm();
+    if (step <= options.step_tol || (step >= previous && step <= options.stagnation_tol)) break;
+    previous = step;
   }
   out.converged = out.iterations <= options.max_iterations && y.allFinite();
   return out;

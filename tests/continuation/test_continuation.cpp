@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "continuation/corrector.hpp"
@@ -283,6 +284,75 @@ TEST(Continuation, StabilityEventOnASteepBranchIsOnTheBranch) {
       if (std::abs(e.at.t1 - 10.2828) < 1e-2 && std::abs(e.at.mu - 0.942381) < 1e-5) ++steep;
     }
   EXPECT_EQ(steep, 1) << r.brief_report();
+}
+
+// Found by issue 14's last session: on the chain with k5 in [0.9, 1] and the window (0, 12]^2 one branch was traced as
+// two (from the seeds at k5 = 0.95 and 1), each piece ending "stalled" on its side of k5 = 0.99604 ... 0.99631: the
+// corrector demanded a Newton step below 1e-14 where F's rounding over an ill-conditioned J kept steps jittering above
+// it, even from predictors 1e-9 away; the stability_lost between the pieces (k5 = 0.99616) was lost. Now: no stalled
+// end, that branch whole from the window's edge (k5 = 0.94847) to k5 = 1 with the event, no two branches sharing a
+// point, and every seed SPP on exactly one branch.
+TEST(Continuation, BranchIsNotTracedTwiceInTwoStalledPieces) {
+  const ParametricSystem ps = paper_chain_k5(0.9, 1.0);
+  ContinueOptions o;
+  o.t1_max = 12.0;
+  o.t2_max = 12.0;
+  const ContinuationResult r = continue_branches(ps, o);
+  EXPECT_EQ(r.stalled_branches, 0) << r.brief_report();
+  EXPECT_EQ(r.status, ContinuationStatus::Success) << r.brief_report();
+  // scaled coordinates, as the tracer's
+  auto scaled = [&](const BranchPoint& p) { return Eigen::Vector3d(p.t1 / 12.0, p.t2 / 12.0, (p.mu - 0.9) / 0.1); };
+  int whole = 0;
+  for (const Branch& b : r.branches) {
+    const BranchPoint &first = b.points.front(), &last = b.points.back();
+    const bool from_edge = std::abs(first.mu - 0.948466) < 1e-5 && std::abs(first.t2 - 12.0) < 1e-9;
+    if (!from_edge) continue;
+    EXPECT_NEAR(last.mu, 1.0, 1e-12);
+    EXPECT_NEAR(last.t1, 10.4754, 1e-3);
+    EXPECT_NEAR(last.t2, 10.9013, 1e-3);
+    const bool lost = std::any_of(b.events.begin(), b.events.end(), [](const BranchEvent& e) {
+      return e.kind == BranchEventKind::StabilityLost && std::abs(e.at.mu - 0.99616) < 1e-5;
+    });
+    EXPECT_TRUE(lost);
+    ++whole;
+  }
+  EXPECT_EQ(whole, 1) << r.brief_report();
+  // No two branches share a point: every point of one is farther than 1e-6 (scaled) from every point of another.
+  constexpr double kSame = 1e-6;
+  for (size_t i = 0; i < r.branches.size(); ++i)
+    for (size_t j = i + 1; j < r.branches.size(); ++j) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const BranchPoint& p : r.branches[i].points)
+        for (const BranchPoint& q : r.branches[j].points) nearest = std::min(nearest, (scaled(p) - scaled(q)).norm());
+      EXPECT_GT(nearest, kSame) << "branches " << i << " and " << j;
+    }
+  // Every seed SPP is on exactly one branch: at its seed value, one branch passes within 1e-4 of it (scaled; points
+  // interpolated linearly across the seed value, steps <= 0.02), and distinct SPPs there are farther apart.
+  SolveOptions so;
+  so.t1_min = r.t1_min;
+  so.t2_min = r.t2_min;
+  so.t1_max = 12.0;
+  so.t2_max = 12.0;
+  so.compute_return_error = false;
+  for (int k = 0; k < o.seeds; ++k) {
+    const double mu = 0.9 + 0.1 * k / (o.seeds - 1);
+    for (const Solution& sol : solve(ps.at(mu), so).solutions) {
+      const Eigen::Vector2d at(sol.t1() / 12.0, sol.t2() / 12.0);
+      int on = 0;
+      for (const Branch& b : r.branches) {
+        bool passes = false;
+        for (size_t i = 0; i + 1 < b.points.size() && !passes; ++i) {
+          const BranchPoint &p = b.points[i], &q = b.points[i + 1];
+          if ((p.mu - mu) * (q.mu - mu) > 0.0 || p.mu == q.mu) continue;
+          const double t = (mu - p.mu) / (q.mu - p.mu);
+          const Eigen::Vector3d y = scaled(p) + t * (scaled(q) - scaled(p));
+          passes = (y.head<2>() - at).norm() < 1e-4;
+        }
+        on += passes;
+      }
+      EXPECT_EQ(on, 1) << "k5 = " << mu << ", (t1, t2) = (" << sol.t1() << ", " << sol.t2() << ")";
+    }
+  }
 }
 
 namespace {
