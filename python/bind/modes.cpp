@@ -34,7 +34,8 @@ void bind_modes(py::module_& m) {
       .def_readonly("k", &md::ModeFamily::k)
       .def_property_readonly("symmetry", [](const md::ModeFamily& f) { return std::string(md::to_string(f.symmetry)); })
       .def_property_readonly(
-          "mode", [](const md::ModeFamily& f) { return f.mode + 1; }, "1-based linear mode")
+          "mode", [](const md::ModeFamily& f) { return f.mode; },
+          "the linear mode of the grazing start, numbered from 1 (lowest frequency), as in C++ and the JSON")
       .def_readonly("multiplicity", &md::ModeFamily::multiplicity)
       .def_readonly("label", &md::ModeFamily::label)
       .def_readonly("points", &md::ModeFamily::points)

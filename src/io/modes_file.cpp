@@ -41,7 +41,7 @@ std::string modes_json(const System& system, const modes::ModesResult& result, i
     families.push_back({{"k", f.k},
                         {"label", f.label},
                         {"symmetry", modes::to_string(f.symmetry)},
-                        {"mode", f.mode + 1},
+                        {"mode", f.mode},
                         {"multiplicity", f.multiplicity},
                         {"points", points},
                         {"events", events}});

@@ -43,15 +43,29 @@ KippModel::KippModel(const System& system) : system_(system) {
                            "positive (an obstacle away from the rest position: k-IPP families start at grazing)");
   const detail::SymmetricEigen es = detail::generalized_symmetric_eigen(system.K(), system.M());
   if (!es.ok) detail::internal_error("KippModel: the generalized eigenproblem did not converge");
-  omega_ = es.values.cwiseMax(0.0).cwiseSqrt();
-  Phi_ = es.vectors;
+  Eigen::VectorXd omega = es.values.cwiseMax(0.0).cwiseSqrt();
+  Eigen::MatrixXd Phi = es.vectors;
   // A repeated frequency: one mode of its group sees the obstacle, the others none (they start no family). Any
   // basis of the eigenspace was taken before, and each mode with some of w started its own copy of one family,
   // and orbits spread over the group were listed as families of zero-speed impacts (found by an independent attack).
-  align_repeated_frequencies(omega_, Phi_, system.w(), kRepeatedFrequency);
-  b_ = Phi_.transpose() * system.w();
+  align_repeated_frequencies(omega, Phi, system.w(), kRepeatedFrequency);
+  omega_all_ = omega;
+  const Eigen::VectorXd b_all = Phi.transpose() * system.w();
+  // The decoupled modes are dropped from the unknowns (class comment), with ModalForm's default threshold.
+  constexpr double kDecoupled = 1e-10;
+  for (int i = 0; i < system.n(); ++i)
+    if (std::abs(b_all(i)) > kDecoupled * b_all.norm()) linear_mode_.push_back(i + 1);
+  const int n = static_cast<int>(linear_mode_.size());
+  omega_.resize(n);
+  b_.resize(n);
+  Phi_.resize(system.n(), n);
+  for (int i = 0; i < n; ++i) {
+    const int j = linear_mode_[static_cast<size_t>(i)] - 1;
+    omega_(i) = omega(j);
+    b_(i) = b_all(j);
+    Phi_.col(i) = Phi.col(j);
+  }
   // Orthonormal basis of b^perp: the last n - 1 columns of the Householder Q of b.
-  const int n = system.n();
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(b_);
   const Eigen::MatrixXd Qfull = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
   Q_ = Qfull.rightCols(n - 1);
@@ -107,7 +121,7 @@ void start_state(const KippModel& model, const KippShape& shape, const Eigen::Ve
 void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, Eigen::VectorXd& F,
                    Eigen::MatrixXd& J) {
   const int n = shape.n, N = shape.unknowns(), m = shape.m(), t0 = shape.first_tau();
-  if (n != model.n() || y.size() != N) detail::invalid("kipp_residual: expected y of the shape's size");
+  if (n != model.coupled_modes() || y.size() != N) detail::invalid("kipp_residual: expected y of the shape's size");
   F.resize(N - 1);
   J.resize(N - 1, N);
   const Eigen::VectorXd& b = model.b();
@@ -264,12 +278,13 @@ KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen
   return out;
 }
 
-Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int mode) {
+Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int coupled) {
   const int n = shape.n;
-  if (mode < 0 || mode >= n) detail::invalid_option("grazing_start", "mode", mode, "in [0, n)");
+  if (n != model.coupled_modes()) detail::invalid("grazing_start: expected a shape of the model's coupled modes");
+  if (coupled < 0 || coupled >= n)
+    detail::invalid_option("grazing_start", "coupled", coupled, "in [0, " + std::to_string(n) + ")");
+  const int mode = coupled;
   const double bj = model.b()(mode);
-  if (std::abs(bj) <= 1e-12 * model.b().norm())
-    detail::invalid_option("grazing_start", "mode", mode, "a mode that sees the obstacle (b_mode != 0)");
   const double T = 2.0 * std::acos(-1.0) / model.omega()(mode);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(shape.unknowns());
   const double a = model.g0() / std::abs(bj);

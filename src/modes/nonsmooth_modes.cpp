@@ -332,7 +332,7 @@ struct Tracer {
   // The family with k + 2 impacts that continues family `index` past its flight_grazing end.
   void follow_grazing(size_t index) {
     const ModeFamily src = result.families[index];  // a copy: result.families grows below
-    const KippShape shape{src.k, src.symmetry, model.n()};
+    const KippShape shape{src.k, src.symmetry, model.coupled_modes()};
     const Eigen::VectorXd& y = src.points.back().y;
     const KippOrbit o = kipp_orbit(model, shape, y);
     const int j = o.min_gap_flight, t0 = shape.first_tau(), m = shape.m();
@@ -341,7 +341,7 @@ struct Tracer {
     const bool turning_start = j == 0 && shape.symmetry != KippSymmetry::ImpactImpact;
     const bool turning_end = j == m && shape.symmetry == KippSymmetry::FlightFlight;
     if ((turning_start && tg < 1e-6 * tau) || (turning_end && tau - tg < 1e-6 * tau)) return;  // at a symmetric point
-    const KippShape next{src.k + 2, src.symmetry, model.n()};
+    const KippShape next{src.k + 2, src.symmetry, model.coupled_modes()};
     Eigen::VectorXd y2(next.unknowns());
     y2.head(t0) = y.head(t0);
     for (int i = 0; i < j; ++i) y2(t0 + i) = y(t0 + i);
@@ -375,9 +375,11 @@ struct Tracer {
     note(result.families.size() - 1);
   }
 
-  void run_start(const KippShape& shape, int mode) {
+  // The families from the grazing start of coupled mode `coupled` (0-based index into model.omega()).
+  void run_start(const KippShape& shape, int coupled) {
+    const int mode = model.linear_mode(coupled);  // 1-based, of all n modes
     D = scales(shape);
-    const Eigen::VectorXd y0 = grazing_start(model, shape, mode);
+    const Eigen::VectorXd y0 = grazing_start(model, shape, coupled);
     Eigen::VectorXd z0 = (y0.array() / D.array()).matrix();
     ModeFamily f;
     f.k = shape.k;
@@ -387,13 +389,13 @@ struct Tracer {
     const ModePoint p0 = tangency(point(shape, z0));
     if (p0.energy >= options.energy_max) return;  // the family starts above the requested energies
     f.points.push_back(p0);
-    add_event(f, ModeEventKind::GrazingStart, p0, "linear mode " + std::to_string(mode + 1) + " touching the obstacle");
+    add_event(f, ModeEventKind::GrazingStart, p0, "linear mode " + std::to_string(mode) + " touching the obstacle");
     const Eigen::VectorXd tau = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
     std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
     start_family(f, shape, z0, tau, options.branch_points && shape.k > 1 ? &branches : nullptr);
     f.multiplicity = f.points.size() > 1 ? f.points[1].multiplicity : p0.multiplicity;
     std::ostringstream label;
-    label << "k" << shape.k << " " << to_string(shape.symmetry) << " mode " << mode + 1;
+    label << "k" << shape.k << " " << to_string(shape.symmetry) << " mode " << mode;
     if (f.multiplicity > 1) label << " (" << shape.k / f.multiplicity << "-IPP x" << f.multiplicity << ")";
     f.label = label.str();
     result.families.push_back(f);
@@ -418,7 +420,7 @@ struct Tracer {
         g.multiplicity = g.points.size() > 1 ? g.points.back().multiplicity : pb.multiplicity;
         std::ostringstream gl;
         gl << "k" << shape.k << " " << to_string(shape.symmetry) << " branch " << ++index << (sign > 0 ? "+" : "-")
-           << " of mode " << mode + 1;
+           << " of mode " << mode;
         g.label = gl.str();
         result.families.push_back(g);
         note(result.families.size() - 1);
@@ -434,20 +436,18 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const KippModel model(system);
   ModesResult result;
-  result.linear_frequencies = model.omega();
+  result.linear_frequencies = model.omega_all();
   Tracer tracer{model, options, result, {}, {}, {}, false};
   tracer.wanted.insert(options.k_values.begin(), options.k_values.end());
   std::vector<int> ks = options.k_values;
   std::sort(ks.begin(), ks.end());
-  const double bn = model.b().norm();
   for (int k : ks)
     for (KippSymmetry s : symmetries_for(k))
-      for (int j = 0; j < system.n() && tracer.keep_going(); ++j)
-        if (std::abs(model.b()(j)) > 1e-10 * bn) tracer.run_start(KippShape{k, s, system.n()}, j);
+      for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j)
+        tracer.run_start(KippShape{k, s, model.coupled_modes()}, j);
   for (size_t i = 0; i < tracer.pending.size() && tracer.keep_going(); ++i) tracer.follow_grazing(tracer.pending[i]);
   result.interrupted = tracer.stopped;
-  result.status =
-      result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;
+  result.status = result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

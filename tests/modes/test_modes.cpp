@@ -69,11 +69,64 @@ TEST(Modes, OneDofRepetitionsHaveMultiplicityK) {
   }
 }
 
+// Issue 15, D2: M = K = I (3 dofs), w = (1, 1, 0), g0 = 1. The modes not touching w (after aligning the repeated
+// frequency) were k-IPP unknowns: a k1 family of frequency 1 throughout (their free motions, no impact orbits) was
+// listed and the 1-IPP along w missed. Along w it is the 1-dof problem in q = phi^T M x, phi = w / |w|: a stop at
+// q = -g0 / |w|, so frequency pi / (pi - arccos(g0 / (|w| A))) at amplitude A = sqrt(2 E) (System normalises w:
+// s.g0() is already g0 / |w|).
+TEST(Modes, DecoupledModesOfARepeatedFrequencyAreNoFamilies) {
+  Eigen::VectorXd w(3);
+  w << 1.0, 1.0, 0.0;
+  const System s(Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Identity(3, 3), w, 1.0);
+  const ModesResult r = run(s, {1, 2, 3}, 5.0);
+  ASSERT_EQ(r.families.size(), 3u);  // one per k: the 1-IPP along w, traversed k times
+  for (const ModeFamily& f : r.families) {
+    EXPECT_EQ(f.multiplicity, f.k) << f.label;
+    ASSERT_GE(f.points.size(), 10u) << f.label;
+    for (const ModePoint& p : f.points) {  // the closed form inverted (arccos near 1 would lose half the digits)
+      const double amplitude = -s.g0() / std::cos(kPi / (p.frequency * f.k));
+      EXPECT_NEAR(std::sqrt(2.0 * p.energy), amplitude, 1e-9 * amplitude) << f.label << " E " << p.energy;
+    }
+    EXPECT_GT(f.points.back().frequency * f.k, 1.5) << f.label;  // no frequency-1 continuum
+    EXPECT_EQ(f.events.back().kind, ModeEventKind::EnergyMax) << f.label;
+  }
+  EXPECT_EQ(r.linear_frequencies.size(), 3);  // every mode's frequency, the decoupled ones too
+}
+
+// A third dof that never sees the obstacle, of frequency exactly 2 omega_1 (so that at mode 1's grazing start,
+// half period pi / omega_1, its flow is the identity and the equations were singular there): the families, their
+// energies, frequencies and states, are those of the 2-dof system.
+TEST(Modes, AnExactlyDecoupledModeChangesNoFamily) {
+  const System two = paper_two_dof();
+  const double w1 = std::sqrt((3.0 - std::sqrt(5.0)) / 2.0);  // the 2-dof's lowest frequency (unit masses, springs)
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(3, 3), K = Eigen::MatrixXd::Zero(3, 3);
+  K.topLeftCorner(2, 2) = two.K();
+  K(2, 2) = 4.0 * w1 * w1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(3);
+  w.head(2) = two.w();
+  const System three(M, K, w, two.g0());
+  const ModesResult a = run(two, {1, 2, 3}, 6.0), b = run(three, {1, 2, 3}, 6.0);
+  ASSERT_EQ(a.families.size(), b.families.size());
+  for (size_t i = 0; i < a.families.size(); ++i) {
+    const ModeFamily &fa = a.families[i], &fb = b.families[i];
+    EXPECT_EQ(fa.k, fb.k);
+    EXPECT_EQ(fa.symmetry, fb.symmetry);
+    EXPECT_EQ(fb.mode, fa.mode == 1 ? 1 : 3);  // the decoupled mode (2 omega_1 = 1.24 < omega_2 = 1.62) is mode 2
+    ASSERT_EQ(fa.points.size(), fb.points.size()) << fa.label;
+    for (size_t j = 0; j < fa.points.size(); ++j) {
+      EXPECT_NEAR(fa.points[j].energy, fb.points[j].energy, 1e-9 * fa.points[j].energy) << fa.label;
+      EXPECT_NEAR(fa.points[j].frequency, fb.points[j].frequency, 1e-9) << fa.label;
+      EXPECT_LT((fa.points[j].x0 - fb.points[j].x0.head(2)).norm(), 1e-9) << fa.label;
+      EXPECT_EQ(fb.points[j].x0(2), 0.0) << fa.label;
+    }
+  }
+}
+
 TEST(Modes, JacobianMatchesCentralDifferences) {
   const KippModel model(chain5());
   for (int k : {1, 2, 3, 4, 5})
     for (KippSymmetry s : symmetries_for(k)) {
-      const KippShape shape{k, s, model.n()};
+      const KippShape shape{k, s, model.coupled_modes()};
       Eigen::VectorXd y = grazing_start(model, shape, 1);
       y += 0.1 * Eigen::VectorXd::LinSpaced(y.size(), -1.0, 1.0);  // away from any solution: a generic point
       Eigen::VectorXd F, Fp, Fm;
@@ -116,7 +169,7 @@ TEST(Modes, OneIppFamilyAgreesWithItsClosedForm) {
     int checked = 0;
     for (const ModeFamily& f : r.families)
       for (const ModePoint& p : f.points) {
-        const int n = s.n();
+        const int n = model.coupled_modes();
         const double tau = p.y(n);
         const Eigen::VectorXd xA = model.Phi() * p.y.head(n);  // mode shapes may differ in sign: compare x
         const Eigen::VectorXd expected = one_ipp_closed_form(s, tau);
@@ -138,8 +191,8 @@ TEST(Modes, GrazingStartsAtTheLinearFrequencyOverK) {
     if (f.events.front().kind != ModeEventKind::GrazingStart) continue;
     ++starts;
     const ModePoint& p = f.points.front();
-    EXPECT_NEAR(p.frequency, w(f.mode) / f.k, 1e-12);
-    EXPECT_NEAR(p.energy, 0.5 * std::pow(w(f.mode) * s.g0() / b(f.mode), 2), 1e-12 * p.energy);
+    EXPECT_NEAR(p.frequency, w(f.mode - 1) / f.k, 1e-12);  // mode: numbered from 1
+    EXPECT_NEAR(p.energy, 0.5 * std::pow(w(f.mode - 1) * s.g0() / b(f.mode - 1), 2), 1e-12 * p.energy);
   }
   EXPECT_EQ(starts, 5 * 3);  // every mode of the chain sees the contact; one type for k = 1, 2, 3 each
 }

@@ -3,13 +3,13 @@
 // Legrand, the paper's refs [15], [16]) of M x'' + K x = 0 with g(x) = w^T x + g0 >= 0 and the impact law e = 1:
 //   v+ = v- - 2 (w^T v-) / (w^T M^-1 w) M^-1 w   at g = 0.
 // Derivation and conventions: docs/modes.md. In the modal coordinates x = Phi q (K Phi = M Phi W^2, Phi^T M Phi = I,
-// all n modes) the flight is q'' = -W^2 q, the gap b^T q + g0 with b = Phi^T w, and the impact reflects the modal
-// velocity in the hyperplane b^perp: q'+ = R q'-, R = I - 2 b b^T / |b|^2. The system is time-reversible (t -> -t,
-// q' -> -q' maps orbits to orbits, an impact to an impact), and a reversible periodic orbit has two symmetric points
-// per period: a turning point in flight (q' = 0) or an impact whose velocity is normal (q'- parallel to b). Half an
-// orbit, from one to the other, determines it (docs/modes.md §2): the unknowns are the symmetric point's state and the
-// durations tau_0..tau_m of the m + 1 flights of the half orbit; the equations are linear in the state given the
-// durations. Non-reversible k-IPPs, if any, are not computed.
+// the m modes that see the obstacle) the flight is q'' = -W^2 q, the gap b^T q + g0 with b = Phi^T w, and the impact
+// reflects the modal velocity in the hyperplane b^perp: q'+ = R q'-, R = I - 2 b b^T / |b|^2. The system is
+// time-reversible (t -> -t, q' -> -q' maps orbits to orbits, an impact to an impact), and a reversible periodic orbit
+// has two symmetric points per period: a turning point in flight (q' = 0) or an impact whose velocity is normal (q'-
+// parallel to b). Half an orbit, from one to the other, determines it (docs/modes.md §2): the unknowns are the
+// symmetric point's state and the durations tau_0..tau_m of the m + 1 flights of the half orbit; the equations are
+// linear in the state given the durations. Non-reversible k-IPPs, if any, are not computed.
 
 #include <Eigen/Dense>
 #include <string>
@@ -31,22 +31,31 @@ std::vector<KippSymmetry> symmetries_for(int k);
 int interior_impacts(int k, KippSymmetry s);
 
 /// The free flow of the system in its modal coordinates, computed once (model/workspace split). Cost O(n^3).
+/// Only the coupled modes (b_i = phi_i^T w != 0, after aligning each group of repeated frequencies so that one of its
+/// modes takes all of w, as ModalForm does) are k-IPP unknowns: a decoupled mode never sees the obstacle, so any of
+/// its free motions can be superposed on a k-IPP whose period is a multiple of its own; kept among the unknowns, it
+/// made the equations singular there and its continua were listed as families (issue 15, D2: M = K = I, w = (1, 1, 0)).
 /// Throws std::invalid_argument when g0 <= 0 (no equilibrium in flight: no grazing start; docs/modes.md §5).
 class KippModel {
  public:
   explicit KippModel(const System& system);
   const System& system() const { return system_; }
-  int n() const { return system_.n(); }
-  const Eigen::VectorXd& omega() const { return omega_; }      ///< (n) free frequencies, ascending, rad / time unit
-  const Eigen::MatrixXd& Phi() const { return Phi_; }          ///< n x n, M-normalised mode shapes
-  const Eigen::VectorXd& b() const { return b_; }              ///< (n) Phi^T w: modal gap weights
-  const Eigen::MatrixXd& tangent_basis() const { return Q_; }  ///< n x (n-1) orthonormal basis of b^perp
+  int coupled_modes() const { return static_cast<int>(omega_.size()); }  ///< m <= n: the modal unknowns per state
+  const Eigen::VectorXd& omega() const { return omega_; }  ///< (m) coupled free frequencies, ascending, rad / time unit
+  const Eigen::MatrixXd& Phi() const { return Phi_; }      ///< n x m, M-normalised coupled mode shapes
+  const Eigen::VectorXd& b() const { return b_; }          ///< (m) Phi^T w: modal gap weights, none 0
+  const Eigen::MatrixXd& tangent_basis() const { return Q_; }  ///< m x (m-1) orthonormal basis of b^perp
+  /// (n) every free frequency, coupled or not, ascending (the linear frequencies of the frequency-energy plot)
+  const Eigen::VectorXd& omega_all() const { return omega_all_; }
+  /// The linear mode number (1 = lowest frequency, of all n) of coupled mode i (0-based in omega())
+  int linear_mode(int i) const { return linear_mode_.at(static_cast<size_t>(i)); }
   double g0() const { return system_.g0(); }
 
  private:
   System system_;
-  Eigen::VectorXd omega_, b_;
+  Eigen::VectorXd omega_, b_, omega_all_;
   Eigen::MatrixXd Phi_, Q_;
+  std::vector<int> linear_mode_;
 };
 
 /// The unknowns y of a symmetric half orbit: y = (q_A (n), [s,] tau_0..tau_m), with s only for ImpactImpact
@@ -55,7 +64,7 @@ class KippModel {
 struct KippShape {
   int k = 1;
   KippSymmetry symmetry = KippSymmetry::FlightImpact;
-  int n = 0;
+  int n = 0;  ///< modal coordinates: the model's coupled modes (KippModel::coupled_modes())
   int m() const { return interior_impacts(k, symmetry); }
   int unknowns() const { return n + m() + 1 + (symmetry == KippSymmetry::ImpactImpact ? 1 : 0); }
   int equations() const { return unknowns() - 1; }
@@ -94,10 +103,10 @@ struct KippOrbit {
 /// Cost O(n k) plus a few hundred O(n) gap evaluations per flight.
 KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, double rel_tol = 1e-10);
 
-/// The grazing start: the linear mode `mode` (0-based, b(mode) != 0) of amplitude g0 / |b_mode|, whose extreme just
-/// touches the obstacle, traversed k times (period 2 pi k / omega_mode) and written as a solution y of shape
-/// (F(y) = 0 to rounding). Throws std::invalid_argument for a mode index out of range or a mode with b = 0.
-Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int mode);
+/// The grazing start: coupled mode `coupled` (0-based index into omega(), b(coupled) != 0) of amplitude
+/// g0 / |b_coupled|, whose extreme just touches the obstacle, traversed k times (period 2 pi k / omega_coupled) and
+/// written as a solution y of shape (F(y) = 0 to rounding). Throws std::invalid_argument for an index out of range.
+Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int coupled);
 
 /// The 1-dof closed form (issue 15): x'' + x = 0 against a stop at g0, e = 1, amplitude A >= g0:
 /// frequency 2 pi / T = pi / (pi - arccos(g0 / A)); energy A^2 / 2 (unit mass and stiffness).

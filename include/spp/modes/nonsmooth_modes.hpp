@@ -83,7 +83,9 @@ struct ModeEvent {
 struct ModeFamily {
   int k = 1;
   KippSymmetry symmetry = KippSymmetry::FlightImpact;
-  int mode = -1;         ///< 0-based linear mode of the grazing start (of the repetition it branches from)
+  /// The linear mode of the grazing start (of the repetition it branches from), numbered from 1 (the lowest of all n
+  /// frequencies, decoupled modes counted), as in the label, the JSON and Python (it was 0-based here, 1-based there).
+  int mode = 0;
   int multiplicity = 1;  ///< of its points past the start: k for a repetition of a 1-IPP, 1 for a genuine k-IPP
   std::string label;
   std::vector<ModePoint> points;  ///< in the order traced from its start (its energy need not be monotone)
@@ -100,7 +102,9 @@ const char* to_string(ModesStatus s);
 struct ModesResult {
   ModesStatus status = ModesStatus::NotRun;
   std::vector<ModeFamily> families;
-  Eigen::VectorXd linear_frequencies;  ///< (n) omega, rad per time unit (the backbones' low-energy ends are omega / k)
+  /// (n) omega of every mode, decoupled ones included, rad per time unit (ascending: mode j is entry j - 1; the
+  /// backbones' low-energy ends are omega / k)
+  Eigen::VectorXd linear_frequencies;
   long corrector_solves = 0;
   long stalled_families = 0;
   bool interrupted = false;  ///< ModesOptions::progress stopped the tracing (status Incomplete)
