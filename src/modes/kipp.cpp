@@ -66,9 +66,14 @@ KippModel::KippModel(const System& system) : system_(system) {
     Phi_.col(i) = Phi.col(j);
   }
   // Orthonormal basis of b^perp: the last n - 1 columns of the Householder Q of b.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(b_);
-  const Eigen::MatrixXd Qfull = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
+  b_reflection_.compute(b_);
+  const Eigen::MatrixXd Qfull = b_reflection_.householderQ() * Eigen::MatrixXd::Identity(n, n);
   Q_ = Qfull.rightCols(n - 1);
+}
+
+Eigen::MatrixXd KippModel::tangential(const Eigen::MatrixXd& X) const {
+  const Eigen::MatrixXd HX = b_reflection_.householderQ().adjoint() * X;  // applied, not formed
+  return HX.bottomRows(X.rows() - 1);
 }
 
 namespace {
@@ -152,9 +157,8 @@ void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::
   } else {  // B an impact with normal velocity: on the obstacle, tangential velocity 0
     F(row) = b.dot(q) + g0;
     J.row(row++) = b.transpose() * Dq;
-    const Eigen::MatrixXd& Q = model.tangent_basis();
-    F.segment(row, n - 1) = Q.transpose() * p;
-    J.middleRows(row, n - 1) = Q.transpose() * Dp;
+    F.segment(row, n - 1) = model.tangential(p);
+    J.middleRows(row, n - 1) = model.tangential(Dp);
     row += n - 1;
   }
   if (row != N - 1) detail::internal_error("kipp_residual: equation count");

@@ -129,6 +129,7 @@ struct Tracer {
     cont::CorrectorOptions co;
     co.step_tol = 1e-11;
     co.max_iterations = 15;
+    co.full_pivoting = false;  // the bordered system is n + m + 1 square: blocked partial pivoting (corrector.hpp)
     const auto lin = [&](const Eigen::VectorXd& zz, Eigen::VectorXd& F, Eigen::MatrixXd& J) {
       linearize(shape, zz, F, J);
     };
@@ -170,7 +171,9 @@ struct Tracer {
   }
 
   double bordered_det(const KippShape& shape, const Eigen::VectorXd& z, const Eigen::VectorXd& tau) const {
-    const Eigen::MatrixXd J = jacobian(shape, z);
+    return bordered_det(jacobian(shape, z), tau);
+  }
+  static double bordered_det(const Eigen::MatrixXd& J, const Eigen::VectorXd& tau) {
     Eigen::MatrixXd A(J.rows() + 1, J.cols());
     A.topRows(J.rows()) = J;
     A.row(J.rows()) = tau.transpose();
@@ -210,7 +213,9 @@ struct Tracer {
              std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>* branches) {
     Eigen::VectorXd z = z_start, tau = tau0, zn;
     double h = std::min(options.max_step, 0.01);
-    double det_prev = bordered_det(shape, z, tau);
+    // the sign of the bordered determinant is watched only where branch points are looked for (an O(N^3) LU and a
+    // Jacobian per point were spent on every family before)
+    double det_prev = branches ? bordered_det(shape, z, tau) : 1.0;
     ModePoint prev = f.points.back();
     for (int count = 1;; ++count) {
       if (!keep_going()) {
@@ -225,9 +230,11 @@ struct Tracer {
       }
       bool ok = false;
       Eigen::VectorXd tn;
+      Eigen::MatrixXd Jn;
       while (h >= options.min_step) {
         if (correct(shape, z + h * tau, tau, zn)) {
-          tn = cont::curve_tangent(jacobian(shape, zn), tau);
+          Jn = jacobian(shape, zn);
+          tn = cont::curve_tangent(Jn, tau);
           // the first step off a branch point may turn more: the bordered Jacobian is singular at the start
           const double turn_limit = count == 1 ? 1.2 : options.max_turn;
           if (tn.allFinite() && std::acos(std::clamp(tn.dot(tau), -1.0, 1.0)) <= turn_limit) {
@@ -266,7 +273,7 @@ struct Tracer {
         add_event(f, ModeEventKind::EnergyMax, pe, "energy_max reached");
         return;
       }
-      const double det = bordered_det(shape, zn, tn);
+      const double det = branches ? bordered_det(Jn, tn) : 1.0;
       if (branches && std::isfinite(det) && std::isfinite(det_prev) && (det > 0) != (det_prev > 0) && det != 0 &&
           det_prev != 0) {
         Eigen::VectorXd zb;

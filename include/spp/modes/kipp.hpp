@@ -45,6 +45,9 @@ class KippModel {
   const Eigen::MatrixXd& Phi() const { return Phi_; }      ///< n x m, M-normalised coupled mode shapes
   const Eigen::VectorXd& b() const { return b_; }          ///< (m) Phi^T w: modal gap weights, none 0
   const Eigen::MatrixXd& tangent_basis() const { return Q_; }  ///< m x (m-1) orthonormal basis of b^perp
+  /// Q^T X for Q = tangent_basis() (m x c), by the Householder reflection that defines Q: O(m c), where the product
+  /// with the dense Q was O(m^2 c), the largest cost of kipp_residual for a large m.
+  Eigen::MatrixXd tangential(const Eigen::MatrixXd& X) const;
   /// (n) every free frequency, coupled or not, ascending (the linear frequencies of the frequency-energy plot)
   const Eigen::VectorXd& omega_all() const { return omega_all_; }
   /// The linear mode number (1 = lowest frequency, of all n) of coupled mode i (0-based in omega())
@@ -55,6 +58,7 @@ class KippModel {
   System system_;
   Eigen::VectorXd omega_, b_, omega_all_;
   Eigen::MatrixXd Phi_, Q_;
+  Eigen::HouseholderQR<Eigen::MatrixXd> b_reflection_;  // of b: its Q (one reflector) is [b / |b|-ish, Q_]
   std::vector<int> linear_mode_;
 };
 
