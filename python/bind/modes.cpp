@@ -6,6 +6,48 @@ namespace spp::python {
 
 namespace md = spp::modes;
 
+namespace {
+
+// One k of spp.modes: a Python integer (numpy's too, through operator.index), not a bool (True was taken as 1), in
+// [1, kMaxImpactsPerPeriod] (compared as Python integers: 2**63 was pybind11's RuntimeError).
+int one_k(const py::handle& v, const py::object& given) {
+  const std::string expected = "k: expected an int from 1 to " + std::to_string(md::kMaxImpactsPerPeriod) +
+                               " or a sequence of them (e.g. [1, 2, 3] or range(1, 4)), got ";
+  const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
+  py::object whole;
+  if (!is_bool) {
+    try {
+      whole = py::module_::import("operator").attr("index")(v);
+    } catch (const py::error_already_set& e) {
+      if (!e.matches(PyExc_TypeError)) throw;
+    }
+  }
+  if (!whole) throw py::type_error("modes: " + expected + typed_repr(given));
+  if (whole < py::int_(1) || whole > py::int_(md::kMaxImpactsPerPeriod))
+    detail::invalid("modes: " + expected + typed_repr(given));
+  return whole.cast<int>();
+}
+
+// k as documented: one int or a sequence of ints; a string ('1..3', the CLI's form) is no sequence of ints here.
+std::vector<int> k_values(const py::object& k) {
+  if (py::isinstance<py::str>(k) || py::isinstance<py::bytes>(k) || !py::isinstance<py::sequence>(k))
+    return {one_k(k, k)};
+  std::vector<int> out;
+  for (const py::handle v : k) out.push_back(one_k(v, k));
+  return out;
+}
+
+// A real number argument: int or float (numpy's too), not a bool, a string or None.
+double number(const char* name, const py::object& v) {
+  const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
+  const bool real = py::isinstance(v, py::module_::import("numbers").attr("Real"));
+  if (is_bool || !real)
+    throw py::type_error(std::string("modes: ") + name + ": expected a number, got " + typed_repr(v));
+  return v.cast<double>();
+}
+
+}  // namespace
+
 void bind_modes(py::module_& m) {
   bind_outcome(m, "ModeEventKind",
                {md::ModeEventKind::GrazingStart, md::ModeEventKind::BranchStart, md::ModeEventKind::BranchPoint,
@@ -60,20 +102,10 @@ void bind_modes(py::module_& m) {
       .def("brief_report", &md::ModesResult::brief_report);
   m.def(
       "modes",
-      [](const spp::System& s, const py::object& k, double energy_max, double max_step, bool branch_points) {
+      [](const spp::System& s, const py::object& k, const py::object& energy_max, double max_step, bool branch_points) {
         md::ModesOptions o;
-        // a whole number or a list of them (a ragged or 2-D list named with the shape expected, not pybind11's cast
-        // failure); each k's own range is checked by validate()
-        if (py::isinstance<py::int_>(k) || PyIndex_Check(k.ptr())) {
-          o.k_values = {field_value<int>(k, "modes: k", 1)};
-        } else {
-          for (const double x : vector_of_numbers(k, "modes: k")) {
-            if (!(std::floor(x) == x && std::abs(x) <= std::numeric_limits<int>::max()))
-              detail::invalid("modes: k must be a whole number or a list of them, got " + typed_repr(k));
-            o.k_values.push_back(static_cast<int>(x));
-          }
-        }
-        o.energy_max = energy_max;
+        o.k_values = k_values(k);
+        o.energy_max = number("energy_max", energy_max);
         o.max_step = max_step;
         o.branch_points = branch_points;
         o.validate();
@@ -93,8 +125,10 @@ void bind_modes(py::module_& m) {
         return r;
       },
       "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true,
-      "k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: an int "
-      "or a list. Raises ValueError.");
+      "k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: the "
+      "impacts per period, an int from 1 to 40 or a sequence of them (list, tuple, range(1, 4)); energy_max: a "
+      "number > 0. Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and "
+      "ValueError for a value out of range.");
 }
 
 }  // namespace spp::python

@@ -65,3 +65,25 @@ def test_invalid_arguments_raise_value_error():
         spp.modes(s, k=1, energy_max=-1.0)
     with pytest.raises(ValueError, match="g0"):
         spp.modes(spp.two_dof(g0=0.0), k=1, energy_max=1.0)
+
+
+@pytest.mark.parametrize("k, error", [(1.5, TypeError), ("1..3", TypeError), (None, TypeError), (True, TypeError),
+                                      ([1, True], TypeError), (2**63, ValueError), (0, ValueError), ([1, 41], ValueError)])
+def test_bad_k_names_k_and_what_is_expected(k, error):
+    # issue 15, D4: 1.5, '1..3', None and 2**63 were pybind11's RuntimeError and True was taken as k = 1
+    with pytest.raises(error, match=r"k: expected an int from 1 to 40 or a sequence of them"):
+        spp.modes(spp.two_dof(), k=k, energy_max=1.0)
+
+
+@pytest.mark.parametrize("energy_max", [True, None, "5", [5.0]])
+def test_bad_energy_max_type_names_energy_max(energy_max):
+    with pytest.raises(TypeError, match=r"energy_max: expected a number"):
+        spp.modes(spp.two_dof(), k=1, energy_max=energy_max)
+
+
+def test_k_as_int_list_range_or_numpy_integers():
+    s = spp.two_dof()
+    ref = [(f.k, f.label) for f in spp.modes(s, k=[1, 2], energy_max=1.0).families]
+    for k in ([1, 2], (1, 2), range(1, 3), np.array([1, 2]), [np.int64(1), 2]):
+        assert [(f.k, f.label) for f in spp.modes(s, k=k, energy_max=1.0).families] == ref
+    assert spp.modes(s, k=np.int32(1), energy_max=np.float64(1.0)).families[0].k == 1

@@ -15,7 +15,6 @@ struct CorrectorOptions {
   /// Also converged when a step is no shorter than the one before and below this: Newton has reached the rounding
   /// floor of F over an ill-conditioned J, where steps jitter and never fall below step_tol. 0: off.
   double stagnation_tol = 0.0;
-
   /// LU with full pivoting (the default, k = 2 for the SPP branches: cost nil) or partial pivoting, blocked, several
   /// times faster for large k (the k-IPP families of a 200-dof chain: k ~ 200, where the full-pivoting LU was ~40% of
   /// the run). The bordered matrix [J; tau^T] is regular at a regular point of the curve, where either is accurate.
