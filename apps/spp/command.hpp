@@ -3,7 +3,8 @@
 // application and returning how to run it. Exit codes (README "Exit codes", spp --help's footer; main.cpp maps usage
 // errors and exceptions): 0 success (also an incomplete status), 1 invalid input, usage error or failed run (message
 // on stderr), 3 verify: a simulation disagrees with the solver's admissibility, 4 sweep: at least one item failed,
-// 5 simulate: stopped at --max-events (the CSV holds the trajectory so far), 130 solve: stopped by Ctrl-C.
+// 5 simulate: stopped at --max-events (the CSV holds the trajectory so far), 130 solve, modes: stopped by
+// Ctrl-C.
 
 #include <CLI/CLI.hpp>
 #include <stdexcept>

@@ -2,8 +2,8 @@
 // simulate.cpp, verify.cpp, figures.cpp, generate.cpp, reduce.cpp) registers its options and runs: parse -> options ->
 // validate -> run -> write (atomically, every output prepared before any is written).
 // Exit codes: 0 success, 1 invalid input, usage error, failed run or internal error (message on stderr; an internal
-// error, a defect of spp, says so), 3 verify, 4 sweep, 5 simulate, 130 solve (command.hpp lists them; the footer below
-// and README say the same, tests/cli checks both and drives each).
+// error, a defect of spp, says so), 3 verify, 4 sweep, 5 simulate, 130 solve, modes (command.hpp lists them; the
+// footer below and README say the same, tests/cli checks both and drives each).
 
 #include <algorithm>
 #include <chrono>
@@ -101,9 +101,9 @@ int main(int argc, char** argv) {
       "error, failed run, out of memory or internal error (one message on stderr naming what and where; no output "
       "file written); 3 spp verify: a simulation disagrees with the solver's admissibility; 4 spp sweep: at least one "
       "item failed (each named on stderr; the others' results and the table are written); 5 spp simulate stopped "
-      "at --max-events before --duration (the CSV holds the trajectory up to the last event); 130 spp solve stopped "
-      "by Ctrl-C (what was found is written, status incomplete); any other subcommand ends at once on Ctrl-C, by the "
-      "signal (a shell shows 130 too).");
+      "at --max-events before --duration (the CSV holds the trajectory up to the last event); 130 spp solve or "
+      "modes stopped by Ctrl-C (what was found is written, status incomplete); any other subcommand ends at once on "
+      "Ctrl-C, by the signal (a shell shows 130 too).");
   std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app),    spp::cli::add_continue(app),
                                                 spp::cli::add_modes(app),    spp::cli::add_trajectory(app),
                                                 spp::cli::add_simulate(app), spp::cli::add_verify(app)};

@@ -1,19 +1,30 @@
 // spp modes: the families of symmetric k-IPPs (nonsmooth modes, e = 1) continued in energy from their grazing starts
-// (docs/modes.md). Exit 0 also when the status is incomplete (a family stalled: read the status), 1 on invalid input.
+// (docs/modes.md). Exit 0 also when the status is incomplete (a family stalled: read the status), 1 on invalid input,
+// 130 when Ctrl-C stopped the tracing (the families traced before it are printed and written, status incomplete).
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "command.hpp"
+#include "spp/detail/invalid.hpp"
 #include "spp/io.hpp"
 #include "spp/io/modes_file.hpp"
 #include "spp/modes/nonsmooth_modes.hpp"
-#include "spp/detail/invalid.hpp"
 
 namespace spp::cli {
 
 namespace {
+
+// Ctrl-C during the tracing: the first one stops it before the next family point (the families traced so far are
+// reported and written, exit code 130, as spp solve); the handler then restores the default, so a second one ends
+// the program at once. (Before, Ctrl-C killed spp modes by the signal and the families traced were lost.)
+volatile std::sig_atomic_t g_modes_interrupted = 0;
+extern "C" void on_modes_interrupt(int) {
+  g_modes_interrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
 
 struct ModesArgs {
   std::string system, k, json;
@@ -65,10 +76,20 @@ int run(ModesArgs& a) {
   a.options.branch_points = !a.no_branches;
   a.options.validate();
   const System sys = load_system(a.system);
+  g_modes_interrupted = 0;
+  a.options.progress = [] { return g_modes_interrupted == 0; };
+  std::signal(SIGINT, on_modes_interrupt);
   const modes::ModesResult r = naming_system_file(a.system, [&] { return modes::nonsmooth_modes(sys, a.options); });
+  std::signal(SIGINT, SIG_DFL);
   const std::string json_text = a.json.empty() ? "" : modes_json(sys, r);
   std::cout << table(r) << r.brief_report() << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
+  if (r.interrupted) {
+    std::cerr << "interrupted: the families above (and in the JSON) are those traced before Ctrl-C (status "
+                 "incomplete; a family cut short ends with a stalled event \"interrupted\")\n";
+    return 130;
+  }
+  if (g_modes_interrupted) std::cerr << "note: Ctrl-C came after the tracing had finished: the result is complete\n";
   return 0;
 }
 

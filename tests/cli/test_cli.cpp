@@ -574,6 +574,25 @@ TEST(Cli, CtrlCStopsTheSolveAndWritesWhatWasFound) {
   EXPECT_GT(r.at("stats").at("unsearched_cells").get<long>(), 0);
 }
 
+TEST(Cli, CtrlCStopsModesAndWritesTheFamiliesTraced) {
+  // issue 15, D6: Ctrl-C killed spp modes by the signal and the families traced were lost. One SIGINT two seconds
+  // into a run of well over a minute (a 200-dof chain, k = 1..3): exit 130, "interrupted" on stderr, the table and
+  // the JSON hold the families traced so far, status incomplete.
+  const fs::path sys = dir() / "chain200.json", out = dir() / "modes_interrupted.json";
+  ASSERT_EQ(run("generate chain --n 200 --out " + sys.string()).code, 0);
+  fs::remove(out);
+  const CliRun c = run("modes " + sys.string() + " --k 1..3 --energy-max 50 --json " + out.string(),
+                       "timeout --foreground --preserve-status -s INT 2 ");
+  ASSERT_EQ(c.code, 130) << c.out;  // (-1: killed by the signal)
+  EXPECT_NE(c.out.find("interrupted:"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("spp modes: incomplete"), std::string::npos) << c.out;
+  std::ifstream in(out);
+  ASSERT_TRUE(in.good()) << c.out;
+  const nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_EQ(r.at("status"), "incomplete");
+  EXPECT_FALSE(r.at("families").empty());  // measured: 10 families of k = 1 traced in the first 2.9 s
+}
+
 TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
   const fs::path out = dir() / "dry.json";
   fs::remove(out);
@@ -1045,6 +1064,13 @@ TEST(Cli, ModesRejectsBadInput) {
   EXPECT_FALSE(fs::exists(js));
   const CliRun missing = run("modes " + kChain + " --energy-max 1");
   EXPECT_EQ(missing.code, 1) << missing.out;
+  // a bad output path is refused before the tracing (issue 15, D5: no family table, no brief report)
+  for (const std::string bad : {"/proc/x", "/nonexistent-dir/m.json", "/tmp"}) {
+    const CliRun p = run("modes " + kChain + " --k 1..3 --energy-max 5 --json " + bad);
+    EXPECT_EQ(p.code, 1) << bad << ": " << p.out;
+    EXPECT_NE(p.out.find("--json"), std::string::npos) << bad << ": " << p.out;
+    EXPECT_EQ(p.out.find("spp modes:"), std::string::npos) << bad << ": " << p.out;
+  }
 }
 
 // ---- spp sweep, and spp-mpi (solve and sweep over MPI ranks) ----
@@ -1447,9 +1473,10 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
   // The audit (issue 13), exit paths of every subcommand: main maps a usage error (CLI11's ParseError) and every
   // exception (invalid input, out of memory, a failed run, an internal error) to 1, --help and --version to 0; then
   // solve returns 0 (also when incomplete) or 130 (Ctrl-C, what was found written); verify 0 or 3 (a simulation
-  // disagrees); sweep 0 or 4 (an item failed); simulate 0 or 5 (stopped at --max-events); continue, modes,
-  // trajectory, generate and reduce 0; plot and animate are python3 -m spp, which returns 0 or 1 (its errors,
-  // python/spp/__main__.py). Any other subcommand stopped by Ctrl-C ends by the signal (a shell reports 130).
+  // disagrees); sweep 0 or 4 (an item failed); simulate 0 or 5 (stopped at --max-events); modes 0 or 130 (Ctrl-C,
+  // the families traced written); continue, trajectory, generate and reduce 0; plot and animate are python3 -m spp,
+  // which returns 0 or 1 (its errors, python/spp/__main__.py). Any other subcommand stopped by Ctrl-C ends by the
+  // signal (a shell reports 130).
   // The documentation: spp --help's footer and README's "Exit codes" name the same codes, each once, and no other.
   const CliRun help = run("--help");
   ASSERT_EQ(help.code, 0) << help.out;
@@ -1466,6 +1493,7 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
     std::set<int> codes;
     for (const auto& [c, what] : *doc) codes.insert(c);
     EXPECT_EQ(codes, (std::set<int>{0, 1, 3, 4, 5, 130})) << (doc == &in_help ? footer : paragraph);
+    if (doc->count(130)) EXPECT_NE(doc->at(130).find("modes"), std::string::npos) << doc->at(130);  // solve or modes
     for (const auto& [c, owner] : expected_owner) {
       if (doc->count(c)) {
         EXPECT_NE(doc->at(c).find(owner), std::string::npos) << c << ": " << doc->at(c);
@@ -1487,6 +1515,8 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
   const fs::path bar = dir() / "exit_bar.json", chain20 = dir() / "exit_chain20.json";
   ASSERT_EQ(run("generate bar --n 60 --out " + bar.string()).code, 0);
   ASSERT_EQ(run("generate chain --n 20 --out " + chain20.string()).code, 0);
+  const fs::path chain200 = dir() / "exit_chain200.json";
+  ASSERT_EQ(run("generate chain --n 200 --out " + chain200.string()).code, 0);
   const std::string out = " --out " + (dir() / "exit_out").string();
   struct Case {
     std::string sub;
@@ -1502,6 +1532,8 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
       {"continue", 1, kChain + " --t1-max 3 --t2-max 1", ""},  // no parameter
       {"modes", 0, kChain + " --k 1 --energy-max 1", ""},
       {"modes", 1, kChain + " --k 0 --energy-max 1", ""},
+      {"modes", 130, chain200.string() + " --k 1..3 --energy-max 50",
+       "timeout --foreground --preserve-status -s INT 2 "},
       {"trajectory", 0, "--result " + res.string() + " --solution 1 --csv " + csv.string(), ""},
       {"trajectory", 1, "--result " + res.string() + " --solution 9 --csv " + csv.string(), ""},
       {"simulate", 0, kChain + " --x0 0,0,0,0,0 --v0 0,0,0,0,0.1 --duration 1 --csv " + csv.string(), ""},
@@ -1542,7 +1574,8 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
     EXPECT_TRUE(covered.count({sub, 0}) && covered.count({sub, 1})) << sub;
   }
   for (const auto& [sub, code] :
-       std::vector<std::pair<std::string, int>>{{"verify", 3}, {"sweep", 4}, {"simulate", 5}, {"solve", 130}})
+       std::vector<std::pair<std::string, int>>{
+           {"verify", 3}, {"sweep", 4}, {"simulate", 5}, {"solve", 130}, {"modes", 130}})
     EXPECT_TRUE(covered.count({sub, code})) << sub << " " << code;
   EXPECT_EQ(run("").code, 1);  // no subcommand: a usage error
   EXPECT_EQ(run("--version").code, 0);
