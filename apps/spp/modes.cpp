@@ -104,6 +104,9 @@ Subcommand add_modes(CLI::App& app) {
   c->add_option("--json", a->json, "write families, points and events as JSON (docs/modes.md)");
   c->add_option("--max-step", a->options.max_step, "largest step in scaled arclength (default 0.05)");
   c->add_flag("--no-branches", a->no_branches, "do not follow the genuine k-IPPs branching off the repetitions");
+  c->add_option("--multiples", a->options.period_multiples,
+                "with k = 1: 1-IPP families also from each mode's grazing orbit seen with period j times its own, "
+                "j = 2..J (default 1: none; docs/modes.md §3)");
   return {c, [a] { return run(*a); }};
 }
 

@@ -305,6 +305,17 @@ Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, in
   return y;
 }
 
+Eigen::VectorXd grazing_start_multiple(const KippModel& model, const KippShape& shape, int coupled, int multiple) {
+  if (shape.k != 1) detail::invalid_option("grazing_start_multiple", "k", shape.k, "1 (one impact per period)");
+  if (multiple < 1) detail::invalid_option("grazing_start_multiple", "multiple", multiple, "at least 1");
+  Eigen::VectorXd y = grazing_start(model, shape, coupled);
+  const double pi = std::acos(-1.0);
+  y(shape.n) = multiple * pi / model.omega()(coupled);
+  // B on the obstacle after tau: b_j q_j cos(multiple pi) + g0 = 0
+  if (multiple % 2 == 0) y(coupled) = -y(coupled);
+  return y;
+}
+
 double one_dof_frequency(double g0, double amplitude) {
   if (!(g0 > 0) || !(amplitude >= g0)) detail::invalid_option("one_dof_frequency", "amplitude", amplitude, ">= g0 > 0");
   const double pi = std::acos(-1.0);

@@ -57,6 +57,9 @@ void ModesOptions::validate() const {
   }
   if (!(max_turn > 0) || !(max_turn < 1.5)) detail::invalid_option(where, "max_turn", max_turn, "in (0, 1.5)");
   if (max_points < 2) detail::invalid_option(where, "max_points", max_points, "at least 2");
+  if (period_multiples < 1 || period_multiples > kMaxPeriodMultiples)
+    detail::invalid_option(where, "period_multiples", period_multiples,
+                           "in [1, " + std::to_string(kMaxPeriodMultiples) + "]");
   if (!(locate_tol > 0) || !(locate_tol < max_step))
     detail::invalid_option(where, "locate_tol", locate_tol, "in (0, max_step)");
 }
@@ -382,6 +385,40 @@ struct Tracer {
     note(result.families.size() - 1);
   }
 
+  // The 1-IPP families through the grazing orbit of coupled mode `coupled` seen with period `multiple` times its own
+  // (multiple >= 2): both sides, each a family where its first step is admissible.
+  void run_multiple_start(int coupled, int multiple) {
+    const KippShape shape{1, KippSymmetry::FlightImpact, model.coupled_modes()};
+    const int mode = model.linear_mode(coupled);
+    D = scales(shape);
+    const Eigen::VectorXd z0 = (grazing_start_multiple(model, shape, coupled, multiple).array() / D.array()).matrix();
+    const ModePoint p0 = tangency(point(shape, z0));
+    if (p0.energy >= options.energy_max) return;
+    const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+    for (double sign : {1.0, -1.0}) {
+      if (!keep_going()) return;
+      const Eigen::VectorXd tau = sign * dir;
+      Eigen::VectorXd z1;
+      const double h = std::min(options.max_step, 1e-3);
+      if (!correct(shape, z0 + h * tau, tau, z1) || point(shape, z1).margin < 0) continue;  // that side: not admissible
+      ModeFamily f;
+      f.k = 1;
+      f.symmetry = shape.symmetry;
+      f.mode = mode;
+      f.points.push_back(p0);
+      std::ostringstream detail;
+      detail << "linear mode " << mode << " touching the obstacle, once every " << multiple << " periods an impact";
+      add_event(f, ModeEventKind::GrazingStart, p0, detail.str());
+      trace(f, shape, z0, tau, nullptr);
+      f.multiplicity = 1;
+      std::ostringstream label;
+      label << "k1 flight-impact mode " << mode << " x" << multiple << " period" << (sign > 0 ? "+" : "-");
+      f.label = label.str();
+      result.families.push_back(f);
+      note(result.families.size() - 1);
+    }
+  }
+
   // The families from the grazing start of coupled mode `coupled` (0-based index into model.omega()).
   void run_start(const KippShape& shape, int coupled) {
     const int mode = model.linear_mode(coupled);  // 1-based, of all n modes
@@ -452,6 +489,9 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
     for (KippSymmetry s : symmetries_for(k))
       for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j)
         tracer.run_start(KippShape{k, s, model.coupled_modes()}, j);
+  if (tracer.wanted.count(1))
+    for (int multiple = 2; multiple <= options.period_multiples; ++multiple)
+      for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j) tracer.run_multiple_start(j, multiple);
   for (size_t i = 0; i < tracer.pending.size() && tracer.keep_going(); ++i) tracer.follow_grazing(tracer.pending[i]);
   result.interrupted = tracer.stopped;
   result.status = result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;

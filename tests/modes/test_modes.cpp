@@ -281,6 +281,41 @@ TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsChain5) {
               c.max_return_error, c.max_return_error_near_grazing, c.max_time_error);
 }
 
+// Issue 15, D1: an independent scan of the explicit 1-IPP form (tests/crosscheck/modes_one_ipp_scan.py) found
+// admissible 1-IPP branches of the 2-dof that no grazing start reaches: T in [5.606, 7.766] (E 0.83 to 20) leaves
+// mode 2's grazing orbit seen with twice its period (2 * 3.883), T in [18.35, 19.42] five times. With
+// period_multiples they are families, every point on the explicit form and returning in the simulator.
+TEST(Modes, OneIppFamiliesLeaveTheGrazingOrbitsAtPeriodMultiples) {
+  const System s = paper_two_dof();
+  ModesOptions o;
+  o.k_values = {1};
+  o.energy_max = 20.0;
+  const auto covers = [](const ModesResult& r, double t_lo, double t_hi) {
+    for (const ModeFamily& f : r.families)
+      for (const ModePoint& p : f.points)
+        if (p.admissible && p.margin > 1e-6 && p.period > t_lo && p.period < t_hi) return true;
+    return false;
+  };
+  const ModesResult before = nonsmooth_modes(s, o);
+  EXPECT_FALSE(covers(before, 5.62, 7.75));  // the grazing starts alone (period_multiples = 1) miss both
+  EXPECT_FALSE(covers(before, 18.36, 19.41));
+  o.period_multiples = 5;
+  const ModesResult r = nonsmooth_modes(s, o);
+  EXPECT_TRUE(covers(r, 5.62, 7.75));
+  EXPECT_TRUE(covers(r, 18.36, 19.41));
+  const KippModel model(s);
+  for (const ModeFamily& f : r.families) {
+    EXPECT_EQ(f.k, 1);
+    for (const ModePoint& p : f.points) {
+      const Eigen::VectorXd xA = model.Phi() * p.y.head(2), expected = one_ipp_closed_form(s, p.y(2));
+      EXPECT_LT((xA - expected).norm(), 1e-8 * (1.0 + expected.norm())) << f.label << " T " << p.period;
+    }
+  }
+  const ReturnCheck c = check_returns(s, r, 8);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+}
+
 TEST(Modes, TwoDofHasGenuineTwoImpactFamilies) {
   // measured: the doubled 1-IPP of mode 1 has a branch point where genuine 2-IPPs (least period T) leave it
   const ModesResult r = run(paper_two_dof(), {2}, 5.0);

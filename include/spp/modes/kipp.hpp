@@ -112,6 +112,15 @@ KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen
 /// written as a solution y of shape (F(y) = 0 to rounding). Throws std::invalid_argument for an index out of range.
 Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, int coupled);
 
+/// The grazing orbit of coupled mode `coupled` seen with period `multiple` * 2 pi / omega_coupled and one impact
+/// (k = 1, FlightImpact): half period tau = multiple * pi / omega, A a turning point, B the touch at tau, the other
+/// multiple - 1 touches tangencies inside the flight. The explicit 1-IPP family (docs/modes.md §2) passes through it
+/// continuously (its q_A is c (W sin W tau)^-1 b, c -> 0 as sin(omega tau) -> 0), and each tau-interval between two
+/// zeros of sum_i b_i^2 cot(omega_i tau) / omega_i holds exactly one such point: every symmetric 1-IPP lies on the
+/// family through one of them (docs/modes.md §3). multiple = 1 is grazing_start. Throws std::invalid_argument for a
+/// shape other than k = 1 or multiple < 1.
+Eigen::VectorXd grazing_start_multiple(const KippModel& model, const KippShape& shape, int coupled, int multiple);
+
 /// The 1-dof closed form (issue 15): x'' + x = 0 against a stop at g0, e = 1, amplitude A >= g0:
 /// frequency 2 pi / T = pi / (pi - arccos(g0 / A)); energy A^2 / 2 (unit mass and stiffness).
 double one_dof_frequency(double g0, double amplitude);

@@ -31,6 +31,8 @@ namespace spp::modes {
 
 /// Largest k accepted (the half orbit then has up to 21 flights): a bound on the work, not a measured accuracy limit.
 inline constexpr int kMaxImpactsPerPeriod = 40;
+/// Largest ModesOptions::period_multiples: a bound on the work (one start per coupled mode and multiple).
+inline constexpr int kMaxPeriodMultiples = 100;
 
 struct ModesOptions {
   std::vector<int> k_values;  ///< impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required)
@@ -41,6 +43,12 @@ struct ModesOptions {
   int max_points = 4000;      ///< per family
   double locate_tol = 1e-12;  ///< events located to this, in scaled arclength
   bool branch_points = true;  ///< follow the genuine k-IPPs that branch off the k-fold repetitions
+  /// When k = 1 is requested, 1-IPP families also start from the grazing orbit of each mode seen with period
+  /// j * 2 pi / omega for j = 2..period_multiples (one impact every j touches, the others tangencies in flight;
+  /// kipp.hpp grazing_start_multiple): every symmetric 1-IPP of period T lies on the family through the start of some
+  /// mode and j <= T omega / (2 pi) + 1 (docs/modes.md §3). 1: only the grazing starts (j = 1). Both sides of such a
+  /// start are followed, each as a family, where admissible. In [1, kMaxPeriodMultiples].
+  int period_multiples = 1;
   /// Called before each family point, from the thread that called nonsmooth_modes() (so a Python callback may take
   /// the GIL): returning false stops the tracing; the families traced so far are kept (the one being traced ends
   /// with a Stalled event "interrupted") and the status is Incomplete with `interrupted` set. Empty: never called.
