@@ -68,7 +68,8 @@ def test_invalid_arguments_raise_value_error():
 
 
 @pytest.mark.parametrize("k, error", [(1.5, TypeError), ("1..3", TypeError), (None, TypeError), (True, TypeError),
-                                      ([1, True], TypeError), (2**63, ValueError), (0, ValueError), ([1, 41], ValueError)])
+                                      ([1, True], TypeError), (2**63, ValueError), (0, ValueError),
+                                      ([1, 41], ValueError)])
 def test_bad_k_names_k_and_what_is_expected(k, error):
     # issue 15, D4: 1.5, '1..3', None and 2**63 were pybind11's RuntimeError and True was taken as k = 1
     with pytest.raises(error, match=r"k: expected an int from 1 to 40 or a sequence of them"):
