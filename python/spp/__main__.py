@@ -12,6 +12,8 @@ import sys
 import tempfile
 
 EXIT_INTERRUPTED = 130  # Ctrl-C, as spp solve and a shell report it
+EXIT_USAGE = 1  # invalid input and usage errors, as every spp subcommand
+ARGPARSE_USAGE_ERROR = 2  # what argparse exits with on a usage error
 
 
 MAX_ROOT_MAP_POINTS = 4000  # per axis: 1.6e7 grid values per condition, minutes of evaluations; the default is 400
@@ -42,6 +44,7 @@ def _plot(a):
     os.makedirs(a.out, exist_ok=True)
     staging = tempfile.mkdtemp(prefix=".spp-plot-", dir=a.out)
     written = []
+    moved = []
 
     def save(fig, name):
         for fmt in formats:
@@ -65,7 +68,13 @@ def _plot(a):
             raise ValueError(f"{a.result}: {e}") from None
         for p in written:
             os.replace(p, os.path.join(a.out, os.path.basename(p)))
+            moved.append(os.path.join(a.out, os.path.basename(p)))
     except BaseException:
+        for p in moved:  # a failure while moving in: the figures already moved go too (no partial set)
+            try:
+                os.remove(p)
+            except OSError:
+                pass
         shutil.rmtree(staging, ignore_errors=True)
         if created:
             try:
@@ -90,6 +99,10 @@ def _chosen(text, spps, result):
     bad = [k for k in ks if not 0 <= k < len(spps)]
     if bad or not ks:
         raise ValueError(f"--solutions {text}: {result} has {len(spps)} solutions (0..{len(spps) - 1})")
+    repeated = sorted({k for k in ks if ks.count(k) > 1})
+    if repeated:  # each index names one file: a repeat drew it twice and failed moving it in (attack on issue 13)
+        raise ValueError(f"--solutions {text}: expected each index once, got {', '.join(map(str, repeated))} "
+                         "more than once")
     return ks
 
 
@@ -126,7 +139,7 @@ def main(argv=None):
     p.add_argument("--formats", default="png,svg", help="comma-separated: png, svg, pdf (default png,svg)")
     p.add_argument("--root-map-points", type=int, default=400, help="grid points per axis; 0: no root map")
     p.add_argument("--solutions", default="admissible",
-                   help="SPPs drawn one figure each: admissible (default), all, or indices like 0,3,5")
+                   help="SPPs drawn one figure each: admissible (default), all, or indices like 0,3,5 (each once)")
     q = sub.add_parser("animate", help="animation of one SPP (GIF, or MP4 with ffmpeg)")
     q.add_argument("result", help="result JSON of spp solve --json")
     q.add_argument("--out", required=True, help="output file, .gif or .mp4")
@@ -136,7 +149,10 @@ def main(argv=None):
     q.add_argument("--fps", type=int, default=25)
     q.add_argument("--dpi", type=int, default=80, help="the frame is 6.4 x 4.8 inches (default 80: 512 x 384)")
     q.add_argument("--layout", default="auto", help="auto, chain, plane or dofs")
-    a = ap.parse_args(argv)
+    try:
+        a = ap.parse_args(argv)
+    except SystemExit as e:  # argparse exits 2 on a usage error; spp's usage errors exit 1 (README "Exit codes")
+        return EXIT_USAGE if e.code == ARGPARSE_USAGE_ERROR else e.code
     try:
         import matplotlib
         matplotlib.use("Agg")  # headless: files only (the library modules leave the backend alone)

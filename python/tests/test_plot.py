@@ -193,6 +193,31 @@ def test_plot_command_failing_half_way_leaves_no_partial_set(tmp_path, monkeypat
     assert not fresh.exists()
 
 
+# Found by an independent attack on issue 13: --solutions 0,0 drew spp_0 twice, failed moving the second in ("No
+# such file or directory") and left frequency_energy.png and spp_0.png behind. A repeated index is refused first.
+def test_plot_command_refuses_a_repeated_solution_index_and_leaves_nothing(tmp_path, capsys):
+    from spp.__main__ import main
+    s, r = result()
+    res = tmp_path / "r.json"
+    res.write_text(r.to_json(s))
+    out = tmp_path / "figs"
+    assert main(["plot", str(res), "--out", str(out), "--solutions", "0,3,0", "--root-map-points", "0",
+                 "--formats", "png"]) == 1
+    assert "expected each index once, got 0 more than once" in capsys.readouterr().err
+    assert not out.exists()
+
+
+# Found by the same attack: python3 -m spp --version, an unknown subcommand or option exited 2 (argparse's code) while
+# README says a usage error exits 1, as in every other spp subcommand.
+def test_usage_errors_of_python_m_spp_exit_1(capsys):
+    from spp.__main__ import main
+    assert main(["--version"]) == 1
+    assert main(["foo"]) == 1
+    assert main(["plot", "--bogus"]) == 1
+    assert main(["--help"]) == 0
+    assert "usage:" in capsys.readouterr().out
+
+
 # Found by an independent attack on issue 13: the root map of an interrupted result did not show the part of the window
 # that was never searched (an empty region looked like one without SPPs).
 def test_root_map_shades_the_unsearched_region_of_an_interrupted_result(tmp_path):
