@@ -26,6 +26,14 @@ namespace spp::python {
 namespace py = pybind11;
 using namespace pybind11::literals;
 
+// Samples handed to Python at once (t, gap, force and x, v of n each: 2n + 3 values a sample) are bounded by this
+// many values, 800 MB of doubles: a request past it is named before any work instead of a MemoryError or a swap
+// storm (trajectory's samples, simulate's duration x samples_per_unit; found by independent attacks)
+constexpr double kMaxSampleValues = 1e8;
+inline long long max_samples(long n) {
+  return static_cast<long long>(kMaxSampleValues / (2.0 * static_cast<double>(n) + 3.0));
+}
+
 // Result statuses and kinds as Python enums (spp._outcome.Outcome: str subclasses) whose members are the C++
 // to_string names: one mechanism for every result enum, its members taken from C++ so that they cannot drift.
 template <class E>

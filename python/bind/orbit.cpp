@@ -108,14 +108,12 @@ void bind_orbit(py::module_& m) {
           if (!e.matches(PyExc_TypeError)) throw;
           throw py::type_error("trajectory: samples must be an int, got " + typed_repr(samples_arg));
         }
-        // the samples' arrays (t, gap, force and x, v of n each) are allocated at once: bounded like spp trajectory's
-        // CSV, named instead of a MemoryError or a swap storm (found by an independent attack)
-        constexpr double kMaxValues = 1e8;
-        const auto max_samples = static_cast<long long>(kMaxValues / (2.0 * static_cast<double>(s.n()) + 3.0));
-        if (whole < py::int_(2) || whole > py::int_(max_samples)) {
+        // the samples' arrays are allocated at once: bounded like spp trajectory's CSV (kMaxSampleValues)
+        const long long most = max_samples(s.n());
+        if (whole < py::int_(2) || whole > py::int_(most)) {
           std::string shown = py::repr(whole).cast<std::string>();
           if (shown.size() > 60) shown = shown.substr(0, 60) + "...";
-          detail::invalid("trajectory: samples must be from 2 to " + std::to_string(max_samples) +
+          detail::invalid("trajectory: samples must be from 2 to " + std::to_string(most) +
                           " (samples x (2n + 3) at most 1e8 values, 800 MB, for n = " + std::to_string(s.n()) +
                           "), got " + shown + ": out of range");
         }

@@ -112,6 +112,18 @@ void bind_simulation(py::module_& m) {
         o.validate();
         if (!(samples_per_unit > 0.0))
           detail::invalid("simulate: samples_per_unit must be > 0, got " + std::to_string(samples_per_unit));
+        // bounded like trajectory's samples, before the sample times are allocated (1e6 time units at the default
+        // 100 per unit were 1e8 samples: a bad_alloc after 83 s, or the machine's memory; found by an attack)
+        const long long most = max_samples(s.n());
+        const double requested = std::floor(o.duration * samples_per_unit) + 1.0;
+        if (o.sample_times.empty() && !(requested <= static_cast<double>(most))) {
+          std::ostringstream os;
+          os << "simulate: expected duration x samples_per_unit at most " << most << " samples (samples x (2n + 3) at "
+             << "most 1e8 values, 800 MB, for n = " << s.n() << "), got duration " << o.duration
+             << " x samples_per_unit " << samples_per_unit << " = " << requested
+             << " samples: a shorter duration or fewer samples_per_unit";
+          detail::invalid(os.str());
+        }
         if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
         // Ctrl-C checked every 256 events or samples: raised as KeyboardInterrupt (a cut simulation is no result)
         ProgressHook hook(py::none(), "simulate");

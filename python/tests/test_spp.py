@@ -721,6 +721,20 @@ def test_ctrl_c_stops_continuation_and_keeps_the_branches_traced():
     assert secs < 15, secs
 
 
+# Found by an independent attack on issue 13: simulate(system, x0, v0, 1e6) at the default 100 samples per unit asked
+# for 1e8 samples with no bound (a bad_alloc after 83 s under ulimit, else the machine's memory). Now refused before
+# any work, bounded like trajectory's samples.
+def test_simulate_samples_are_bounded_before_any_work():
+    import numpy as np
+    s = chain5()
+    with pytest.raises(ValueError, match=r"simulate: expected duration x samples_per_unit at most 7692307 samples "
+                                         r"\(samples x \(2n \+ 3\) at most 1e8 values.*got duration 1e\+06 x "
+                                         r"samples_per_unit 100 = 1e\+08"):
+        spp.simulate(s, np.zeros(5), np.ones(5), 1e6)
+    r = spp.simulate(s, np.zeros(5), np.ones(5), 1e3, samples_per_unit=1)  # within the bound: runs
+    assert r.status == "success" and len(r.t) >= 1001 and r.t[-1] == 1e3
+
+
 def test_ctrl_c_stops_verify_and_simulate():
     secs, out = _interrupted_run(
         "r = spp.solve(spp.System.from_json(os.path.join(SRC, 'examples', 'chain5.json')), t1_max=12, t2_max=12)\n"
