@@ -4,7 +4,7 @@
 // errors and exceptions): 0 success (also an incomplete status), 1 invalid input, usage error or failed run (message
 // on stderr), 3 verify: a simulation disagrees with the solver's admissibility, 4 sweep: at least one item failed,
 // 5 simulate: stopped at --max-events (the CSV holds the trajectory so far), 130 solve, modes: stopped by
-// Ctrl-C.
+// Ctrl-C, 143 solve: stopped by SIGTERM.
 
 #include <CLI/CLI.hpp>
 #include <stdexcept>

@@ -2,8 +2,8 @@
 // simulate.cpp, verify.cpp, figures.cpp, generate.cpp, reduce.cpp) registers its options and runs: parse -> options ->
 // validate -> run -> write (atomically, every output prepared before any is written).
 // Exit codes: 0 success, 1 invalid input, usage error, failed run or internal error (message on stderr; an internal
-// error, a defect of spp, says so), 3 verify, 4 sweep, 5 simulate, 130 solve, modes (command.hpp lists them; the
-// footer below and README say the same, tests/cli checks both and drives each).
+// error, a defect of spp, says so), 3 verify, 4 sweep, 5 simulate, 130 solve, modes, 143 solve (command.hpp lists
+// them; the footer below and README say the same, tests/cli checks both and drives each).
 
 #include <algorithm>
 #include <chrono>
@@ -102,8 +102,9 @@ int main(int argc, char** argv) {
       "file written); 3 spp verify: a simulation disagrees with the solver's admissibility; 4 spp sweep: at least one "
       "item failed (each named on stderr; the others' results and the table are written); 5 spp simulate stopped "
       "at --max-events before --duration (the CSV holds the trajectory up to the last event); 130 spp solve or "
-      "modes stopped by Ctrl-C (what was found is written, status incomplete); any other subcommand ends at once on "
-      "Ctrl-C, by the signal (a shell shows 130 too).");
+      "modes stopped by Ctrl-C (what was found is written, status incomplete); 143 spp solve stopped by SIGTERM "
+      "(SLURM's time limit, scancel: the same as Ctrl-C); any other subcommand ends at once on Ctrl-C, by the signal "
+      "(a shell shows 130 too).");
   std::vector<spp::cli::Subcommand> commands = {spp::cli::add_solve(app),    spp::cli::add_continue(app),
                                                 spp::cli::add_modes(app),    spp::cli::add_trajectory(app),
                                                 spp::cli::add_simulate(app), spp::cli::add_verify(app)};
@@ -122,17 +123,24 @@ int main(int argc, char** argv) {
   };
   version_everywhere(app);
   // A first word that is neither an option nor a subcommand is named, with the subcommands (CLI11 said "A subcommand
-  // is required", as if none had been given; found by an independent attack).
-  const std::vector<CLI::App*> subcommands = app.get_subcommands([](CLI::App*) { return true; });
-  if (argc > 1 && argv[1][0] != '-' &&
-      std::none_of(subcommands.begin(), subcommands.end(), [&](CLI::App* sub) { return sub->check_name(argv[1]); })) {
-    if (spp::cli::is_root()) {
-      std::string names;
-      for (const CLI::App* sub : subcommands) names += (names.empty() ? "" : ", ") + sub->get_name();
-      std::cerr << "spp: error: unknown subcommand \"" << bounded(argv[1]) << "\": expected one of " << names
-                << "\n(run with --help for the usage)\n";
+  // is required", as if none had been given; found by an independent attack); so is the second word of a subcommand
+  // that requires one of its own (`spp generate foo` said the same; found by an attack on issue 13).
+  CLI::App* parent = &app;
+  for (int word = 1; word < argc && argv[word][0] != '-' && parent->get_require_subcommand_min() > 0; ++word) {
+    const std::vector<CLI::App*> subcommands = parent->get_subcommands([](CLI::App*) { return true; });
+    const auto match =
+        std::find_if(subcommands.begin(), subcommands.end(), [&](CLI::App* sub) { return sub->check_name(argv[word]); });
+    if (match == subcommands.end()) {
+      if (spp::cli::is_root()) {
+        std::string names;
+        for (const CLI::App* sub : subcommands) names += (names.empty() ? "" : ", ") + sub->get_name();
+        std::cerr << "spp: error: unknown " << (parent == &app ? "subcommand" : parent->get_name() + " subcommand")
+                  << " \"" << bounded(argv[word]) << "\": expected one of " << names
+                  << "\n(run with --help for the usage)\n";
+      }
+      return 1;
     }
-    return 1;
+    parent = *match;
   }
   // Usage errors exit 1 like every other error (README), not CLI11's 105-107; --help and --version exit 0.
   try {

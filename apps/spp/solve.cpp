@@ -37,13 +37,16 @@ struct SolveArgs {
   CLI::Option* t2_max_given = nullptr;
 };
 
-// Ctrl-C during a solve: the first one stops the search (the result found so far is reported and written, exit code
-// 130); the handler then restores the default, so a second one ends the program at once.
+// Ctrl-C (SIGINT) or SIGTERM (what SLURM sends at a time limit, and scancel) during a solve: the first one stops the
+// search (the result found so far is reported and written, status incomplete), exit code 128 + the signal's number
+// (130, 143, as a shell reports a process the signal ended); the handler then restores the default, so a second one
+// ends the program at once. Holds the signal's number, 0 before any.
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) {
-  g_interrupted = 1;
-  std::signal(SIGINT, SIG_DFL);
+extern "C" void on_interrupt(int sig) {
+  g_interrupted = sig;
+  std::signal(sig, SIG_DFL);
 }
+constexpr int kExitBySignal = 128;  // + the signal's number: the shell's convention
 
 // The progress callback of the CLI: a line on stderr, rewritten in place (only when stderr is a terminal and not
 // --quiet), and the Ctrl-C check.
@@ -142,7 +145,10 @@ int run(SolveArgs& a) {
   if (parametric && !at_given) return run_zero_gap(a);
   g_interrupted = 0;  // Ctrl-C from here on stops the search at its first report (and then reports what was found)
   // (on several MPI ranks there is no such report: mpirun forwards Ctrl-C, and it ends the run)
-  if (ranks() == 1) std::signal(SIGINT, on_interrupt);
+  if (ranks() == 1) {
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+  }
   const bool root = is_root();  // prints and writes (rank 0 on MPI)
   std::optional<ParametricSystem> ps;
   if (parametric) {
@@ -182,15 +188,23 @@ int run(SolveArgs& a) {
   }
   if (a.dry_run) {  // the work, before any: pole lines, cells, a rough time; nothing written
     if (!root) return 0;
-    const WindowEstimate e = estimate_window(sys, modal, a.options);
+    // an estimate is what --dry-run asks for, also of a window past --max-cells (it was refused like a solve; found by
+    // an attack on issue 13): counted up to kDryRunMaxCells, whose pole lines (1e5 per axis) are listed in moments
+    constexpr long kDryRunMaxCells = 10'000'000'000;
+    SolveOptions counted = a.options;
+    counted.max_cells = std::max(counted.max_cells, kDryRunMaxCells);
+    const WindowEstimate e = estimate_window(sys, modal, counted);
     std::cout << std::setprecision(6) << "window (" << e.t1_min << ", " << e.t1_max << "] x (" << e.t2_min << ", "
               << e.t2_max << "]: " << e.flight_pole_lines << " flight and " << e.contact_pole_lines
               << " contact pole lines, " << e.cells << " cells\n"
               << std::setprecision(2) << "one evaluation of H here: " << e.seconds_per_evaluation * 1e3
               << " ms; estimate: " << e.cells << " cells x ~" << static_cast<long>(e.evaluations_per_cell)
               << " evaluations per cell (benchmarks' mean" << (a.options.certify_steps ? ", certified" : "") << ") / "
-              << e.threads << " thread(s) ~ " << e.seconds
-              << " s (rough: actual CPU time measured 0.4x to 12x of it, larger systems higher; README)\n";
+              << e.threads << " thread(s) ~ " << e.seconds << " s wall time (" << e.seconds * e.threads
+              << " s CPU time; rough: actual CPU time measured 0.4x to 12x of this, larger systems higher; README)\n";
+    if (e.cells > a.options.max_cells)
+      std::cout << "the window exceeds --max-cells " << a.options.max_cells << ": spp solve refuses it (raise "
+                << "--max-cells to run it, or narrow the window)\n";
     return 0;
   }
   bool shown = false;
@@ -198,6 +212,7 @@ int run(SolveArgs& a) {
   a.options.progress = cli_progress(a.quiet, shown, width);
   const SolveResult res = naming_system_file(a.system, [&] { return solve_window(sys, modal, a.options); });
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   if (!root) return 0;  // rank 0 holds the merged result
   clear_progress(shown, width);
   // prepare every output before writing any
@@ -211,12 +226,13 @@ int run(SolveArgs& a) {
   for (const auto& w : res.warnings) std::cerr << "warning: " << w << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
   if (!a.csv.empty()) write_file_atomic(a.csv, csv_text);
+  const char* by = g_interrupted == SIGTERM ? "SIGTERM" : "Ctrl-C";
   if (g_interrupted && res.stats.unsearched_cells == 0)
-    std::cerr << "note: Ctrl-C came after the search had finished: the result is complete\n";
+    std::cerr << "note: " << by << " came after the search had finished: the result is complete\n";
   if (res.stats.unsearched_cells > 0) {
-    std::cerr << "interrupted: " << res.stats.unsearched_cells << " cell(s) not searched; the result above (and its "
-              << "files) holds what was found before\n";
-    return 130;
+    std::cerr << "interrupted" << (g_interrupted == SIGTERM ? " by SIGTERM" : "") << ": " << res.stats.unsearched_cells << " cell(s) not searched; the result "
+              << "above (and its files) holds what was found before\n";
+    return kExitBySignal + (g_interrupted == SIGTERM ? SIGTERM : SIGINT);
   }
   return 0;
 }
@@ -233,8 +249,16 @@ Subcommand add_solve(CLI::App& app) {
   s->add_flag("--box", a->box,
               "the fundamental box as window: t1 <= pi / omega_1, t2 <= pi / d_1 (slowest flight mode, slowest "
               "contact oscillation)");
-  s->add_option("--t1-min", o.t1_min, "smallest t1 (default: 1e-4 pi / (2 omega_max))");
-  s->add_option("--t2-min", o.t2_min, "smallest t2 (default: 1e-4 pi / (2 d_max))");
+  // what a lower end 0 gives (start_result reports from axis_band, 0.05 quarter periods; planned_window searches,
+  // and the --max-cells refusal counts, from half of it): the help said 1e-4 quarter periods (default_lower_ends,
+  // which the band overrides whenever the window reaches past it; found by an attack on issue 13)
+  s->add_option("--t1-min", o.t1_min,
+                "smallest t1 (default: from the axis: the window reported starts at 0.05 pi / (2 omega_max), as "
+                "no root nearer the axis is resolvable, and is searched (and counted by --max-cells) from half of "
+                "that)");
+  s->add_option("--t2-min", o.t2_min,
+                "smallest t2 (default: from the axis: the window reported starts at 0.05 pi / (2 d_max), searched "
+                "from half of that)");
   s->add_option("--json", a->json, "write the result as JSON");
   s->add_option("--csv", a->csv, "write the solutions as CSV");
   s->add_flag("--admissible-only", o.admissible_only, "keep only admissible SPPs");

@@ -186,6 +186,15 @@ TEST(Cli, UnknownSubcommandIsNamedWithTheSubcommands) {
   EXPECT_EQ(r.out.find("A subcommand is required"), std::string::npos) << r.out;
 }
 
+TEST(Cli, UnknownGeneratorIsNamedWithTheGenerators) {
+  // "spp generate foo" said "A subcommand is required" (found by an independent attack on issue 13)
+  const CliRun r = run("generate foo");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.out.find("unknown generate subcommand \"foo\": expected one of chain"), std::string::npos) << r.out;
+  for (const char* gen : {"chain", "bar", "random"}) EXPECT_NE(r.out.find(gen), std::string::npos) << gen << r.out;
+  EXPECT_EQ(r.out.find("A subcommand is required"), std::string::npos) << r.out;
+}
+
 TEST(Cli, VersionAfterASubcommandPrintsTheVersion) {
   // "spp solve --version" exited 1 (found by an independent attack)
   for (const char* sub : {"solve", "plot", "generate chain"}) {
@@ -593,6 +602,26 @@ TEST(Cli, CtrlCStopsModesAndWritesTheFamiliesTraced) {
   EXPECT_FALSE(r.at("families").empty());  // measured: 10 families of k = 1 traced in the first 2.9 s
 }
 
+// Found by an independent attack on issue 13: SIGTERM (SLURM at a job's time limit, scancel) ended spp solve at once
+// with exit code 143, no message and nothing written. It is now the first Ctrl-C: the search stops, what was found is
+// written with status incomplete, exit code 143 (128 + 15).
+TEST(Cli, SigtermStopsTheSolveAndWritesWhatWasFound) {
+  const fs::path sys = dir() / "chain20_term.json", out = dir() / "terminated.json";
+  ASSERT_EQ(run("generate chain --n 20 --out " + sys.string()).code, 0);
+  fs::remove(out);
+  const CliRun c = run("solve " + sys.string() + " --box --quiet --json " + out.string(),
+                       "timeout --foreground --preserve-status -s TERM 2 ");
+  ASSERT_EQ(c.code, 143) << c.out;
+  EXPECT_NE(c.out.find("interrupted by SIGTERM:"), std::string::npos) << c.out;
+  std::ifstream in(out);
+  ASSERT_TRUE(in.good()) << c.out;
+  const nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_EQ(r.at("status"), "incomplete");
+  EXPECT_GT(r.at("stats").at("unsearched_cells").get<long>(), 0);
+  const auto& regions = r.at("uncertified");
+  EXPECT_TRUE(std::any_of(regions.begin(), regions.end(), [](const auto& u) { return u.at("cause") == "interrupted"; }));
+}
+
 TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
   const fs::path out = dir() / "dry.json";
   fs::remove(out);
@@ -601,7 +630,15 @@ TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
   // the paper's chain in (0, 12]^2: 22 x 19 pole lines, 460 cells (the counts solve() reports)
   EXPECT_NE(r.out.find("22 flight and 19 contact pole lines, 460 cells"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("estimate:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" s wall time ("), std::string::npos) << r.out;  // which time it is (it did not say)
+  EXPECT_NE(r.out.find(" s CPU time;"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("exceeds --max-cells"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
+  // a window past --max-cells is estimated (it was refused like a solve; found by an attack on issue 13), and said
+  const CliRun big = run("solve " + kChain + " --t1-max 12 --t2-max 12 --max-cells 100 --dry-run");
+  EXPECT_EQ(big.code, 0) << big.out;
+  EXPECT_NE(big.out.find("460 cells"), std::string::npos) << big.out;
+  EXPECT_NE(big.out.find("the window exceeds --max-cells 100: spp solve refuses it"), std::string::npos) << big.out;
 }
 
 TEST(Cli, TrajectoryFromAResultNeedsNoSystemFile) {
@@ -1472,11 +1509,11 @@ std::map<int, std::string> documented_exit_codes(const std::string& text) {
 TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
   // The audit (issue 13), exit paths of every subcommand: main maps a usage error (CLI11's ParseError) and every
   // exception (invalid input, out of memory, a failed run, an internal error) to 1, --help and --version to 0; then
-  // solve returns 0 (also when incomplete) or 130 (Ctrl-C, what was found written); verify 0 or 3 (a simulation
-  // disagrees); sweep 0 or 4 (an item failed); simulate 0 or 5 (stopped at --max-events); modes 0 or 130 (Ctrl-C,
-  // the families traced written); continue, trajectory, generate and reduce 0; plot and animate are python3 -m spp,
-  // which returns 0 or 1 (its errors, python/spp/__main__.py). Any other subcommand stopped by Ctrl-C ends by the
-  // signal (a shell reports 130).
+  // solve returns 0 (also when incomplete), 130 or 143 (Ctrl-C, SIGTERM: what was found written); verify 0 or 3 (a
+  // simulation disagrees); sweep 0 or 4 (an item failed); simulate 0 or 5 (stopped at --max-events); modes 0 or 130
+  // (Ctrl-C, the families traced written); continue, trajectory, generate and reduce 0; plot and animate are
+  // python3 -m spp, which returns 0 or 1 (its errors, python/spp/__main__.py). Any other subcommand stopped by Ctrl-C
+  // ends by the signal (a shell reports 130).
   // The documentation: spp --help's footer and README's "Exit codes" name the same codes, each once, and no other.
   const CliRun help = run("--help");
   ASSERT_EQ(help.code, 0) << help.out;
@@ -1488,11 +1525,12 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
   const std::map<int, std::string> in_help = documented_exit_codes(footer),
                                    in_readme = documented_exit_codes(paragraph);
   const std::map<int, std::string> expected_owner = {{0, "success"}, {1, "invalid input"}, {3, "verify"},
-                                                     {4, "sweep"},   {5, "simulate"},      {130, "solve"}};
+                                                     {4, "sweep"},   {5, "simulate"},      {130, "solve"},
+                                                     {143, "solve"}};
   for (const auto* doc : {&in_help, &in_readme}) {
     std::set<int> codes;
     for (const auto& [c, what] : *doc) codes.insert(c);
-    EXPECT_EQ(codes, (std::set<int>{0, 1, 3, 4, 5, 130})) << (doc == &in_help ? footer : paragraph);
+    EXPECT_EQ(codes, (std::set<int>{0, 1, 3, 4, 5, 130, 143})) << (doc == &in_help ? footer : paragraph);
     if (doc->count(130)) EXPECT_NE(doc->at(130).find("modes"), std::string::npos) << doc->at(130);  // solve or modes
     for (const auto& [c, owner] : expected_owner) {
       if (doc->count(c)) {
@@ -1528,6 +1566,7 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
       {"solve", 0, kChain + " --t1-max 4 --t2-max 1 --no-certify-steps --quiet", ""},  // status incomplete: still 0
       {"solve", 1, kChain + " --t1-max -1 --t2-max 1", ""},
       {"solve", 130, chain20.string() + " --box --quiet", "timeout --foreground --preserve-status -s INT 2 "},
+      {"solve", 143, chain20.string() + " --box --quiet", "timeout --foreground --preserve-status -s TERM 2 "},
       {"continue", 0, par + " --t1-max 3 --t2-max 1 --quiet", ""},
       {"continue", 1, kChain + " --t1-max 3 --t2-max 1", ""},  // no parameter
       {"modes", 0, kChain + " --k 1 --energy-max 1", ""},
@@ -1575,7 +1614,7 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
   }
   for (const auto& [sub, code] :
        std::vector<std::pair<std::string, int>>{
-           {"verify", 3}, {"sweep", 4}, {"simulate", 5}, {"solve", 130}, {"modes", 130}})
+           {"verify", 3}, {"sweep", 4}, {"simulate", 5}, {"solve", 130}, {"modes", 130}, {"solve", 143}})
     EXPECT_TRUE(covered.count({sub, code})) << sub << " " << code;
   EXPECT_EQ(run("").code, 1);  // no subcommand: a usage error
   EXPECT_EQ(run("--version").code, 0);
