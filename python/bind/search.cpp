@@ -301,10 +301,12 @@ void bind_search(py::module_& m) {
       .field("t1_max", &spp::RootMapOptions::t1_max, "upper end of the window in t1 (> t1_min)")
       .field("t2_min", &spp::RootMapOptions::t2_min, "lower end of the window in t2 (>= 0)")
       .field("t2_max", &spp::RootMapOptions::t2_max, "upper end of the window in t2 (> t2_min)")
-      .field("t1_points", &spp::RootMapOptions::t1_points, "grid points across the window along t1 (>= 16)")
+      .field("t1_points", &spp::RootMapOptions::t1_points,
+             "grid points across the window along t1 (>= 16), spread over the cells by their width: about "
+             "t1_points x t2_points in all")
       .field("t2_points", &spp::RootMapOptions::t2_points, "grid points across the window along t2 (>= 16)")
       .field("min_cell_points", &spp::RootMapOptions::min_cell_points,
-             "at least this many points per cell and axis (>= 2)")
+             "at least this many points per cell and axis (>= 2, default 2: the fewest a contour is drawn from)")
       .field("pole_margin", &spp::RootMapOptions::pole_margin,
              "distance kept from pole lines, relative to the cell width (in [0, 0.25))")
       .cls()

@@ -242,7 +242,7 @@ def _shade_uncertified(ax, regions, w):
 
 
 def root_map_figure(system, solutions, window, points=400, path=None, ax=None, progress=None, uncertified=None,
-                    numbers=True):
+                    numbers=True, computed=None):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
     anything with t1, t2, admissible) marked, potential open, admissible filled, each numbered with its index in
@@ -252,14 +252,26 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     cause), shaded with their cause in the legend (default: those of `window` when it is a SolveResult), e.g. the part
     an interrupted search did not reach; points: grid points per axis; ax: axes to draw into (default a new figure);
     progress: spp.root_map's (True: a line on stderr, a callable: called with RootMapProgress; Ctrl-C raises
-    KeyboardInterrupt, no figure drawn). The legend is outside the axes (below), so that it covers nothing."""
+    KeyboardInterrupt, no figure drawn). The legend is outside the axes (below), so that it covers nothing.
+    computed: a RootMap of this window already computed (spp.root_map(system, ...)), drawn as it is (points and
+    progress unused): a notebook redraws without sampling again (a 20-dof box is a minute of evaluations)."""
     if uncertified is None:
         uncertified = getattr(window, "uncertified", None) or []
     w = _window(window)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted map's warning: raised below instead
-        rm = root_map(system, w["t1_max"], w["t2_max"], t1_min=w["t1_min"], t2_min=w["t2_min"], t1_points=points,
-                      t2_points=points, progress=progress)
+    if computed is not None:
+        from ._spp import RootMap
+        if not isinstance(computed, RootMap):
+            raise TypeError(f"root_map_figure: computed must be a RootMap (spp.root_map), got "
+                            f"{type(computed).__name__}")
+        if computed.unsampled_cells:
+            raise ValueError(f"root_map_figure: computed: expected a complete RootMap, got one interrupted with "
+                             f"{computed.unsampled_cells} cell(s) not sampled")
+        rm = computed
+    else:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted map's warning: raised below instead
+            rm = root_map(system, w["t1_max"], w["t2_max"], t1_min=w["t1_min"], t2_min=w["t2_min"], t1_points=points,
+                          t2_points=points, progress=progress)
     if rm.unsampled_cells:  # Ctrl-C: no figure of part of the window
         raise KeyboardInterrupt(f"root map interrupted: {rm.unsampled_cells} cell(s) not sampled")
     fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))

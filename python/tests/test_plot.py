@@ -69,7 +69,7 @@ def test_root_map_marks_the_solutions_and_draws_both_conditions(tmp_path):
              and np.allclose(c.get_edgecolor()[0][:3], matplotlib.colors.to_rgb("C0"))
              for p in c.get_paths() for seg in [p.vertices] if len(seg)]
     vertices = np.vstack(solid)
-    step = 12.0 / 119
+    step = 1.5 * 12.0 / 119  # the 120 points per axis include each of the 23 cells' two ends (not 120 + 23 of them)
     for t1, t2 in np.vstack([adm, pot]):
         assert np.hypot(vertices[:, 0] - t1, vertices[:, 1] - t2).min() < 2 * step
     img = mpimg.imread(tmp_path / "rm.png")
@@ -191,6 +191,25 @@ def test_plot_command_failing_half_way_leaves_no_partial_set(tmp_path, monkeypat
     assert main(["plot", str(res), "--out", str(fresh), "--solutions", "0,3", "--root-map-points", "0",
                  "--formats", "png"]) == 1
     assert not fresh.exists()
+
+
+# Found by an independent attack on issue 13: a notebook redraw of a root map sampled it again (a 20-dof box: a
+# minute). root_map_figure(..., computed=rm) draws a map already computed, sampling nothing.
+def test_root_map_figure_draws_a_computed_map_without_sampling(tmp_path, monkeypatch):
+    import pytest
+    s, r = result()
+    rm = spp.root_map(s, 12, 12, t1_points=60, t2_points=60)
+
+    def refused(*args, **kw):
+        raise AssertionError("sampled again")
+
+    monkeypatch.setattr(plot, "root_map", refused)
+    fig = plot.root_map_figure(s, r.solutions, r, computed=rm, path=tmp_path / "rm.png")
+    assert len(fig.axes[0].collections) >= 2  # both conditions' contours, from the given map
+    assert [ln.get_xdata()[0] for ln in fig.axes[0].lines[:len(rm.flight_poles)]] == list(rm.flight_poles)
+    with pytest.raises(TypeError, match="computed must be a RootMap"):
+        plot.root_map_figure(s, r.solutions, r, computed="rm")
+    matplotlib.pyplot.close("all")
 
 
 # Found by an independent attack on issue 13: --solutions 0,0 drew spp_0 twice, failed moving the second in ("No

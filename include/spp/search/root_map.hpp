@@ -30,9 +30,14 @@ struct RootMapProgress {
 struct RootMapOptions {
   double t1_min = 0.0, t1_max = 0.0;  ///< window (t1_max > t1_min >= 0 required)
   double t2_min = 0.0, t2_max = 0.0;  ///< window (t2_max > t2_min >= 0 required)
-  int t1_points = 400;                ///< grid points across the whole window along t1 (>= 16)
-  int t2_points = 400;                ///< grid points across the whole window along t2 (>= 16)
-  int min_cell_points = 6;            ///< at least this many points per cell and axis (>= 2)
+  /// Grid points across the whole window along t1 (>= 16), spread over the cells in proportion to their width (so the
+  /// map has about t1_points x t2_points in all, each cell in proportion to its area), each cell at least
+  /// min_cell_points: a window of more cells than t1_points / min_cell_points along an axis has more.
+  int t1_points = 400;
+  int t2_points = 400;  ///< the same along t2 (>= 16)
+  /// At least this many points per cell and axis (>= 2; 2 by default: the fewest a zero contour is drawn from, a
+  /// straight piece across the cell; a narrow cell's curves are short).
+  int min_cell_points = 2;
   double pole_margin = 2e-3;          ///< distance kept from pole lines, relative to the cell width (in [0, 0.25))
   /// Called about every 0.2 s while the cells are sampled (between two rows of a cell), always from the thread that
   /// called root_map(), and once at the end. Returning false stops the map: the cells sampled so far are returned and
@@ -60,7 +65,7 @@ struct RootMap {
 };
 
 /// Samples both conditions over the window, cell by cell: two symmetric eigenproblems (m x m, m - 1 x m - 1) per
-/// grid point, O(m^3) each, about t1_points x t2_points of them. Throws std::invalid_argument for invalid options.
+/// grid point, O(m^3) each, about t1_points x t2_points of them (more when the cells' minimum needs more). Throws std::invalid_argument for invalid options.
 RootMap root_map(const ModalForm& modal, const RootMapOptions& options);
 /// The same building the modal form of `system` (O(n^3)) first: for one map of a system.
 RootMap root_map(const System& system, const RootMapOptions& options);
