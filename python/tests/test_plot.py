@@ -252,6 +252,8 @@ def test_root_map_shades_the_unsearched_region_of_an_interrupted_result(tmp_path
     assert len(shaded[0].get_paths()) == len(regions)
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert any(lab.startswith("not searched (interrupted)") for lab in labels), labels
+    # counted in cells, as the run reports them (it counted the merged rectangles; found by an attack on issue 13)
+    assert f"not searched (interrupted): {r.stats['unsearched_cells']} cells" in labels, labels
     # the regions given explicitly (a window as a dict) are shaded as well; none without them
     w = dict(t1_min=r.t1_min, t1_max=r.t1_max, t2_min=r.t2_min, t2_max=r.t2_max)
     fig2 = plot.root_map_figure(s, r.solutions, w, points=40, uncertified=r.uncertified)
@@ -268,6 +270,7 @@ def test_root_map_numbers_the_spps_as_the_table_and_keeps_the_legend_outside(tmp
     ax = fig.axes[0]
     numbers = [t for t in ax.texts if t.get_gid() == "spp_number"]
     assert [t.get_text() for t in numbers] == [str(k) for k in range(len(r.solutions))]
+    assert min(t.get_fontsize() for t in numbers) >= 6  # 5 was unreadable at the column width (attack on issue 13)
     for t, sol in zip(numbers, r.solutions):
         assert np.allclose(t.xy, (sol.t1, sol.t2))
     fig.canvas.draw()
