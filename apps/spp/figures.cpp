@@ -52,7 +52,7 @@ struct PlotArgs {
 
 struct AnimateArgs {
   std::string result, out, layout = "auto";
-  int solution = -1, frames = 120, periods = 1, fps = 25, dpi = 80;
+  int solution = -1, frames = 120, periods = 1, fps = 25, dpi = 125;  // dpi: animate.py's DEFAULT_DPI
 };
 
 }  // namespace
@@ -76,7 +76,7 @@ std::vector<Subcommand> add_figures(CLI::App& app) {
   anim->add_option("--frames", a->frames, "frames per period (default 120)");
   anim->add_option("--periods", a->periods, "periods shown (default 1)");
   anim->add_option("--fps", a->fps, "frames per second (default 25)");
-  anim->add_option("--dpi", a->dpi, "resolution: the frame is 6.4 x 4.8 inches (default 80: 512 x 384)");
+  anim->add_option("--dpi", a->dpi, "resolution: the frame is 6.4 x 4.8 inches (default 125: 800 x 600)");
   anim->add_option("--layout", a->layout, "auto, chain, plane or dofs (default auto: from M, K and w)");
   auto run_plot = [p]() -> int {
     exec_python({"plot", p->result, "--out", p->out, "--formats", p->formats, "--root-map-points",

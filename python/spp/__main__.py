@@ -147,7 +147,7 @@ def main(argv=None):
     q.add_argument("--frames", type=int, default=120, help="frames per period (default 120)")
     q.add_argument("--periods", type=int, default=1)
     q.add_argument("--fps", type=int, default=25)
-    q.add_argument("--dpi", type=int, default=80, help="the frame is 6.4 x 4.8 inches (default 80: 512 x 384)")
+    q.add_argument("--dpi", type=int, default=125, help="the frame is 6.4 x 4.8 inches (default 125: 800 x 600)")
     q.add_argument("--layout", default="auto", help="auto, chain, plane or dofs")
     try:
         a = ap.parse_args(argv)

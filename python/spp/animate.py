@@ -29,10 +29,13 @@ FIGSIZE_IN = (6.4, 4.8)  # every frame
 MAX_DPI = 600  # 3840 x 2880 pixels a frame; beyond, matplotlib's renderer fails (dpi 100000: an IndexError)
 MAX_FRAMES = 10000  # frames x periods: 400 s at 25 fps, each frame drawn by matplotlib (~20 ms)
 # A GIF's frames are held in memory until the file is written (matplotlib's PillowWriter): RGBA, 4 bytes a pixel.
+# 800 x 600 frames, as the docs' GIFs: at the former 80 (512 x 384) the legend's text was ~4 px high, unreadable
+# (found by an attack on issue 13)
+DEFAULT_DPI = 125
 MAX_GIF_BYTES = 2 * 1024 ** 3
 
 
-def check_options(path, frames=120, periods=1, fps=25, dpi=80, layout="auto"):
+def check_options(path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto"):
     """Raises ValueError naming the option when an animation of these options is not possible or would not fit in
     memory; called before anything is computed or allocated."""
     path = os.fspath(path)
@@ -190,6 +193,9 @@ class _Dofs:
         ax.set_ylabel("position (-)")
         if n <= 12:
             ax.set_xticks(self.k)
+        else:  # dof indices are whole numbers (past 12 the default ticks fell at 2.5, 7.5; attack on issue 13)
+            from matplotlib.ticker import MaxNLocator
+            ax.xaxis.set_major_locator(MaxNLocator(integer=True))
 
     def draw(self, x, force):
         self.stems.set_segments([[(k, 0.0), (k, v)] for k, v in zip(self.k, x)])
@@ -266,7 +272,7 @@ def _figure(system, spp, frames, periods, kind):
     return fig, update, count
 
 
-def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=80, layout="auto"):
+def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto"):
     """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
     (ffmpeg). frames: per period. Returns the number of frames written. Raises ValueError on bad arguments."""
     check_options(path, frames=frames, periods=periods, fps=fps, dpi=dpi, layout=layout)

@@ -119,3 +119,18 @@ def test_docs_gifs_are_web_sized_and_small():
         with Image.open(path) as im:
             assert im.size[0] >= 800, (name, im.size)
         assert os.path.getsize(path) < 2 * 1024 ** 2, name
+
+
+# Found by an independent attack on issue 13: the default frames were 512 x 384 (dpi 80), the legend's text ~4 px
+# high; and past 12 dofs the positions' axis had ticks at 2.5, 7.5 (no dof has such an index).
+def test_default_frames_are_800_by_600_and_dof_ticks_are_whole(tmp_path):
+    import inspect
+    import matplotlib.pyplot as plt
+    assert inspect.signature(animate.animate).parameters["dpi"].default == 125
+    assert (round(6.4 * animate.DEFAULT_DPI), round(4.8 * animate.DEFAULT_DPI)) == (800, 600)
+    fig, ax = plt.subplots()
+    animate._Dofs(ax, np.linspace(-1, 1, 40).reshape(2, 20))
+    fig.canvas.draw()
+    ticks = [t for t in ax.get_xticks() if 0.3 <= t <= 20.7]
+    assert ticks and all(float(t).is_integer() for t in ticks), ticks
+    plt.close(fig)
