@@ -44,7 +44,9 @@ def solve_result_frame(r):
 def verify_result_frame(v):
     """One row per SPP checked: t1, t2, admissible (the solver's), verdict, consistent, periods_followed,
     return_error (after the first period), potential_return_error, departure_time, departure, impacts,
-    contact_onsets, releases, growth_per_period. Needs pandas."""
+    contact_onsets, releases, growth_per_period (NaN where there is none: departure_time of an SPP that never leaves
+    its orbit, growth_per_period without a perturbation; they read 0.0, a time and a growth that did not happen;
+    found by an attack on issue 13). Needs pandas."""
     columns = [("t1", float), ("t2", float), ("admissible", bool), ("verdict", object), ("consistent", bool),
                ("periods_followed", np.int64), ("return_error", float), ("potential_return_error", float),
                ("departure_time", float), ("departure", object), ("impacts", np.int64), ("contact_onsets", np.int64),
@@ -52,9 +54,10 @@ def verify_result_frame(v):
     rows = []
     for c in v.checks:
         first = c.return_errors[0] if len(c.return_errors) else float("nan")
+        departed = c.departure_time if c.departure else float("nan")
+        growth = c.growth_per_period if len(c.perturbed_distances) else float("nan")
         rows.append([c.t1, c.t2, c.admissible, str(c.verdict), c.consistent, c.periods_followed, first,
-                     c.potential_return_error, c.departure_time, c.departure, c.impacts, c.contact_onsets, c.releases,
-                     c.growth_per_period])
+                     c.potential_return_error, departed, c.departure, c.impacts, c.contact_onsets, c.releases, growth])
     return _frame(columns, rows)
 
 

@@ -872,6 +872,12 @@ def test_dataframes_of_solutions_checks_and_branches():
     dv = v.to_dataframe()
     assert len(dv) == len(v.checks) and dv["consistent"].all() and dv["consistent"].dtype == bool
     assert list(dv["verdict"]) == [str(c.verdict) for c in v.checks]
+    # no departure, no perturbation: NaN, not 0.0 (a time and a growth that did not happen; attack on issue 13)
+    stayed = [k for k, c in enumerate(v.checks) if not c.departure]
+    assert stayed and dv["departure_time"].iloc[stayed].isna().all()
+    assert not any(len(c.perturbed_distances) for c in v.checks) and dv["growth_per_period"].isna().all()
+    left = [k for k, c in enumerate(v.checks) if c.departure]
+    assert np.allclose(dv["departure_time"].iloc[left], [v.checks[k].departure_time for k in left])
     ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
     c = spp.continue_branches(ps, t1_max=3, t2_max=1)
     dc = c.to_dataframe()
