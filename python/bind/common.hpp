@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <string>
@@ -30,6 +31,16 @@ using namespace pybind11::literals;
 // many values, 800 MB of doubles: a request past it is named before any work instead of a MemoryError or a swap
 // storm (trajectory's samples, simulate's duration x samples_per_unit; found by independent attacks)
 constexpr double kMaxSampleValues = 1e8;
+
+// A file to read that does not exist raises FileNotFoundError naming it (an OSError, as open() raises), not the
+// ValueError of a file that is there but wrong (System.from_json("nofile.json"); found by an attack on issue 13).
+inline void require_existing_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    PyErr_SetObject(PyExc_FileNotFoundError, py::make_tuple(2, "No such file or directory", path).ptr());  // ENOENT
+    throw py::error_already_set();
+  }
+}
 inline long long max_samples(long n) {
   return static_cast<long long>(kMaxSampleValues / (2.0 * static_cast<double>(n) + 3.0));
 }

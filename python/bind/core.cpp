@@ -22,7 +22,13 @@ void bind_core(py::module_& m) {
            "M"_a, "K"_a, "w"_a, "g0"_a, "name"_a = "",
            "M, K: (n, n) symmetric positive definite (numpy, lists or scipy.sparse); w: non-zero, (n,), (1, n) or "
            "(n, 1); g0: gap at rest. Raises ValueError.")
-      .def_static("from_json", &spp::load_system, "path"_a, "Loads a system JSON file (M/K may be Matrix Market).")
+      .def_static(
+          "from_json",
+          [](const std::string& path) {
+            require_existing_file(path);
+            return spp::load_system(path);
+          },
+          "path"_a, "Loads a system JSON file (M/K may be Matrix Market).")
       .def(py::pickle(  // (multiprocessing, joblib): the stored M, K, unit w and g0 rebuild the same system
           [](const spp::System& s) { return py::make_tuple(s.M(), s.K(), s.w(), s.g0(), s.name()); },
           [](const py::tuple& t) {
@@ -79,7 +85,13 @@ void bind_core(py::module_& m) {
            "max"_a, "name"_a = "",
            "(n, n) parts as System takes them (numpy, lists or scipy.sparse; w parts (n,), (1, n) or (n, 1)); an empty "
            "M_mu, K_mu or w_mu (e.g. np.empty((0, 0))): does not depend on the parameter. Raises ValueError.")
-      .def_static("from_json", &spp::load_parametric_system, "path"_a, "Loads a system file with \"parameter\".")
+      .def_static(
+          "from_json",
+          [](const std::string& path) {
+            require_existing_file(path);
+            return spp::load_parametric_system(path);
+          },
+          "path"_a, "Loads a system file with \"parameter\".")
       .def("at", &spp::ParametricSystem::at, "mu"_a, "The System at this parameter value.")
       .def_property_readonly("n", &spp::ParametricSystem::n)
       .def_property_readonly("g0", &spp::ParametricSystem::g0)

@@ -9,6 +9,7 @@
 namespace spp::python {
 
 py::object result_with_system(const std::string& path) {
+  require_existing_file(path);
   spp::ResultFile file = spp::load_result_file(path);  // read and parsed once
   py::object result = py::cast(std::move(file.result));
   result.attr("system") = std::move(file.system);

@@ -31,8 +31,14 @@ def test_invalid_input_raises_value_error_with_the_cpp_message():
         spp.solve(chain5(), t1_max=-1.0, t2_max=1.0)
     with pytest.raises(ValueError, match="expected x0 and v0 of size 5"):
         spp.simulate(chain5(), np.zeros(3), np.zeros(5), 1.0)
-    with pytest.raises(ValueError, match="No such file|cannot open"):
-        spp.System.from_json("/nonexistent/system.json")
+    # a missing file is FileNotFoundError naming it (an OSError, as open() raises; it was a ValueError, found by an
+    # attack on issue 13); a file that is there but wrong stays a ValueError
+    for load in (spp.System.from_json, spp.ParametricSystem.from_json, spp.load_result, spp.SolveResult.from_json):
+        with pytest.raises(FileNotFoundError, match="/nonexistent/system.json") as e:
+            load("/nonexistent/system.json")
+        assert e.value.filename == "/nonexistent/system.json"
+    with pytest.raises(ValueError):
+        spp.System.from_json(os.path.join(SRC, "README.md"))
 
 
 def test_paper_chain_has_seven_admissible_spps():
@@ -454,7 +460,7 @@ def test_solve_result_from_json_gives_back_what_was_written(tmp_path):
         (x.t1, x.t2, x.admissible, x.period) for x in r.solutions]
     assert np.array_equal(back.system.M, s.M) and back.system.g0 == s.g0
     assert back.to_dataframe().equals(r.to_dataframe())
-    with pytest.raises(ValueError, match="nowhere.json"):
+    with pytest.raises(FileNotFoundError, match="nowhere.json"):
         spp.SolveResult.from_json(str(tmp_path / "nowhere.json"))
 
 
