@@ -40,6 +40,10 @@ SolveResult.to_dataframe = _frames.solve_result_frame
 VerifyResult.to_dataframe = _frames.verify_result_frame
 ContinuationResult.to_dataframe = _frames.continuation_result_frame
 Branch.to_dataframe = _frames.branch_frame
+# a notebook's view of every result type (SolveResult has its own table)
+for _type in (VerifyResult, ContinuationResult, Branch, RootMap, SimulationResult, Solution, NearestSpp,
+              ModesResult):
+    _type._repr_html_ = _frames.repr_html
 
 
 _nearest_spp = _named_type_errors(_spp.nearest_spp, "spp.nearest_spp")

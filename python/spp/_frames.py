@@ -80,3 +80,24 @@ def continuation_result_frame(c):
     Branch.to_dataframe(). Needs pandas."""
     rows = [[i] + _point_row(p) for i, b in enumerate(c.branches) for p in b.points]
     return _frame([("branch", np.int64)] + _POINT_COLUMNS, rows)
+
+
+HTML_ROWS = 20  # rows of to_dataframe() shown in a notebook cell; the rest are counted (SolveResult's own table: 20)
+
+
+def repr_html(obj):
+    """A notebook's view of a result (_repr_html_, one helper for every type that has none of its own): its repr,
+    escaped, then the first HTML_ROWS rows of its to_dataframe() when it has one and pandas is installed. (Only
+    SolveResult had a view; found by an attack on issue 13.)"""
+    import html
+    out = f"<p>{html.escape(repr(obj))}</p>"
+    to_frame = getattr(obj, "to_dataframe", None)
+    if to_frame is not None:
+        try:
+            df = to_frame()
+        except ImportError:  # no pandas: the repr alone
+            return out
+        out += df.head(HTML_ROWS).to_html()
+        if len(df) > HTML_ROWS:
+            out += f"<p>({len(df) - HTML_ROWS} more rows: to_dataframe())</p>"
+    return out

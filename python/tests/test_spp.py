@@ -1,4 +1,5 @@
 """The Python package mirrors the C++ tests: the paper's examples, simulation, verification, errors."""
+import importlib.util
 import json
 import os
 import pickle
@@ -1081,3 +1082,22 @@ def test_ragged_or_misshapen_array_arguments_name_the_argument_and_the_shape():
         spp.SimulateOptions().sample_times = [[0, 1], [3]]
     with pytest.raises(ValueError, match=r"^simulate: spp.SimulateOptions.sample_times must be a vector of numbers"):
         spp.simulate(s, x0=[0, 0], v0=[0, 0], duration=1, sample_times=np.zeros((2, 2)))
+
+
+# Found by an independent attack on issue 13: only SolveResult had a notebook view (_repr_html_); the other result
+# types showed their repr as plain text. One helper (spp._frames.repr_html) gives each its repr and, when it has one,
+# its to_dataframe()'s first rows.
+def test_every_result_type_has_a_notebook_view():
+    import html
+    s = chain5()
+    r = spp.solve(s, t1_max=6, t2_max=6)
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    c = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    results = [spp.verify(s, r), c, c.branches[0], spp.root_map(s, 2, 2, t1_points=16, t2_points=16),
+               spp.simulate(s, np.zeros(5), np.ones(5), 1.0), r.solutions[0], spp.nearest_spp(s, 3.25, 0.54),
+               spp.modes(s, k=1, energy_max=4.0)]
+    for x in results:
+        view = x._repr_html_()
+        assert view.startswith("<p>" + html.escape(repr(x)) + "</p>"), type(x)
+        if hasattr(x, "to_dataframe") and importlib.util.find_spec("pandas"):
+            assert "<table" in view, type(x)
