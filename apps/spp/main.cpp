@@ -128,8 +128,8 @@ int main(int argc, char** argv) {
   CLI::App* parent = &app;
   for (int word = 1; word < argc && argv[word][0] != '-' && parent->get_require_subcommand_min() > 0; ++word) {
     const std::vector<CLI::App*> subcommands = parent->get_subcommands([](CLI::App*) { return true; });
-    const auto match =
-        std::find_if(subcommands.begin(), subcommands.end(), [&](CLI::App* sub) { return sub->check_name(argv[word]); });
+    const auto match = std::find_if(subcommands.begin(), subcommands.end(),
+                                    [&](CLI::App* sub) { return sub->check_name(argv[word]); });
     if (match == subcommands.end()) {
       if (spp::cli::is_root()) {
         std::string names;

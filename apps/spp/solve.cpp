@@ -230,7 +230,8 @@ int run(SolveArgs& a) {
   if (g_interrupted && res.stats.unsearched_cells == 0)
     std::cerr << "note: " << by << " came after the search had finished: the result is complete\n";
   if (res.stats.unsearched_cells > 0) {
-    std::cerr << "interrupted" << (g_interrupted == SIGTERM ? " by SIGTERM" : "") << ": " << res.stats.unsearched_cells << " cell(s) not searched; the result "
+    std::cerr << "interrupted" << (g_interrupted == SIGTERM ? " by SIGTERM" : "") << ": " << res.stats.unsearched_cells
+              << " cell(s) not searched; the result "
               << "above (and its files) holds what was found before\n";
     return kExitBySignal + (g_interrupted == SIGTERM ? SIGTERM : SIGINT);
   }

@@ -95,7 +95,7 @@ double axis_step(const std::vector<double>& lengths, int points, int min_points)
   };
   double lo = total / (points - 1) / 2.0, hi = 2.0 * total;  // count(lo) > points when any cell is sampled by step
   if (count(hi) >= points) return hi;                        // min_points everywhere
-  for (int k = 0; k < 100 && hi - lo > 1e-15 * hi; ++k) {  // the smallest step whose count is at most points
+  for (int k = 0; k < 100 && hi - lo > 1e-15 * hi; ++k) {    // the smallest step whose count is at most points
     const double mid = 0.5 * (lo + hi);
     (count(mid) <= points ? hi : lo) = mid;
   }

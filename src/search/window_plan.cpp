@@ -117,8 +117,8 @@ void check_window_size(const ModalForm& md, const SolveOptions& opt, const std::
   const double c2 = count_tangent_poles(md.d(), opt.t2_min, opt.t2_max) + 1.0;
   if (c1 * c2 > static_cast<double>(opt.max_cells)) {
     std::ostringstream os;
-    os << where << ": the window searched (" << opt.t1_min << ", " << opt.t1_max << "] x (" << opt.t2_min << ", " << opt.t2_max
-       << "] holds about " << c1 * c2 << " cells (" << c1 - 1 << " x " << c2 - 1
+    os << where << ": the window searched (" << opt.t1_min << ", " << opt.t1_max << "] x (" << opt.t2_min << ", "
+       << opt.t2_max << "] holds about " << c1 * c2 << " cells (" << c1 - 1 << " x " << c2 - 1
        << " pole lines), more than max_cells = " << opt.max_cells << ": " << remedy;
     detail::invalid(os.str());
   }

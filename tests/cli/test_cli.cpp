@@ -619,7 +619,8 @@ TEST(Cli, SigtermStopsTheSolveAndWritesWhatWasFound) {
   EXPECT_EQ(r.at("status"), "incomplete");
   EXPECT_GT(r.at("stats").at("unsearched_cells").get<long>(), 0);
   const auto& regions = r.at("uncertified");
-  EXPECT_TRUE(std::any_of(regions.begin(), regions.end(), [](const auto& u) { return u.at("cause") == "interrupted"; }));
+  EXPECT_TRUE(
+      std::any_of(regions.begin(), regions.end(), [](const auto& u) { return u.at("cause") == "interrupted"; }));
 }
 
 TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
@@ -1524,9 +1525,8 @@ TEST(Cli, EveryExitCodeIsDocumentedOnceAndIsWhatEachSubcommandReturns) {
   const std::string paragraph = readme.substr(at, readme.find("In Python", at) - at);
   const std::map<int, std::string> in_help = documented_exit_codes(footer),
                                    in_readme = documented_exit_codes(paragraph);
-  const std::map<int, std::string> expected_owner = {{0, "success"}, {1, "invalid input"}, {3, "verify"},
-                                                     {4, "sweep"},   {5, "simulate"},      {130, "solve"},
-                                                     {143, "solve"}};
+  const std::map<int, std::string> expected_owner = {{0, "success"},  {1, "invalid input"}, {3, "verify"}, {4, "sweep"},
+                                                     {5, "simulate"}, {130, "solve"},       {143, "solve"}};
   for (const auto* doc : {&in_help, &in_readme}) {
     std::set<int> codes;
     for (const auto& [c, what] : *doc) codes.insert(c);

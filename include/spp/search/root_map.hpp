@@ -65,7 +65,8 @@ struct RootMap {
 };
 
 /// Samples both conditions over the window, cell by cell: two symmetric eigenproblems (m x m, m - 1 x m - 1) per
-/// grid point, O(m^3) each, about t1_points x t2_points of them (more when the cells' minimum needs more). Throws std::invalid_argument for invalid options.
+/// grid point, O(m^3) each, about t1_points x t2_points of them (more when the cells' minimum needs more). Throws
+/// std::invalid_argument for invalid options.
 RootMap root_map(const ModalForm& modal, const RootMapOptions& options);
 /// The same building the modal form of `system` (O(n^3)) first: for one map of a system.
 RootMap root_map(const System& system, const RootMapOptions& options);
