@@ -380,9 +380,11 @@ TEST(Window, StalledRootsOnAContactPoleLineAreNotReportedAsSpps) {
   EXPECT_EQ(c.stats.unresolved_pieces + c.stats.unpaired_crossings, 0) << c.brief_report();
   EXPECT_LE(c.stats.unpolished_roots, 1) << c.brief_report();
   const ModalForm md30(chain30);
-  for (const UncertifiedRegion& u : c.uncertified)
-    if (u.cause == "polish")
+  for (const UncertifiedRegion& u : c.uncertified) {
+    if (u.cause == "polish") {
       EXPECT_FALSE(md30.contact_poles(u.t2_lo * (1 - 1e-6), u.t2_lo * (1 + 1e-6)).empty()) << u.t1_lo << " " << u.t2_lo;
+    }
+  }
   EXPECT_TRUE(c.solutions.empty());
   EXPECT_GT(c.stats.pole_line_artifacts, 0);
 }
