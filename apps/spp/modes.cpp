@@ -107,6 +107,9 @@ Subcommand add_modes(CLI::App& app) {
   c->add_option("--multiples", a->options.period_multiples,
                 "with k = 1: 1-IPP families also from each mode's grazing orbit seen with period j times its own, "
                 "j = 2..J (default 1: none; docs/modes.md §3)");
+  c->add_flag("--through-inadmissible", a->options.through_inadmissible,
+              "follow each family's solution curve through its inadmissible orbits (not listed): where it is "
+              "admissible again below --energy-max a new family starts (event admissibility_regained)");
   return {c, [a] { return run(*a); }};
 }
 

@@ -23,6 +23,7 @@ const char* to_string(ModeEventKind kind) {
     case ModeEventKind::EnergyMax: return "energy_max";
     case ModeEventKind::Stalled: return "stalled";
     case ModeEventKind::NoAdmissibleSide: return "no_admissible_side";
+    case ModeEventKind::AdmissibilityRegained: return "admissibility_regained";
   }
   return "?";
 }
@@ -76,6 +77,7 @@ std::string ModesResult::brief_report() const {
   os << "spp modes: " << to_string(status) << ", " << families.size() << " families (" << genuine << " genuine, "
      << families.size() - genuine << " repetitions), " << points << " points, events:";
   for (const auto& [k, c] : kinds) os << " " << k << " " << c;
+  if (inadmissible_stretches > 0) os << "; " << inadmissible_stretches << " inadmissible stretches followed";
   os << "; " << corrector_solves << " corrector solves, " << seconds << " s";
   return os.str();
 }
@@ -98,7 +100,20 @@ struct Tracer {
   Eigen::VectorXd D;            // y = D z
   std::set<int> wanted;         // the requested k
   std::vector<size_t> pending;  // families ending at flight_grazing, to continue with k + 2 impacts
+  // Inadmissible stretches to follow (ModesOptions::through_inadmissible): from y (unscaled unknowns, an inadmissible
+  // solution) along the curve in the direction tau (scaled), h the step to try first; `from` names the family.
+  struct Stretch {
+    KippShape shape;
+    Eigen::VectorXd y, tau;
+    double h = 0.0;
+    int mode = 0;
+    std::string from;
+    double energy_limit = 0.0;  // the stretch ends above this
+  };
+  std::vector<Stretch> stretches;
   bool stopped = false;         // options.progress returned false: nothing more is traced
+  int regained = 0;             // families started by follow_stretch (for their labels)
+  static constexpr long kMaxStretches = 10000;  // a bound on the work of through_inadmissible
 
   bool keep_going() {
     if (!stopped && options.progress && !options.progress()) stopped = true;
@@ -144,6 +159,95 @@ struct Tracer {
     return true;
   }
 
+  // One predictor-corrector step from z along tau: h is halved until the corrector converges and the tangent turns
+  // by at most turn_limit (rad). zn, its tangent tn (oriented along tau) and the Jacobian there; false when h fell
+  // below min_step.
+  bool advance(const KippShape& shape, const Eigen::VectorXd& z, const Eigen::VectorXd& tau, double turn_limit,
+               double& h, Eigen::VectorXd& zn, Eigen::VectorXd& tn, Eigen::MatrixXd& Jn) {
+    for (; h >= options.min_step; h *= 0.5) {
+      if (!correct(shape, z + h * tau, tau, zn)) continue;
+      Jn = jacobian(shape, zn);
+      tn = cont::curve_tangent(Jn, tau);
+      if (tn.allFinite() && std::acos(std::clamp(tn.dot(tau), -1.0, 1.0)) <= turn_limit) return true;
+    }
+    return false;
+  }
+
+  // The inadmissible stretch beyond z (unscaled y = D z) in the direction tau is followed later
+  // (ModesOptions::through_inadmissible; follow_stretch).
+  void follow_later(const KippShape& shape, const Eigen::VectorXd& z, const Eigen::VectorXd& tau, double h,
+                    const ModeFamily& f) {
+    if (!options.through_inadmissible) return;
+    std::ostringstream from;
+    from << "k" << shape.k << " " << to_string(shape.symmetry) << " mode " << f.mode;
+    const Eigen::VectorXd y = (D.array() * z.array()).matrix();
+    const double e = kipp_orbit(model, shape, y).energy;
+    stretches.push_back({shape, y, tau, h, f.mode, from.str(), kInadmissibleEnergyFactor * std::max(options.energy_max, e)});
+  }
+
+  // A point already listed as an end or a start of a family of the same shape (to 1e-6 in the scaled unknowns).
+  bool listed(const KippShape& shape, const Eigen::VectorXd& y) const {
+    for (const ModeFamily& f : result.families) {
+      if (f.k != shape.k || f.symmetry != shape.symmetry) continue;
+      for (const ModeEvent& e : f.events)
+        if (e.at.y.size() == y.size() && ((e.at.y - y).array() / D.array()).matrix().norm() <= 1e-6) return true;
+    }
+    return false;
+  }
+
+  // Follows one inadmissible stretch (or one above energy_max) until the curve is admissible again below energy_max;
+  // there a family starts (admissibility_regained), unless that point is already listed as a family's end or start
+  // (the same family reached from its other side). Ends silently where the step falls below min_step, after
+  // max_points steps or above kInadmissibleEnergyFactor * energy_max.
+  void follow_stretch(const Stretch& st) {
+    if (++result.inadmissible_stretches > kMaxStretches) {
+      ++result.stalled_families;  // not followed: the result is incomplete
+      return;
+    }
+    const KippShape& shape = st.shape;
+    D = scales(shape);
+    Eigen::VectorXd z = (st.y.array() / D.array()).matrix(), tau = st.tau, zn, tn;
+    Eigen::MatrixXd Jn;
+    double h = std::min(options.max_step, st.h);
+    // >= 0: listed (admissible, energy <= energy_max); the orbit's margin and relative energy margin
+    const auto inside = [&](const Eigen::VectorXd& zz) {
+      const KippOrbit o = kipp_orbit(model, shape, (D.array() * zz.array()).matrix());
+      return std::min(o.margin, 1.0 - o.energy / options.energy_max);
+    };
+    for (int count = 0; count < options.max_points && keep_going(); ++count) {
+      if (!advance(shape, z, tau, options.max_turn, h, zn, tn, Jn)) return;
+      const KippOrbit o = kipp_orbit(model, shape, (D.array() * zn.array()).matrix());
+      if (o.energy > st.energy_limit) return;
+      if (std::min(o.margin, 1.0 - o.energy / options.energy_max) >= 0) {
+        Eigen::VectorXd ze, za = zn;
+        locate(shape, z, tau, h, inside, ze, &za);
+        const Eigen::VectorXd ya = (D.array() * za.array()).matrix();
+        if (listed(shape, ya)) return;
+        ModeFamily g;
+        g.k = shape.k;
+        g.symmetry = shape.symmetry;
+        g.mode = st.mode;
+        const ModePoint p0 = tangency(point(shape, za));
+        g.points.push_back(p0);
+        add_event(g, ModeEventKind::AdmissibilityRegained, p0,
+                  std::string(p0.margin <= 1e-6 ? "admissible" : "below energy_max") +
+                      " again after a stretch of inadmissible orbits (or above energy_max) from " + st.from);
+        const Eigen::VectorXd t0 = cont::curve_tangent(jacobian(shape, za), tau);
+        trace(g, shape, za, t0, nullptr);
+        g.multiplicity = g.points.size() > 1 ? g.points[1].multiplicity : p0.multiplicity;
+        std::ostringstream label;
+        label << st.from << " regained #" << ++regained;
+        g.label = label.str();
+        result.families.push_back(g);
+        note(result.families.size() - 1);
+        return;
+      }
+      z = zn;
+      tau = tn;
+      h = std::min(options.max_step, 1.5 * h);
+    }
+  }
+
   ModePoint point(const KippShape& shape, const Eigen::VectorXd& z) const {
     const Eigen::VectorXd y = (D.array() * z.array()).matrix();
     const KippOrbit o = kipp_orbit(model, shape, y);
@@ -185,9 +289,10 @@ struct Tracer {
 
   // Bisection on s in (0, h) from z0 along tau for the sign change of phi (phi(0) and phi(h) of opposite signs).
   // z_event: the last point found on z0's side (phi of z0's sign), so that the event point keeps its admissibility.
+  // z_beyond (optional): the last point found on the other side (none found: unchanged).
   template <class Phi>
   bool locate(const KippShape& shape, const Eigen::VectorXd& z0, const Eigen::VectorXd& tau, double h, Phi&& phi,
-              Eigen::VectorXd& z_event) {
+              Eigen::VectorXd& z_event, Eigen::VectorXd* z_beyond = nullptr) {
     double lo = 0.0, hi = h;
     const bool sign_lo = phi(z0) >= 0;
     Eigen::VectorXd z = z0;
@@ -201,6 +306,7 @@ struct Tracer {
         z_event = z;
       } else {
         hi = s;
+        if (z_beyond) *z_beyond = z;
       }
     }
     return true;
@@ -231,23 +337,10 @@ struct Tracer {
         ++result.stalled_families;
         return;
       }
-      bool ok = false;
       Eigen::VectorXd tn;
       Eigen::MatrixXd Jn;
-      while (h >= options.min_step) {
-        if (correct(shape, z + h * tau, tau, zn)) {
-          Jn = jacobian(shape, zn);
-          tn = cont::curve_tangent(Jn, tau);
-          // the first step off a branch point may turn more: the bordered Jacobian is singular at the start
-          const double turn_limit = count == 1 ? 1.2 : options.max_turn;
-          if (tn.allFinite() && std::acos(std::clamp(tn.dot(tau), -1.0, 1.0)) <= turn_limit) {
-            ok = true;
-            break;
-          }
-        }
-        h *= 0.5;
-      }
-      if (!ok) {
+      // the first step off a branch point may turn more: the bordered Jacobian is singular at the start
+      if (!advance(shape, z, tau, count == 1 ? 1.2 : options.max_turn, h, zn, tn, Jn)) {
         add_event(f, ModeEventKind::Stalled, prev, "the step fell below min_step");
         ++result.stalled_families;
         return;
@@ -265,6 +358,7 @@ struct Tracer {
         f.points.push_back(pe);
         add_event(f, by_speed ? ModeEventKind::ImpactGrazing : ModeEventKind::FlightGrazing, pe,
                   by_speed ? "an impact's incoming speed reaches 0" : "the gap touches 0 inside a flight");
+        follow_later(shape, zn, tn, h, f);
         return;
       }
       if (p.energy > options.energy_max) {
@@ -316,20 +410,32 @@ struct Tracer {
     return (g.array() * D.array()).matrix();  // dE/dz
   }
 
+  // Whether the orbits just beyond the start z0 in the direction tau are admissible: a step of 1e-3 (scaled
+  // arclength), then, where that one is not, 1e-4 .. 1e-6 with a margin above rounding (kTangencyMargin). An
+  // admissible stretch next to a start can be narrower than 1e-3: a random 4-dof system (`spp generate random --n 4
+  // --seed 3`) has one of width 1.4e-3 in T beside a grazing orbit at period multiples (the explicit scan,
+  // tests/crosscheck/modes_one_ipp_scan.py, listed it; the first step jumped over it).
+  bool admissible_side(const KippShape& shape, const Eigen::VectorXd& z0, const Eigen::VectorXd& tau) {
+    Eigen::VectorXd z1;
+    for (double h = std::min(options.max_step, 1e-3); h >= 0.99e-6; h *= 0.1) {
+      if (!correct(shape, z0 + h * tau, tau, z1)) continue;
+      const double margin = point(shape, z1).margin;
+      if (h >= std::min(options.max_step, 1e-3) ? margin >= 0 : margin > kTangencyMargin) return true;
+    }
+    return false;
+  }
+
   // A family from a start z with a first tangent: tries `dir`, then -dir, keeping the first with an admissible step.
   bool start_family(ModeFamily& f, const KippShape& shape, const Eigen::VectorXd& z0, const Eigen::VectorXd& dir,
                     std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>* branches) {
     for (double sign : {1.0, -1.0}) {
       const Eigen::VectorXd tau = sign * dir;
-      Eigen::VectorXd z1;
-      double h = std::min(options.max_step, 1e-3);
-      if (!correct(shape, z0 + h * tau, tau, z1)) continue;
-      const ModePoint p1 = point(shape, z1);
-      if (p1.margin < 0) continue;
+      if (!admissible_side(shape, z0, tau)) continue;
       trace(f, shape, z0, tau, branches);
       return true;
     }
     add_event(f, ModeEventKind::NoAdmissibleSide, f.points.back(), "no admissible orbit on either side of the start");
+    for (double sign : {1.0, -1.0}) follow_later(shape, z0, sign * dir, std::min(options.max_step, 1e-3), f);
     return false;
   }
 
@@ -393,15 +499,22 @@ struct Tracer {
     D = scales(shape);
     const Eigen::VectorXd z0 = (grazing_start_multiple(model, shape, coupled, multiple).array() / D.array()).matrix();
     const ModePoint p0 = tangency(point(shape, z0));
-    if (p0.energy >= options.energy_max) return;
     const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+    if (p0.energy >= options.energy_max) {  // its family may come below energy_max on either side
+      ModeFamily f;
+      f.mode = mode;
+      for (double sign : {1.0, -1.0}) follow_later(shape, z0, sign * dir, std::min(options.max_step, 1e-3), f);
+      return;
+    }
     for (double sign : {1.0, -1.0}) {
       if (!keep_going()) return;
       const Eigen::VectorXd tau = sign * dir;
-      Eigen::VectorXd z1;
-      const double h = std::min(options.max_step, 1e-3);
-      if (!correct(shape, z0 + h * tau, tau, z1) || point(shape, z1).margin < 0) continue;  // that side: not admissible
       ModeFamily f;
+      f.mode = mode;
+      if (!admissible_side(shape, z0, tau)) {
+        follow_later(shape, z0, tau, std::min(options.max_step, 1e-3), f);
+        continue;
+      }
       f.k = 1;
       f.symmetry = shape.symmetry;
       f.mode = mode;
@@ -431,7 +544,11 @@ struct Tracer {
     f.mode = mode;
     // the linear mode touching the obstacle: gap >= 0, impact speeds 0
     const ModePoint p0 = tangency(point(shape, z0));
-    if (p0.energy >= options.energy_max) return;  // the family starts above the requested energies
+    if (p0.energy >= options.energy_max) {  // the family starts above the requested energies (it may come below)
+      const Eigen::VectorXd tau = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+      for (double sign : {1.0, -1.0}) follow_later(shape, z0, sign * tau, std::min(options.max_step, 1e-3), f);
+      return;
+    }
     f.points.push_back(p0);
     add_event(f, ModeEventKind::GrazingStart, p0, "linear mode " + std::to_string(mode) + " touching the obstacle");
     const Eigen::VectorXd tau = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
@@ -454,10 +571,10 @@ struct Tracer {
         ModePoint pb = point(shape, zb);
         g.points.push_back(pb);
         add_event(g, ModeEventKind::BranchStart, pb, "branch point on " + f.label);
-        Eigen::VectorXd z1;
         const Eigen::VectorXd tau1 = sign * dir;
-        if (!correct(shape, zb + 1e-3 * tau1, tau1, z1) || point(shape, z1).margin < 0) {
+        if (!admissible_side(shape, zb, tau1)) {
           add_event(g, ModeEventKind::NoAdmissibleSide, pb, "this side of the branch point is not admissible");
+          follow_later(shape, zb, tau1, 1e-3, g);
         } else {
           trace(g, shape, zb, tau1, nullptr);
         }
@@ -481,7 +598,7 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
   const KippModel model(system);
   ModesResult result;
   result.linear_frequencies = model.omega_all();
-  Tracer tracer{model, options, result, {}, {}, {}, false};
+  Tracer tracer{model, options, result, {}, {}, {}, {}, false};
   tracer.wanted.insert(options.k_values.begin(), options.k_values.end());
   std::vector<int> ks = options.k_values;
   std::sort(ks.begin(), ks.end());
@@ -492,7 +609,17 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
   if (tracer.wanted.count(1))
     for (int multiple = 2; multiple <= options.period_multiples; ++multiple)
       for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j) tracer.run_multiple_start(j, multiple);
-  for (size_t i = 0; i < tracer.pending.size() && tracer.keep_going(); ++i) tracer.follow_grazing(tracer.pending[i]);
+  // grazing continuations and inadmissible stretches, each of which may add more of both
+  for (size_t i = 0, j = 0; tracer.keep_going();) {
+    if (i < tracer.pending.size()) {
+      tracer.follow_grazing(tracer.pending[i++]);
+    } else if (j < tracer.stretches.size()) {
+      const Tracer::Stretch st = tracer.stretches[j++];  // a copy: follow_stretch may add stretches
+      tracer.follow_stretch(st);
+    } else {
+      break;
+    }
+  }
   result.interrupted = tracer.stopped;
   result.status = result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

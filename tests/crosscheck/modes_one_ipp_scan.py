@@ -9,6 +9,7 @@ A branch is listed by spp when an admissible point of a k = 1 family of `spp mod
 branch, with the branch's energy there (to 1e-6 relative).
 
   modes_one_ipp_scan.py SYSTEM.json --energy-max E --period-max T [--spp build/spp] [--multiples J]
+                        [--through-inadmissible]
 prints each branch (T range, E range, listed or not) and "listed L of B branches".
 """
 import argparse
@@ -52,9 +53,24 @@ def scan(omega, b, g0, energy_max, period_max, points=200_000, flight_samples=30
         for chunk in np.array_split(idx, max(1, len(idx) // 2000)):
             t = tau[chunk, None] * frac  # (c, F)
             g = g0 + np.einsum("ci,cfi->cf", b * q[chunk], np.cos(t[:, :, None] * omega))
-            gap_min[chunk] = g.min(axis=1)
+            gap_min[chunk] = np.minimum(g.min(axis=1), refined_minima(g, tau[chunk], frac, b * q[chunk], omega, g0))
         ok &= gap_min > 0
     return tau, energy, ok
+
+
+def refined_minima(g, tau, frac, bq, omega, g0, keep=4, fine=64):
+    """The gap's smallest value near the `keep` lowest sampled local minima of each row, on a grid `fine` times
+    finer: a dip narrower than the coarse spacing (a tangency at period multiples turning into a crossing) is
+    missed by the coarse samples alone (a random 4-dof system: gap -1e-3 between samples, listed as admissible)."""
+    inner = (g[:, 1:-1] <= g[:, :-2]) & (g[:, 1:-1] <= g[:, 2:])
+    masked = np.where(inner, g[:, 1:-1], np.inf)
+    k = min(keep, masked.shape[1])
+    idx = np.argpartition(masked, k - 1, axis=1)[:, :k] + 1  # columns of g
+    dt = (frac[1] - frac[0]) * tau  # coarse spacing per row
+    offs = np.linspace(-1.0, 1.0, fine)
+    t = (frac[idx] * tau[:, None])[:, :, None] + offs * dt[:, None, None]  # (c, k, fine)
+    gf = g0 + np.einsum("ci,ckfi->ckf", bq, np.cos(t[..., None] * omega))
+    return gf.reshape(len(tau), -1).min(axis=1)
 
 
 def branches(tau, energy, ok):
@@ -69,12 +85,14 @@ def branches(tau, energy, ok):
     return out
 
 
-def spp_points(spp, system, energy_max, multiples):
+def spp_points(spp, system, energy_max, multiples, through_inadmissible=False):
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "m.json")
-        cmd = [spp, "modes", system, "--k", "1", "--energy-max", str(energy_max), "--json", out]
+        cmd = [spp, "modes", system, "--k", "1", "--energy-max", str(energy_max), "--json", out] + os.environ.get("SPP_MODES_ARGS", "").split()
         if multiples:
             cmd += ["--multiples", str(multiples)]
+        if through_inadmissible:
+            cmd += ["--through-inadmissible"]
         subprocess.run(cmd, check=True, capture_output=True)
         with open(out) as f:
             r = json.load(f)
@@ -89,11 +107,12 @@ def main(argv=None):
     ap.add_argument("--period-max", type=float, required=True)
     ap.add_argument("--spp", default=os.environ.get("SPP_CLI", "build/spp"))
     ap.add_argument("--multiples", type=int, default=0)
+    ap.add_argument("--through-inadmissible", action="store_true", help="pass --through-inadmissible to spp modes")
     a = ap.parse_args(argv)
     omega, b, g0 = modal(a.system)
     tau, energy, ok = scan(omega, b, g0, a.energy_max, a.period_max)
     found = branches(tau, energy, ok)
-    pts = spp_points(a.spp, a.system, a.energy_max, a.multiples)
+    pts = spp_points(a.spp, a.system, a.energy_max, a.multiples, a.through_inadmissible)
     listed = 0
     for i0, i1 in found:
         lo, hi = tau[i0], tau[i1]

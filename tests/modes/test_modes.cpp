@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "spp/core/generators.hpp"
 #include "spp/modes/kipp.hpp"
@@ -312,6 +313,61 @@ TEST(Modes, OneIppFamiliesLeaveTheGrazingOrbitsAtPeriodMultiples) {
     }
   }
   const ReturnCheck c = check_returns(s, r, 8);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+}
+
+// Issue 15, D1: admissible 1-IPP stretches separated from every grazing start by inadmissible orbits. The explicit
+// scan (tests/crosscheck/modes_one_ipp_scan.py examples/chain5.json --energy-max 5 --period-max 40) lists 14
+// admissible branches; with the grazing orbits at period multiples up to 13 (T omega_max / (2 pi) + 1) spp listed 8,
+// among them not T in [12.23, 13.04], [16.54, 18.65] or [36.89, 37.33]. Followed through their inadmissible orbits
+// the families reach them; each is listed once, every point is on the explicit form and returns in the simulator.
+TEST(Modes, FamiliesFollowedThroughInadmissibleOrbitsReachTheStretchesBeyond) {
+  const System s = chain5();
+  ModesOptions o;
+  o.k_values = {1};
+  o.energy_max = 5.0;
+  o.period_multiples = 13;
+  const auto families_covering = [](const ModesResult& r, double t_lo, double t_hi) {
+    int count = 0;
+    for (const ModeFamily& f : r.families) {
+      bool covers = false;
+      for (const ModePoint& p : f.points) covers = covers || (p.admissible && p.period > t_lo && p.period < t_hi);
+      count += covers;
+    }
+    return count;
+  };
+  const ModesResult before = nonsmooth_modes(s, o);
+  EXPECT_EQ(before.inadmissible_stretches, 0);
+  for (const auto& [lo, hi] : {std::pair{12.3, 13.0}, {16.6, 18.6}, {36.9, 37.3}})
+    EXPECT_EQ(families_covering(before, lo, hi), 0) << lo;
+  o.through_inadmissible = true;
+  const ModesResult r = nonsmooth_modes(s, o);
+  EXPECT_EQ(r.status, ModesStatus::Traced);
+  EXPECT_GT(r.inadmissible_stretches, 0);
+  for (const auto& [lo, hi] : {std::pair{12.3, 13.0}, {16.6, 18.6}, {36.9, 37.3}, {7.1, 7.4}})
+    EXPECT_EQ(families_covering(r, lo, hi), 1) << lo;  // reached, and listed once (not from both sides)
+  const KippModel model(s);
+  int regained = 0;
+  for (const ModeFamily& f : r.families) {
+    if (f.events.front().kind == ModeEventKind::AdmissibilityRegained) {
+      ++regained;
+      const ModePoint& p0 = f.points.front();
+      EXPECT_TRUE(p0.admissible) << f.label;
+      // on the boundary of the listed orbits (admissible, energy <= energy_max), to the located step
+      EXPECT_LT(std::min(p0.margin, 1.0 - p0.energy / o.energy_max), 1e-6) << f.label;
+      EXPECT_LE(p0.energy, o.energy_max) << f.label;
+      EXPECT_GT(f.points.size(), 2u) << f.label;
+    }
+    for (const ModePoint& p : f.points) {
+      const Eigen::VectorXd xA = model.Phi() * p.y.head(model.coupled_modes());
+      const Eigen::VectorXd expected = one_ipp_closed_form(s, p.y(model.coupled_modes()));
+      EXPECT_LT((xA - expected).norm(), 1e-8 * (1.0 + expected.norm())) << f.label << " T " << p.period;
+    }
+  }
+  EXPECT_GE(regained, 3);
+  const ReturnCheck c = check_returns(s, r, 6);
+  EXPECT_GE(c.points, 60);
   EXPECT_EQ(c.impact_mismatches, 0);
   EXPECT_LT(c.max_return_error, 1e-8);
 }

@@ -33,6 +33,9 @@ namespace spp::modes {
 inline constexpr int kMaxImpactsPerPeriod = 40;
 /// Largest ModesOptions::period_multiples: a bound on the work (one start per coupled mode and multiple).
 inline constexpr int kMaxPeriodMultiples = 100;
+/// ModesOptions::through_inadmissible follows an inadmissible stretch up to this many times energy_max (the curve may
+/// rise above energy_max there and come back below it): a bound on the work.
+inline constexpr double kInadmissibleEnergyFactor = 10.0;
 
 struct ModesOptions {
   std::vector<int> k_values;  ///< impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required)
@@ -49,6 +52,12 @@ struct ModesOptions {
   /// mode and j <= T omega / (2 pi) + 1 (docs/modes.md §3). 1: only the grazing starts (j = 1). Both sides of such a
   /// start are followed, each as a family, where admissible. In [1, kMaxPeriodMultiples].
   int period_multiples = 1;
+  /// Where a family loses admissibility (or a start has no admissible side), keep following the solution curve
+  /// through its inadmissible orbits (not listed) until it is admissible again: there a new family starts (event
+  /// admissibility_regained) and is traced like any other. The inadmissible stretch is followed for at most
+  /// max_points steps and up to kInadmissibleEnergyFactor * energy_max. false: a family ends at its first
+  /// admissibility event (docs/modes.md §5: admissible stretches beyond are then missed).
+  bool through_inadmissible = false;
   /// Called before each family point, from the thread that called nonsmooth_modes() (so a Python callback may take
   /// the GIL): returning false stops the tracing; the families traced so far are kept (the one being traced ends
   /// with a Stalled event "interrupted") and the status is Incomplete with `interrupted` set. Empty: never called.
@@ -78,7 +87,10 @@ enum class ModeEventKind {
   FlightGrazing,    ///< admissibility lost: the gap touches 0 inside a flight, an extra contact (the family ends)
   EnergyMax,        ///< the energy reached energy_max (the family ends)
   Stalled,          ///< the step fell below min_step or max_points was reached (the family ends)
-  NoAdmissibleSide  ///< neither direction from the start is admissible (the family is its start only)
+  NoAdmissibleSide,  ///< neither direction from the start is admissible (the family is its start only)
+  /// the family's first point: the solution curve of an earlier family (ModesOptions::through_inadmissible), followed
+  /// through inadmissible orbits from that family's admissibility event, is admissible again here
+  AdmissibilityRegained
 };
 const char* to_string(ModeEventKind kind);
 
@@ -115,6 +127,9 @@ struct ModesResult {
   Eigen::VectorXd linear_frequencies;
   long corrector_solves = 0;
   long stalled_families = 0;
+  /// Inadmissible stretches followed (ModesOptions::through_inadmissible); those that became admissible again start
+  /// the families whose first event is admissibility_regained.
+  long inadmissible_stretches = 0;
   bool interrupted = false;  ///< ModesOptions::progress stopped the tracing (status Incomplete)
   double seconds = 0.0;
   /// One line: status, families (genuine / repetitions), points, events by kind, time.
