@@ -50,9 +50,11 @@ double number(const char* name, const py::object& v) {
 
 void bind_modes(py::module_& m) {
   bind_outcome(m, "ModeEventKind",
-               {md::ModeEventKind::GrazingStart, md::ModeEventKind::BranchStart, md::ModeEventKind::BranchPoint,
+               {md::ModeEventKind::GrazingStart, md::ModeEventKind::BranchStart,
+                md::ModeEventKind::GrazingContinuation, md::ModeEventKind::BranchPoint,
                 md::ModeEventKind::ImpactGrazing, md::ModeEventKind::FlightGrazing, md::ModeEventKind::EnergyMax,
-                md::ModeEventKind::Stalled, md::ModeEventKind::NoAdmissibleSide},
+                md::ModeEventKind::Stalled, md::ModeEventKind::NoAdmissibleSide,
+                md::ModeEventKind::AdmissibilityRegained},
                "ModeEvent.kind");
   bind_outcome(m, "ModesStatus", {md::ModesStatus::NotRun, md::ModesStatus::Traced, md::ModesStatus::Incomplete},
                "ModesResult.status: traced (every family found followed to a located end; NOT every k-IPP family: "
@@ -96,6 +98,8 @@ void bind_modes(py::module_& m) {
       .def_readonly("families", &md::ModesResult::families)
       .def_readonly("linear_frequencies", &md::ModesResult::linear_frequencies)
       .def_readonly("corrector_solves", &md::ModesResult::corrector_solves)
+      .def_readonly("inadmissible_stretches", &md::ModesResult::inadmissible_stretches,
+                    "stretches of inadmissible orbits followed (through_inadmissible)")
       .def_readonly("seconds", &md::ModesResult::seconds)
       .def_readonly("interrupted", &md::ModesResult::interrupted,
                     "Ctrl-C stopped the tracing: the families traced before it (status incomplete)")

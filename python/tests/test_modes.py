@@ -88,3 +88,13 @@ def test_k_as_int_list_range_or_numpy_integers():
     for k in ([1, 2], (1, 2), range(1, 3), np.array([1, 2]), [np.int64(1), 2]):
         assert [(f.k, f.label) for f in spp.modes(s, k=k, energy_max=1.0).families] == ref
     assert spp.modes(s, k=np.int32(1), energy_max=np.float64(1.0)).families[0].k == 1
+
+
+def test_every_event_kind_reads_as_a_mode_event_kind():
+    # chain5, k = 1..3: families past a flight grazing start with a grazing_continuation event, which was missing from
+    # the Python enum (reading e.kind raised "'grazing_continuation' is not a valid ModeEventKind")
+    r = spp.modes(spp.chain(5), [1, 2, 3], 6.0)
+    kinds = {str(e.kind) for f in r.families for e in f.events}
+    assert "grazing_continuation" in kinds
+    assert {"grazing_start", "branch_point", "energy_max"} <= kinds
+    assert all(isinstance(e.kind, spp.ModeEventKind) for f in r.families for e in f.events)

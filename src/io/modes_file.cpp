@@ -27,6 +27,7 @@ std::string modes_json(const System& system, const modes::ModesResult& result, i
   j["status"] = modes::to_string(result.status);
   j["stats"] = {{"corrector_solves", result.corrector_solves},
                 {"stalled_families", result.stalled_families},
+                {"inadmissible_stretches", result.inadmissible_stretches},
                 {"seconds", result.seconds}};
   io::json families = io::json::array();
   for (const modes::ModeFamily& f : result.families) {
