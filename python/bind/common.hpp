@@ -77,6 +77,17 @@ inline std::string typed_repr(const py::handle& v) {
   return std::string(py::str(py::type::of(v).attr("__name__"))) + " " + r;
 }
 
+// The bound fields of an Options object (its attributes but the dunders and validate): with_fields, fields_repr and
+// the options' pickling take this one list.
+inline std::vector<std::string> option_field_names(const py::object& o) {
+  std::vector<std::string> known;
+  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
+    const std::string n = py::str(a);
+    if (n.rfind("_", 0) != 0 && n != "validate") known.push_back(n);
+  }
+  return known;
+}
+
 template <class Options>
 Options with_fields(const py::object& options, const py::kwargs& fields, const char* where, const char* type_name) {
   // a wrong type is a TypeError naming the argument, not pybind11's cast failure (RuntimeError) or signature dump
@@ -88,11 +99,7 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
                          typed_repr(options) + " (the window is given as keywords, e.g. t1_max=12, t2_max=12)");
   }
   py::object o = options.is_none() ? py::cast(Options{}) : py::cast(options.cast<Options>());
-  std::vector<std::string> known;
-  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
-    const std::string n = py::str(a);
-    if (n.rfind("_", 0) != 0 && n != "validate") known.push_back(n);
-  }
+  const std::vector<std::string> known = option_field_names(o);
   for (const auto& [key, value] : fields) {
     const std::string name = py::str(key);
     if (std::find(known.begin(), known.end(), name) == known.end()) {
@@ -118,11 +125,8 @@ Options with_fields(const py::object& options, const py::kwargs& fields, const c
 // "<spp.Name field=value ...>" of the bound fields (those of with_fields), for the options' __repr__.
 inline std::string fields_repr(const py::object& o, const char* type_name) {
   std::string out = std::string("<spp.") + type_name;
-  for (const py::handle a : py::module_::import("builtins").attr("dir")(o)) {
-    const std::string n = py::str(a);
-    if (n.rfind("_", 0) == 0 || n == "validate") continue;
-    out += " " + n + "=" + py::repr(o.attr(a)).cast<std::string>();
-  }
+  for (const std::string& n : option_field_names(o))
+    out += " " + n + "=" + py::repr(o.attr(n.c_str())).cast<std::string>();
   return out + ">";
 }
 
@@ -274,6 +278,30 @@ class OptionsBinding {
   OptionsBinding(py::module_& m, const char* name, const char* doc)
       : cls_(m, name, doc), name_(std::string("spp.") + name) {
     cls_.def(py::init<>());
+    // Pickled as {field: value} of every bound field (multiprocessing and joblib pass options to their workers; they
+    // could not be pickled), read back through the fields' own setters, so a hand-made or foreign state is checked
+    // as an attribute set is. A Symmetry is kept as its name (the setter takes it).
+    const std::string label = name_;
+    cls_.def(py::pickle(
+        [](const py::object& self) {
+          py::dict d;
+          for (const std::string& n : option_field_names(self)) {
+            const py::object v = self.attr(n.c_str());
+            d[n.c_str()] = py::isinstance<spp::Symmetry>(v) ? py::str(spp::to_string(v.cast<spp::Symmetry>())) : v;
+          }
+          return d;
+        },
+        [label](const py::dict& d) {
+          py::object o = py::cast(C{});
+          const std::vector<std::string> known = option_field_names(o);
+          for (const auto& [key, value] : d) {
+            const std::string n = py::str(key);
+            if (std::find(known.begin(), known.end(), n) == known.end())
+              detail::invalid(label + " pickle: expected its fields only, got an unknown field \"" + n + "\"");
+            py::setattr(o, key, value);
+          }
+          return o.cast<C>();
+        }));
   }
   template <class T>
   OptionsBinding& field(const char* name, T C::*member, const char* doc = "") {

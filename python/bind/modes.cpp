@@ -1,6 +1,9 @@
 // Python bindings, modes/: k-impact periodic orbits (nonsmooth modes, docs/modes.md).
+#include <sstream>
+
 #include "common.hpp"
 #include "spp/modes/nonsmooth_modes.hpp"
+#include "state.hpp"
 
 namespace spp::python {
 
@@ -69,11 +72,28 @@ void bind_modes(py::module_& m) {
       .def_readonly("v0", &md::ModePoint::v0, "velocity just after the first impact")
       .def_readonly("admissible", &md::ModePoint::admissible)
       .def_readonly("margin", &md::ModePoint::margin)
-      .def_readonly("multiplicity", &md::ModePoint::multiplicity, "r > 1: an r-fold repetition of a shorter orbit");
+      .def_readonly("multiplicity", &md::ModePoint::multiplicity, "r > 1: an r-fold repetition of a shorter orbit")
+      .def(py::pickle([](const md::ModePoint& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::mode_point(t); }))
+      .def("__repr__", [](const md::ModePoint& p) {
+        std::ostringstream os;
+        os << "<spp.ModePoint energy=" << p.energy << " frequency=" << p.frequency << " period=" << p.period << ", "
+           << p.impact_times.size() << " impacts, " << (p.admissible ? "admissible" : "not admissible")
+           << (p.multiplicity > 1 ? ", multiplicity " + std::to_string(p.multiplicity) : std::string()) << ">";
+        return os.str();
+      });
   py::class_<md::ModeEvent>(m, "ModeEvent")
       .def_property_readonly("kind", [](const md::ModeEvent& e) { return outcome(e.kind); })
       .def_readonly("at", &md::ModeEvent::at)
-      .def_readonly("detail", &md::ModeEvent::detail);
+      .def_readonly("detail", &md::ModeEvent::detail)
+      .def(py::pickle([](const md::ModeEvent& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::mode_event(t); }))
+      .def("__repr__", [](const md::ModeEvent& e) {
+        std::ostringstream os;
+        os << "<spp.ModeEvent " << md::to_string(e.kind) << " at energy=" << e.at.energy
+           << " frequency=" << e.at.frequency << (e.detail.empty() ? "" : ": " + e.detail) << ">";
+        return os.str();
+      });
   py::class_<md::ModeFamily>(m, "ModeFamily")
       .def_readonly("k", &md::ModeFamily::k)
       .def_property_readonly("symmetry", [](const md::ModeFamily& f) { return std::string(md::to_string(f.symmetry)); })
@@ -92,7 +112,18 @@ void bind_modes(py::module_& m) {
               a.row(static_cast<Eigen::Index>(i)) << f.points[i].energy, f.points[i].frequency, f.points[i].margin;
             return a;
           },
-          "(N, 3): energy, frequency, margin of every point");
+          "(N, 3): energy, frequency, margin of every point")
+      .def(py::pickle([](const md::ModeFamily& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::mode_family(t); }))
+      .def("__repr__", [](const md::ModeFamily& f) {
+        std::ostringstream os;
+        os << "<spp.ModeFamily " << f.label << ": k=" << f.k << " " << md::to_string(f.symmetry) << " mode=" << f.mode
+           << " multiplicity=" << f.multiplicity << ", " << f.points.size() << " points, events:";
+        for (const md::ModeEvent& e : f.events) os << " " << md::to_string(e.kind);
+        if (f.events.empty()) os << " none";
+        os << ">";
+        return os.str();
+      });
   py::class_<md::ModesResult>(m, "ModesResult")
       .def_property_readonly("status", [](const md::ModesResult& r) { return outcome(r.status); })
       .def_readonly("families", &md::ModesResult::families)
@@ -103,7 +134,14 @@ void bind_modes(py::module_& m) {
       .def_readonly("seconds", &md::ModesResult::seconds)
       .def_readonly("interrupted", &md::ModesResult::interrupted,
                     "Ctrl-C stopped the tracing: the families traced before it (status incomplete)")
-      .def("brief_report", &md::ModesResult::brief_report);
+      .def("brief_report", &md::ModesResult::brief_report)
+      .def(py::pickle([](const md::ModesResult& x) { return state::of(x); },
+                      [](const py::tuple& t) { return state::modes_result(t); }))
+      .def("__repr__", [](const md::ModesResult& r) {
+        const std::string report = r.brief_report();
+        const std::string prefix = "spp modes: ";  // (brief_report's, as SolveResult's repr drops "spp: ")
+        return "<spp.ModesResult " + (report.rfind(prefix, 0) == 0 ? report.substr(prefix.size()) : report) + ">";
+      });
   m.def(
       "modes",
       [](const spp::System& s, const py::object& k, const py::object& energy_max, double max_step, bool branch_points) {

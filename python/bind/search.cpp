@@ -206,6 +206,58 @@ void bind_search(py::module_& m) {
       "too: the result then holds what was found (status incomplete, stats['unsearched_cells'] > 0) and a "
       "RuntimeWarning says so. Raises ValueError.");
 
+  py::class_<spp::SolutionAt>(m, "SolutionAt",
+                              "Result of solution_at: the SPP Newton reached from a point, or where it ended")
+      .def_readonly("found", &spp::SolutionAt::found, "a root within 1e-3 (t1 + t2) of the start whose gap can close")
+      .def_property_readonly(
+          "solution", [](const spp::SolutionAt& r) { return r.found ? py::cast(r.solution) : py::none(); },
+          "the polished SPP (a Solution), None when not found")
+      .def_readonly("t1", &spp::SolutionAt::t1, "where Newton ended")
+      .def_readonly("t2", &spp::SolutionAt::t2, "where Newton ended")
+      .def_readonly("residual", &spp::SolutionAt::residual, "the equations' residual there")
+      .def_property_readonly(
+          "start", [](const spp::SolutionAt& r) { return py::make_tuple(r.start_t1, r.start_t2); },
+          "(t1, t2) asked for")
+      .def("brief_report", &spp::SolutionAt::brief_report)
+      .def(py::pickle(
+          [](const spp::SolutionAt& r) {
+            return py::make_tuple(r.found, state::of(r.solution), r.t1, r.t2, r.residual, r.start_t1, r.start_t2);
+          },
+          [](const py::tuple& t) {
+            state::sized(t, 7, "SolutionAt");
+            spp::SolutionAt r;
+            r.found = t[0].cast<bool>();
+            r.solution = state::solution(t[1].cast<py::tuple>());
+            r.t1 = t[2].cast<double>();
+            r.t2 = t[3].cast<double>();
+            r.residual = t[4].cast<double>();
+            r.start_t1 = t[5].cast<double>();
+            r.start_t2 = t[6].cast<double>();
+            return r;
+          }))
+      .def("__repr__", [](const spp::SolutionAt& r) { return "<spp.SolutionAt " + r.brief_report() + ">"; });
+  m.def(
+      "solution_at",
+      [solve_options](const spp::System& s, double t1, double t2, const py::object& options, const py::kwargs& fields) {
+        // (no validate(): it requires the window, which solution_at does not use; each field is checked by its
+        // setter, t1 and t2 by the C++ function)
+        const spp::SolveOptions o = solve_options(options, fields, "solution_at");
+        spp::SolutionAt r;
+        {
+          py::gil_scoped_release release;
+          r = spp::solution_at(s, t1, t2, o);
+        }
+        return r;
+      },
+      "system"_a, "t1"_a, "t2"_a, "options"_a = py::none(),
+      "The SPP at a given (t1, t2) (half-durations of flight and contact), as C++'s spp::solution_at: Newton on the "
+      "SPP equations from that point (at most 12 steps), then the SPP's initial conditions, admissibility and (unless "
+      "compute_stability=False) Floquet multipliers. solution_at(system, t1, t2) or with a SolveOptions and any field "
+      "as a keyword (symmetry=\"point\"; the window fields are not used). Returns a SolutionAt: found is False (a "
+      "numerical outcome, not an error) when Newton does not reach a root within 1e-3 (t1 + t2) of the point; "
+      "solution is then None and brief_report() says where Newton ended. No search: for every SPP near a guess, "
+      "nearest_spp. Raises ValueError for t1 or t2 not positive and finite, g0 = 0 or invalid options.");
+
   m.def(
       "fundamental_box", [](const spp::System& s) { return spp::fundamental_box(spp::ModalForm(s)); }, "system"_a,
       "(t1_max, t2_max) of the fundamental box: t1 <= pi / omega_1 (slowest free-flight mode that sees the contact), "

@@ -10,6 +10,7 @@
 
 #include "common.hpp"
 #include "spp/continuation/continuation.hpp"
+#include "spp/modes/nonsmooth_modes.hpp"
 #include "spp/orbit/solution.hpp"
 #include "spp/search/root_map.hpp"
 #include "spp/search/solver.hpp"
@@ -295,6 +296,73 @@ inline spp::RootMap root_map(const py::tuple& t) {
   for (const py::handle c : t[2]) r.cells.push_back(root_map_cell(c.cast<py::tuple>()));
   r.evaluations = t[3].cast<long>();
   r.unsampled_cells = t[4].cast<long>();
+  return r;
+}
+
+// Nonsmooth modes (modes/nonsmooth_modes.hpp): no JSON reader exists for them (spp modes writes its file only), so
+// they pickle field by field like the other plain-data results, y (the continuation's unknowns) included.
+inline py::tuple of(const spp::modes::ModePoint& p) {
+  return py::make_tuple(p.energy, p.period, p.frequency, p.impact_times, p.x0, p.v0, p.admissible, p.margin,
+                        p.multiplicity, p.y);
+}
+inline spp::modes::ModePoint mode_point(const py::tuple& t) {
+  sized(t, 10, "ModePoint");
+  spp::modes::ModePoint p;
+  p.energy = t[0].cast<double>();
+  p.period = t[1].cast<double>();
+  p.frequency = t[2].cast<double>();
+  p.impact_times = t[3].cast<std::vector<double>>();
+  p.x0 = t[4].cast<Eigen::VectorXd>();
+  p.v0 = t[5].cast<Eigen::VectorXd>();
+  p.admissible = t[6].cast<bool>();
+  p.margin = t[7].cast<double>();
+  p.multiplicity = t[8].cast<int>();
+  p.y = t[9].cast<Eigen::VectorXd>();
+  return p;
+}
+inline py::tuple of(const spp::modes::ModeEvent& e) {
+  return py::make_tuple(static_cast<int>(e.kind), of(e.at), e.detail);
+}
+inline spp::modes::ModeEvent mode_event(const py::tuple& t) {
+  sized(t, 3, "ModeEvent");
+  return {static_cast<spp::modes::ModeEventKind>(t[0].cast<int>()), mode_point(t[1].cast<py::tuple>()),
+          t[2].cast<std::string>()};
+}
+inline py::tuple of(const spp::modes::ModeFamily& f) {
+  py::list pts, evs;
+  for (const spp::modes::ModePoint& p : f.points) pts.append(of(p));
+  for (const spp::modes::ModeEvent& e : f.events) evs.append(of(e));
+  return py::make_tuple(f.k, static_cast<int>(f.symmetry), f.mode, f.multiplicity, f.label, pts, evs);
+}
+inline spp::modes::ModeFamily mode_family(const py::tuple& t) {
+  sized(t, 7, "ModeFamily");
+  spp::modes::ModeFamily f;
+  f.k = t[0].cast<int>();
+  f.symmetry = static_cast<spp::modes::KippSymmetry>(t[1].cast<int>());
+  f.mode = t[2].cast<int>();
+  f.multiplicity = t[3].cast<int>();
+  f.label = t[4].cast<std::string>();
+  for (const py::handle p : t[5]) f.points.push_back(mode_point(p.cast<py::tuple>()));
+  for (const py::handle e : t[6]) f.events.push_back(mode_event(e.cast<py::tuple>()));
+  return f;
+}
+inline py::tuple of(const spp::modes::ModesResult& r) {
+  py::list fams;
+  for (const spp::modes::ModeFamily& f : r.families) fams.append(of(f));
+  return py::make_tuple(static_cast<int>(r.status), fams, r.linear_frequencies,
+                        py::make_tuple(r.corrector_solves, r.stalled_families, r.seconds), r.interrupted);
+}
+inline spp::modes::ModesResult modes_result(const py::tuple& t) {
+  sized(t, 5, "ModesResult");
+  spp::modes::ModesResult r;
+  r.status = static_cast<spp::modes::ModesStatus>(t[0].cast<int>());
+  for (const py::handle f : t[1]) r.families.push_back(mode_family(f.cast<py::tuple>()));
+  r.linear_frequencies = t[2].cast<Eigen::VectorXd>();
+  const py::tuple c = sized(t[3].cast<py::tuple>(), 3, "ModesResult (counts)");
+  r.corrector_solves = c[0].cast<long>();
+  r.stalled_families = c[1].cast<long>();
+  r.seconds = c[2].cast<double>();
+  r.interrupted = t[4].cast<bool>();
   return r;
 }
 

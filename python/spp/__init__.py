@@ -1,9 +1,10 @@
 """spp: periodic orbits with one lasting contact phase per period (SPPs) of vibro-impact oscillators.
 
 Same concepts and names as the C++ library: System (or System.from_json, chain, rod_with_slip, two_dof), solve,
-nearest_spp, trajectory, simulate, verify, root_map, load_result, ParametricSystem and continue_branches. Each
-function takes its options struct (SolveOptions, SimulateOptions, VerifyOptions, RootMapOptions, ContinueOptions) or
-any of its fields as keywords. Arrays are numpy; invalid input raises ValueError with the C++ message.
+nearest_spp, solution_at, trajectory, simulate, verify, root_map, load_result, ParametricSystem and
+continue_branches. Each function takes its options struct (SolveOptions, SimulateOptions, VerifyOptions,
+RootMapOptions, ContinueOptions) or any of its fields as keywords; options and results pickle. Arrays are numpy;
+invalid input raises ValueError with the C++ message.
 """
 from ._spp import __version__
 from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, ContinuationResult, ContinuationStatus,
@@ -14,6 +15,7 @@ from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, Continuati
                    modal_frequencies, nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
 from ._spp import continue_branch  # the one branch through a given SPP
 from ._spp import ModeEvent, ModeEventKind, ModeFamily, ModePoint, ModesResult, ModesStatus, modes  # k-IPP families (docs/modes.md)
+from ._spp import SolutionAt, solution_at  # the SPP at a given (t1, t2), no search
 from ._spp import monodromy  # linearised one-period map under an impact law (docs/stability.md)
 from ._spp import MultiplierCrossing, StabilityVerdict  # the verdict with its rounding bound; crossing kinds
 from . import _spp
@@ -40,9 +42,11 @@ SolveResult.to_dataframe = _frames.solve_result_frame
 VerifyResult.to_dataframe = _frames.verify_result_frame
 ContinuationResult.to_dataframe = _frames.continuation_result_frame
 Branch.to_dataframe = _frames.branch_frame
+ModesResult.to_dataframe = _frames.modes_result_frame
+ModeFamily.to_dataframe = _frames.mode_family_frame
 # a notebook's view of every result type (SolveResult has its own table)
 for _type in (VerifyResult, ContinuationResult, Branch, RootMap, SimulationResult, Solution, NearestSpp,
-              ModesResult):
+              ModesResult, ModeFamily, ModePoint, ModeEvent, SolutionAt):
     _type._repr_html_ = _frames.repr_html
 
 
@@ -87,4 +91,4 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "BranchPoint", "ContinuationResult", "continue_branch", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
            "ContinuationStatus", "BranchEventKind", "monodromy", "StabilityVerdict", "MultiplierCrossing", "modes", "ModesResult", "ModeFamily",
-           "ModePoint", "ModeEvent", "ModeEventKind", "ModesStatus", "sweep", "__version__"]
+           "ModePoint", "ModeEvent", "ModeEventKind", "ModesStatus", "sweep", "solution_at", "SolutionAt", "__version__"]

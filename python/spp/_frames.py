@@ -82,6 +82,30 @@ def continuation_result_frame(c):
     return _frame([("branch", np.int64)] + _POINT_COLUMNS, rows)
 
 
+_MODE_POINT_COLUMNS = [("energy", float), ("frequency", float), ("period", float), ("impacts", np.int64),
+                       ("admissible", bool), ("margin", float), ("multiplicity", np.int64)]
+
+
+def _mode_point_row(p):
+    return [p.energy, p.frequency, p.period, len(p.impact_times), p.admissible, p.margin, p.multiplicity]
+
+
+def mode_family_frame(f):
+    """One row per point of the family, in the order traced: energy, frequency (2 pi / period), period, impacts (k),
+    admissible, margin, multiplicity. Needs pandas."""
+    return _frame(_MODE_POINT_COLUMNS, [_mode_point_row(p) for p in f.points])
+
+
+def modes_result_frame(r):
+    """One row per point of every family: family (its index in r.families), label, k, symmetry, mode (1-based),
+    family_multiplicity, then the columns of ModeFamily.to_dataframe(). Needs pandas."""
+    columns = [("family", np.int64), ("label", object), ("k", np.int64), ("symmetry", object), ("mode", np.int64),
+               ("family_multiplicity", np.int64)] + _MODE_POINT_COLUMNS
+    rows = [[i, f.label, f.k, f.symmetry, f.mode, f.multiplicity] + _mode_point_row(p)
+            for i, f in enumerate(r.families) for p in f.points]
+    return _frame(columns, rows)
+
+
 HTML_ROWS = 20  # rows of to_dataframe() shown in a notebook cell; the rest are counted (SolveResult's own table: 20)
 
 

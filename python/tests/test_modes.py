@@ -98,3 +98,47 @@ def test_every_event_kind_reads_as_a_mode_event_kind():
     assert "grazing_continuation" in kinds
     assert {"grazing_start", "branch_point", "energy_max"} <= kinds
     assert all(isinstance(e.kind, spp.ModeEventKind) for f in r.families for e in f.events)
+# Issue 13: ModesResult, ModeFamily, ModePoint and ModeEvent printed as <spp._spp.ModesResult object at 0x...>, could
+# not be pickled (a process pool returning families failed) and had no DataFrame, unlike the other result types.
+def test_modes_results_show_themselves_pickle_and_make_frames():
+    import html
+    import pickle
+    s = spp.two_dof()
+    r = spp.modes(s, k=[1, 2], energy_max=3.0)
+    i = next(i for i, x in enumerate(r.families) if x.events)
+    f = r.families[i]
+    p, e = f.points[len(f.points) // 2], f.events[0]
+    assert repr(r) == "<spp.ModesResult " + r.brief_report()[len("spp modes: "):] + ">"
+    assert repr(f).startswith(f"<spp.ModeFamily {f.label}: k={f.k} {f.symmetry} mode={f.mode}")
+    assert f"{len(f.points)} points" in repr(f) and str(e.kind) in repr(f)
+    assert repr(p).startswith(f"<spp.ModePoint energy={p.energy:g}") and f"{len(p.impact_times)} impacts" in repr(p)
+    assert repr(e).startswith(f"<spp.ModeEvent {e.kind} at energy=")
+    for x in (r, f, p, e):
+        assert x._repr_html_().startswith("<p>" + html.escape(repr(x)) + "</p>"), type(x)
+    back = pickle.loads(pickle.dumps(r))
+    assert type(back) is type(r) and back.status == r.status and back.interrupted == r.interrupted
+    assert back.corrector_solves == r.corrector_solves and back.seconds == r.seconds
+    assert np.array_equal(back.linear_frequencies, r.linear_frequencies)
+    assert len(back.families) == len(r.families) and repr(back) == repr(r)
+    for a, b in zip(r.families, back.families):
+        assert (a.k, a.symmetry, a.mode, a.multiplicity, a.label) == (b.k, b.symmetry, b.mode, b.multiplicity, b.label)
+        assert np.array_equal(a.arrays, b.arrays)
+        events = [[(x.kind, x.detail, x.at.energy) for x in y.events] for y in (a, b)]
+        assert events[0] == events[1]
+        for x, y in zip(a.points, b.points):
+            for name in ("energy", "period", "frequency", "impact_times", "x0", "v0", "admissible", "margin",
+                         "multiplicity"):
+                assert np.array_equal(getattr(x, name), getattr(y, name)), name
+    for x in (f, p, e):
+        assert repr(pickle.loads(pickle.dumps(x))) == repr(x)
+    pd = pytest.importorskip("pandas")
+    df = r.to_dataframe()
+    assert list(df.columns) == ["family", "label", "k", "symmetry", "mode", "family_multiplicity", "energy",
+                                "frequency", "period", "impacts", "admissible", "margin", "multiplicity"]
+    assert len(df) == sum(len(x.points) for x in r.families) and df["admissible"].dtype == bool
+    rows = df[df["family"] == i]
+    assert np.array_equal(rows[["energy", "frequency", "margin"]].to_numpy(), f.arrays)
+    assert (rows["impacts"] == f.k).all() and (rows["label"] == f.label).all()
+    ff = f.to_dataframe()
+    assert list(ff.columns) == list(df.columns[6:]) and np.array_equal(ff[["energy", "frequency", "margin"]], f.arrays)
+    assert "<table" in r._repr_html_() and isinstance(ff, pd.DataFrame)

@@ -1102,3 +1102,78 @@ def test_every_result_type_has_a_notebook_view():
         assert view.startswith("<p>" + html.escape(repr(x)) + "</p>"), type(x)
         if hasattr(x, "to_dataframe") and importlib.util.find_spec("pandas"):
             assert "<table" in view, type(x)
+
+
+# Issue 13: the options could not be pickled (multiprocessing and joblib pass them to their workers). Every options
+# class pickles with every bound field, each set here to a value other than its default.
+def test_every_options_class_pickles_with_every_field():
+    def other(name, v):
+        if isinstance(v, spp.Symmetry):
+            return spp.Symmetry.point
+        if isinstance(v, bool):
+            return not v
+        if isinstance(v, int):
+            return v + 3
+        if isinstance(v, float):
+            return v * 0.5 + 0.25 if v != float("inf") else 7.5
+        if isinstance(v, list):
+            return [0.5, 1.5]
+        raise AssertionError(f"{name}: a field of type {type(v).__name__} this test does not change")
+    classes = [spp.SolveOptions, spp.SimulateOptions, spp.VerifyOptions, spp.RootMapOptions, spp.ContinueOptions]
+    assert {c.__name__ for c in classes} == {n for n in dir(spp) if n.endswith("Options")}
+    for cls in classes:
+        o = cls()
+        names = [n for n in dir(o) if not n.startswith("_") and n != "validate"]
+        assert names, cls
+        for n in names:
+            setattr(o, n, other(n, getattr(o, n)))
+        back = pickle.loads(pickle.dumps(o))
+        assert type(back) is cls
+        for n in names:
+            assert getattr(back, n) == getattr(o, n) != getattr(cls(), n), (cls.__name__, n)
+        assert repr(back) == repr(o)
+    with pytest.raises(ValueError, match='SolveOptions pickle: expected its fields only, got an unknown field "G0"'):
+        spp.SolveOptions.__new__(spp.SolveOptions).__setstate__({"G0": 1.0})  # (what unpickling does)
+
+
+def _solve_with(options):  # (a process pool's worker: module level)
+    return len(spp.solve(spp.chain(3), options).solutions)
+
+
+def test_options_reach_worker_processes():
+    import concurrent.futures
+    o = spp.SolveOptions()
+    o.t1_max, o.t2_max, o.admissible_only = 6.0, 6.0, True
+    with concurrent.futures.ProcessPoolExecutor(1) as ex:
+        assert list(ex.map(_solve_with, [o])) == [_solve_with(o)]
+
+
+# Issue 13: C++'s spp::solution_at (the SPP at a given (t1, t2), no search) was not bound.
+def test_solution_at_polishes_a_point_into_the_spp_there():
+    s, r = _chain5_result()
+    for k in (0, 3, len(r.solutions) - 1):
+        x = r.solutions[k]
+        at = spp.solution_at(s, x.t1 * (1 + 1e-5), x.t2 * (1 - 1e-5))
+        assert at.found and at.start == (x.t1 * (1 + 1e-5), x.t2 * (1 - 1e-5))
+        assert abs(at.solution.t1 - x.t1) <= 1e-9 * x.t1 and abs(at.solution.t2 - x.t2) <= 1e-9 * x.t2
+        assert at.solution.admissible == x.admissible and (at.t1, at.t2) == (at.solution.t1, at.solution.t2)
+        assert np.allclose(at.solution.x0, x.x0, rtol=1e-7, atol=1e-9 * np.abs(x.x0).max())
+        assert at.solution.stability_verdict == x.stability_verdict
+        assert repr(at) == "<spp.SolutionAt " + at.brief_report() + ">" and "SPP at (t1, t2)" in repr(at)
+        back = pickle.loads(pickle.dumps(at))
+        assert back.found and back.solution.t1 == at.solution.t1 and back.start == at.start
+    # the fields of SolveOptions as keywords, or the struct
+    assert not spp.solution_at(s, x.t1, x.t2, compute_stability=False).solution.floquet_multipliers.size
+    o = spp.SolveOptions()
+    o.compute_stability = False
+    assert not spp.solution_at(s, x.t1, x.t2, o).solution.floquet_multipliers.size
+    # far from every SPP: not found, a numerical outcome, not an error
+    far = spp.solution_at(s, 0.05, 9.0)
+    assert not far.found and far.solution is None and far.brief_report().startswith("no SPP near")
+    with pytest.raises(ValueError, match="solution_at"):
+        spp.solution_at(s, -1.0, 1.0)
+    with pytest.raises(ValueError, match='unknown option "G0"'):
+        spp.solution_at(s, 1.0, 1.0, G0=1)
+    with pytest.raises(TypeError, match="t1"):
+        spp.solution_at(s, "1", 1.0)
+    assert "solution_at(system, t1, t2)" in spp.solution_at.__doc__
