@@ -15,9 +15,10 @@ namespace spp::python {
 namespace {
 // spp::sample_orbit's samples (the same times T k / (samples - 1), the same states), computed here one by one so that
 // Ctrl-C is checked between them: every kSamplesPerCheck samples, or every one for large systems, about every 1e6
-// flops (well under a millisecond; a sample costs ~ m^2 + n m). Cut short (rows left unset) when it is pressed: the
-// caller raises KeyboardInterrupt.
-spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int samples, ProgressHook& hook) {
+// flops (well under a millisecond; a sample costs ~ m^2 + n m). Cut short when it is pressed: the samples computed
+// (the first rows) are returned, the count in `done`.
+spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int samples, ProgressHook& hook,
+                          int& done) {
   constexpr double kFlopsPerCheck = 1e6;
   constexpr double kSamplesPerCheck = 1024;
   const double per_sample = static_cast<double>(md.m()) * static_cast<double>(md.m() + md.n()) + 1.0;
@@ -25,8 +26,10 @@ spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int
   spp::OrbitSamples s{Eigen::VectorXd(samples), Eigen::VectorXd(samples), Eigen::VectorXd(samples),
                       Eigen::MatrixXd(samples, md.n()), Eigen::MatrixXd(samples, md.n())};
   const double T = orbit.period();
+  done = 0;
   for (int k = 0; k < samples; ++k) {
     if (k % every == 0 && !hook.keep_going()) break;
+    done = k + 1;
     s.t(k) = T * k / (samples - 1);
     const spp::OrbitState st = spp::orbit_state(md, orbit, s.t(k));
     s.x.row(k) = st.x.transpose();
@@ -119,29 +122,42 @@ void bind_orbit(py::module_& m) {
         }
         const int samples = whole.cast<int>();
         // Ctrl-C checked while sampling (a million samples of a large system take seconds; it was not checked at
-        // all, found by an independent attack) and after each stage: raised as KeyboardInterrupt
+        // all, found by an independent attack) and after each stage. During the sampling, the samples computed so
+        // far are returned (interrupted True, a RuntimeWarning), as solve keeps what it found; before it (the modal
+        // form, Newton) there is nothing to keep: KeyboardInterrupt.
         ProgressHook hook(py::none(), "trajectory");
         spp::SolutionAt at;
         spp::OrbitSamples os;
+        int done = 0;
+        bool before_sampling = false;
         {
           py::gil_scoped_release release;
           const spp::ModalForm md(s);
           spp::SolveOptions o;
           o.compute_return_error = false;
-          at = spp::solution_at(s, md, t1, t2, o);
-          if (at.found) os = sampled(md, at.solution.orbit, samples, hook);
+          if (hook.keep_going()) at = spp::solution_at(s, md, t1, t2, o);
+          before_sampling = !hook.keep_going();
+          if (at.found && !before_sampling) os = sampled(md, at.solution.orbit, samples, hook, done);
         }
-        hook.raise_if_interrupted();
+        if (before_sampling) hook.raise_if_interrupted();
+        hook.finish();
         if (!at.found) throw py::value_error("trajectory: " + at.brief_report());
+        const bool cut = done < samples;
+        hook.warn(cut ? "trajectory interrupted (Ctrl-C): " + std::to_string(done) + " of " + std::to_string(samples) +
+                            " samples, from t = 0 (interrupted True)"
+                      : std::string("Ctrl-C came after trajectory had finished: the samples are complete"));
         const spp::Solution& sol = at.solution;
-        return py::dict("t"_a = std::move(os.t), "x"_a = std::move(os.x), "v"_a = std::move(os.v),
-                        "gap"_a = std::move(os.gap), "force"_a = std::move(os.force), "t1"_a = sol.t1(),
-                        "t2"_a = sol.t2(), "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible());
+        return py::dict("t"_a = Eigen::VectorXd(os.t.head(done)), "x"_a = Eigen::MatrixXd(os.x.topRows(done)),
+                        "v"_a = Eigen::MatrixXd(os.v.topRows(done)), "gap"_a = Eigen::VectorXd(os.gap.head(done)),
+                        "force"_a = Eigen::VectorXd(os.force.head(done)), "t1"_a = sol.t1(), "t2"_a = sol.t2(),
+                        "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible(), "interrupted"_a = cut);
       },
       "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
       "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
       "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
-      "admissible. Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 somewhere). "
+      "admissible, and interrupted (Ctrl-C during the sampling: the samples so far, with a RuntimeWarning; before it, "
+      "KeyboardInterrupt). Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 "
+      "somewhere). "
       "Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
 }
 

@@ -125,7 +125,9 @@ void bind_simulation(py::module_& m) {
           detail::invalid(os.str());
         }
         if (o.sample_times.empty()) o.sample_times = spp::uniform_times(o.duration, samples_per_unit);
-        // Ctrl-C checked every 256 events or samples: raised as KeyboardInterrupt (a cut simulation is no result)
+        // Ctrl-C checked every 256 events or samples: the run stops there and what was simulated is returned
+        // (status interrupted, samples and events up to that time) with a RuntimeWarning, as solve keeps what it
+        // found (it raised KeyboardInterrupt, losing a long simulation)
         ProgressHook hook(py::none(), "simulate");
         o.progress = [&hook] { return hook.keep_going(); };
         spp::SimulationResult r;
@@ -133,14 +135,22 @@ void bind_simulation(py::module_& m) {
           py::gil_scoped_release release;
           r = spp::simulate(s, x0, v0, o);
         }
-        hook.raise_if_interrupted();
+        hook.finish();
+        std::ostringstream why;
+        if (r.status == spp::SimulationStatus::Interrupted)
+          why << "simulate interrupted (Ctrl-C): the result holds the samples and events up to t = " << r.end_time
+              << " of " << o.duration << " (status interrupted)";
+        else
+          why << "Ctrl-C came after simulate had finished: the result is complete";
+        hook.warn(why.str());
         return r;
       },
       "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(), "samples_per_unit"_a = 100.0,
       "options"_a = py::none(),
       "Exact event-driven simulation from (x0, v0), shapes (n,): simulate(system, x0, v0, duration, restitution=0, "
       "samples_per_unit=100), or with a SimulateOptions and any field also as a keyword (sample_times=[...] replaces "
-      "the uniform samples). Raises ValueError.");
+      "the uniform samples). Ctrl-C stops it: the samples and events so far are returned (status interrupted) with a "
+      "RuntimeWarning. Raises ValueError.");
 
   py::class_<spp::SppCheck>(m, "SppCheck")
       .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.spp.t1(); })
@@ -217,7 +227,8 @@ void bind_simulation(py::module_& m) {
           detail::invalid(
               "verify: the result was solved for another system than the one given (result.system): "
               "expected the system of the result, got another");
-        // Ctrl-C checked before each SPP and every 256 events: raised as KeyboardInterrupt
+        // Ctrl-C checked before each SPP and every 256 events: the SPPs checked before it are returned (unchecked
+        // counts the others) with a RuntimeWarning, as solve keeps what it found (it raised KeyboardInterrupt)
         ProgressHook hook(py::none(), "verify");
         o.progress = [&hook] { return hook.keep_going(); };
         spp::VerifyResult v;
@@ -225,12 +236,18 @@ void bind_simulation(py::module_& m) {
           py::gil_scoped_release release;
           v = spp::verify(s, r.solutions, o);
         }
-        hook.raise_if_interrupted();
+        hook.finish();
+        hook.warn(v.unchecked > 0 ? "verify interrupted (Ctrl-C): " + std::to_string(v.checks.size()) +
+                                        " SPP(s) checked, " + std::to_string(v.unchecked) +
+                                        " not (the result's unchecked); the counts and status are those of the "
+                                        "checked ones"
+                                  : std::string("Ctrl-C came after verify had finished: the result is complete"));
         return v;
       },
       "system"_a, "result"_a, "options"_a = py::none(),
       "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "
-      "or with a VerifyOptions and any field also as a keyword. Raises ValueError (also for a result solved for "
+      "or with a VerifyOptions and any field also as a keyword. Ctrl-C stops it: the SPPs checked so far are returned "
+      "(unchecked > 0 counts the others) with a RuntimeWarning. Raises ValueError (also for a result solved for "
       "another system than `system`).");
 }
 

@@ -80,10 +80,18 @@ def _dof_colors(n):
 def _one_period(system, solution, samples):
     """t (from contact onset), x, gap, force over one period: from the SPP's own equations (spp.trajectory), or, for a
     zero-gap SPP of paper §6.1 (g0 = 0: it exists only at one parameter value, where trajectory cannot re-solve it),
-    from the exact simulator started at its onset state x0, v0 (it has one, as a BranchPoint or Solution)."""
-    if system.g0 != 0.0:
-        return trajectory(system, solution.t1, solution.t2, samples)
-    sim = simulate(system, solution.x0, solution.v0, solution.period, 0.0, samples / solution.period)
+    from the exact simulator started at its onset state x0, v0 (it has one, as a BranchPoint or Solution). Ctrl-C:
+    KeyboardInterrupt, no figure of part of a period (trajectory and simulate return what they computed)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted run's warning: raised below instead
+        if system.g0 != 0.0:
+            tr = trajectory(system, solution.t1, solution.t2, samples)
+            if tr["interrupted"]:
+                raise KeyboardInterrupt(f"trajectory interrupted: {len(tr['t'])} of {samples} samples")
+            return tr
+        sim = simulate(system, solution.x0, solution.v0, solution.period, 0.0, samples / solution.period)
+    if sim.status == "interrupted":
+        raise KeyboardInterrupt("simulation interrupted")
     return {"t": sim.t, "x": sim.x, "gap": sim.gap, "force": sim.force}
 
 
