@@ -35,7 +35,7 @@ DEFAULT_DPI = 125
 MAX_GIF_BYTES = 2 * 1024 ** 3
 
 
-def check_options(path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto"):
+def check_options(path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto", figsize=FIGSIZE_IN):
     """Raises ValueError naming the option when an animation of these options is not possible or would not fit in
     memory; called before anything is computed or allocated."""
     path = os.fspath(path)
@@ -52,7 +52,7 @@ def check_options(path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="
         raise ValueError(f"frames x periods must be at most {MAX_FRAMES} (each frame is drawn by matplotlib), got "
                          f"{frames} x {periods} = {frames * periods}")
     if ext == ".gif":
-        frame_bytes = 4 * round(FIGSIZE_IN[0] * dpi) * round(FIGSIZE_IN[1] * dpi)
+        frame_bytes = 4 * round(figsize[0] * dpi) * round(figsize[1] * dpi)
         if frames * periods * frame_bytes > MAX_GIF_BYTES:
             raise ValueError(f"{path}: {frames * periods} frames of {frame_bytes / 2 ** 20:.3g} MiB (dpi {dpi}) are "
                              f"more than the {MAX_GIF_BYTES // 2 ** 30} GiB a GIF may hold in memory while written: "
@@ -203,10 +203,11 @@ class _Dofs:
         return [self.stems, self.tops]
 
 
-def _figure(system, spp, frames, periods, kind):
+def _figure(system, spp, frames, periods, kind, fig=None):
     """The animation's figure, its frame function and frame count: one period of the SPP from spp.plot's
     _one_period (the SPP's own equations), on the static figure's time axis [-2 t1, 2 t2] (flight before contact),
-    repeated for `periods`."""
+    repeated for `periods`. fig: a matplotlib Figure to draw into (cleared first; its size is kept); default a new
+    one of FIGSIZE_IN."""
     T, t1, t2 = spp.period, spp.t1, spp.t2
     count = frames * periods
     tr = _plot._one_period(system, spp, max(2000, 20 * frames))
@@ -221,7 +222,10 @@ def _figure(system, spp, frames, periods, kind):
     times = -2 * t1 + np.arange(count) * (T / frames)
     at = np.clip(np.searchsorted(t, times), 0, len(t) - 1)
 
-    fig = plt.figure(figsize=FIGSIZE_IN)
+    if fig is None:
+        fig = plt.figure(figsize=FIGSIZE_IN)
+    else:
+        fig.clf()
     grid = fig.add_gridspec(2, 2 if kind == "plane" else 1, height_ratios=[1.6, 1])
     if kind == "plane":
         scene = _Plane(fig.add_subplot(grid[0, 0]), system, x, force, fig.add_subplot(grid[0, 1]))
@@ -272,25 +276,68 @@ def _figure(system, spp, frames, periods, kind):
     return fig, update, count
 
 
-def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto"):
-    """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
-    (ffmpeg). frames: per period. Returns the number of frames written. Raises ValueError on bad arguments."""
-    check_options(path, frames=frames, periods=periods, fps=fps, dpi=dpi, layout=layout)
-    path = os.fspath(path)
-    ext = os.path.splitext(path)[1].lower()
+def _kind(system, layout):
     kind = layout_of(system) if layout == "auto" else layout
     if kind == "chain" and layout_of(system) != "chain":
         raise ValueError("layout 'chain' needs a diagonal M, a tridiagonal K and w on one dof")
     if kind == "plane" and np.count_nonzero(np.abs(system.w) > 1e-12) != 2:
         raise ValueError("layout 'plane' needs w on exactly two dofs")
+    return kind
 
-    fig, update, count = _figure(system, spp, frames, periods, kind)
 
-    anim = animation.FuncAnimation(fig, update, frames=count, blit=False)
+def animation_of(system, spp, frames=120, periods=1, fps=25, layout="auto", fig=None):
+    """The animation of the SPP (anything with t1, t2, period, x0, v0) as a matplotlib FuncAnimation, written to no
+    file: anim.to_jshtml() (or animation_html) shows it in Jupyter, anim.save(...) writes it. fig: a Figure to draw
+    into (cleared; its size and dpi are kept), default a new one of FIGSIZE_IN; anim._fig is it. Raises ValueError
+    on bad arguments (those of animate but the path and dpi)."""
+    check_options("animation.gif", frames=frames, periods=periods, fps=fps, layout=layout)
+    kind = _kind(system, layout)
+    fig, update, count = _figure(system, spp, frames, periods, kind, fig)
+    return animation.FuncAnimation(fig, update, frames=count, interval=1000.0 / fps, blit=False)
+
+
+class AnimationHTML(str):
+    """The HTML of an animation (a str): a Jupyter cell whose value it is shows the animation (_repr_html_)."""
+
+    def _repr_html_(self):
+        return str(self)
+
+
+def animation_html(system, spp, frames=60, periods=1, fps=25, layout="auto", fig=None, embed_limit_mb=None):
+    """The animation of the SPP as HTML with its frames embedded and play controls (matplotlib's to_jshtml): the
+    value of a Jupyter cell shows it inline, whatever the backend. Each frame is a PNG at the figure's dpi (default
+    figure: 640 x 480 at dpi 100), about 40-80 kB, so the default 60 frames are a few MB in the notebook.
+    embed_limit_mb: matplotlib's rcParams["animation.embed_limit"] (default 20 MB) for this call; past it matplotlib
+    drops frames with a warning. The figure is closed afterwards (unless given as fig), so that the cell does not
+    also show its last frame. Returns an AnimationHTML (a str with _repr_html_)."""
+    import matplotlib
+    own = fig is None
+    anim = animation_of(system, spp, frames=frames, periods=periods, fps=fps, layout=layout, fig=fig)
+    try:
+        limit = {} if embed_limit_mb is None else {"animation.embed_limit": float(embed_limit_mb)}
+        with matplotlib.rc_context(limit):
+            return AnimationHTML(anim.to_jshtml(fps=fps))
+    finally:
+        if own:
+            plt.close(anim._fig)
+
+
+def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto", fig=None):
+    """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
+    (ffmpeg). frames: per period. fig: a Figure to draw into (cleared; its size is kept; not closed), default a new
+    one of FIGSIZE_IN (closed when written). Returns the number of frames written. Raises ValueError on bad
+    arguments. In a notebook, animation_html shows it inline instead."""
+    figsize = FIGSIZE_IN if fig is None else tuple(fig.get_size_inches())
+    check_options(path, frames=frames, periods=periods, fps=fps, dpi=dpi, layout=layout, figsize=figsize)
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    own = fig is None
+    anim = animation_of(system, spp, frames=frames, periods=periods, fps=fps, layout=layout, fig=fig)
     writer = animation.PillowWriter(fps=fps) if ext == ".gif" else animation.FFMpegWriter(fps=fps)
     try:
         with atomic_path(path) as tmp:
             anim.save(tmp, writer=writer, dpi=dpi)
     finally:
-        plt.close(fig)
-    return count
+        if own:
+            plt.close(anim._fig)
+    return frames * periods

@@ -1,8 +1,9 @@
 """Figures like the paper's: the root map of a window (Fig. 4), an SPP over one period (Figs. 5 and 7) and the
 frequency-energy plot of the SPPs found. Each function draws into the axes it is given (ax=, or axes= for the two
-panels of spp_figure) or into a new figure, returns the Figure and, given a path, saves it (the suffix picks PNG, SVG
-or PDF). Importing this module leaves matplotlib's backend alone, so figures show inline in Jupyter and with
-plt.show(); `python3 -m spp plot` (headless) selects Agg itself."""
+panels of spp_figure), into the figure it is given (fig=, cleared first: its size is the caller's) or into a new
+figure, returns the Figure and, given a path, saves it (the suffix picks PNG, SVG or PDF). Animations: spp.animate
+(animation_html shows one inline in Jupyter). Importing this module leaves matplotlib's backend alone, so figures
+show inline in Jupyter and with plt.show(); `python3 -m spp plot` (headless) selects Agg itself."""
 import warnings
 import numpy as np
 
@@ -43,10 +44,16 @@ def _window(window):
     return dict(zip(keys, values))
 
 
-def _axes(ax, figsize):
-    """The axes to draw into, their figure, and whether the figure is this call's own (then laid out here)."""
+def _axes(ax, figsize, fig=None):
+    """The axes to draw into, their figure, and whether the figure is this call's own (then laid out here): ax when
+    given; else one axes filling fig (a Figure, e.g. plt.figure(figsize=...), cleared first); else a new figure."""
     if ax is not None:
+        if fig is not None and ax.figure is not fig:
+            raise ValueError("ax and fig: expected ax in fig (or only one of them), got axes of another figure")
         return ax.figure, ax, False
+    if fig is not None:
+        fig.clf()
+        return fig, fig.add_subplot(), True
     fig, ax = plt.subplots(figsize=figsize)
     return fig, ax, True
 
@@ -95,25 +102,32 @@ def _one_period(system, solution, samples):
     return {"t": sim.t, "x": sim.x, "gap": sim.gap, "force": sim.force}
 
 
-def spp_figure(system, solution, samples=2000, path=None, axes=None):
+def spp_figure(system, solution, samples=2000, path=None, axes=None, fig=None):
     """Top: gap (left axis) and normal contact force (right axis, its own scale) over one period, contact phase
     shaded, symmetry axes at -t1 (mid-flight) and t2 (mid-contact); bottom: every position (coloured by dof index
     past 10 dofs, with a colour bar instead of a legend). Time origin at contact onset: flight on [-2 t1, 0], contact
     on [0, 2 t2]. The curves come from spp.trajectory (the SPP's own equations, exact flows), so an inadmissible
     SPP is drawn as the potential orbit it is (gap or force negative somewhere, marked), as spp trajectory writes it;
     a zero-gap SPP (g0 = 0, paper §6.1, e.g. a gap closure of continue_branches) from the exact simulator.
-    axes: (top, bottom) to draw into; default a new figure."""
+    axes: (top, bottom) to draw into; fig: a Figure to draw both panels into (cleared first, e.g. plt.figure(
+    figsize=(8, 5)) or a subfigure); default a new figure. Returns the figure."""
     T, t1, t2 = solution.period, solution.t1, solution.t2
     tr = _one_period(system, solution, samples)
     t = np.where(tr["t"] > 2 * t2, tr["t"] - T, tr["t"])  # flight after the contact is the flight before it
     order = np.argsort(t, kind="stable")
     t, x, gap, force = t[order], tr["x"][order], tr["gap"][order], tr["force"][order]
-    if axes is None:
+    own = axes is None
+    if axes is not None:
+        top, bottom = axes
+        if fig is not None and top.figure is not fig:
+            raise ValueError("axes and fig: expected axes in fig (or only one of them), got axes of another figure")
+        fig = top.figure
+    elif fig is not None:
+        fig.clf()
+        top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [1, 1.3]})
+    else:
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(COLUMN_WIDTH_IN * 2, 4.6),
                                           gridspec_kw={"height_ratios": [1, 1.3]})
-    else:
-        top, bottom = axes
-        fig = top.figure
     for ax in (top, bottom):
         ax.axvspan(0.0, 2 * t2, color="0.88", lw=0, label="contact phase" if ax is top else None)
         ax.axvline(-t1, color="0.4", ls=":", lw=1)
@@ -149,7 +163,7 @@ def spp_figure(system, solution, samples=2000, path=None, axes=None):
     bottom.set_xlim(-2 * t1, 2 * t2)
     for ax, tick, name in ((top, -t1, "$-t_1$"), (top, t2, "$t_2$")):
         ax.annotate(name, (tick, 1.0), xycoords=("data", "axes fraction"), ha="center", va="bottom", fontsize=8)
-    if axes is None:
+    if own:
         fig.tight_layout()
     if n > 10:  # after the layout, under the positions (their width, so the time axes stay aligned)
         sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(1, n))
@@ -255,7 +269,7 @@ def _shade_uncertified(ax, regions, w, unsearched_cells=None):
 
 
 def root_map_figure(system, solutions, window, points=400, path=None, ax=None, progress=None, uncertified=None,
-                    numbers=True, computed=None):
+                    numbers=True, computed=None, fig=None):
     """Root map of the window like the paper's Fig. 4: zero curves of eq. (5.1a) (det H = 0, solid) and of eq. (5.1b)
     (det P^T H P = 0 on z-perp, dashed) from spp.root_map, pole lines faint, and the SPPs (solutions of a result:
     anything with t1, t2, admissible) marked, potential open, admissible filled, each numbered with its index in
@@ -263,7 +277,8 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     dashed curve touches a solid one. window: dict with t1_min, t1_max, t2_min, t2_max (or a SolveResult, or that
     4-tuple); uncertified: the regions of a result (SolveResult.uncertified: dicts with t1_lo, t1_hi, t2_lo, t2_hi,
     cause), shaded with their cause in the legend (default: those of `window` when it is a SolveResult), e.g. the part
-    an interrupted search did not reach; points: grid points per axis; ax: axes to draw into (default a new figure);
+    an interrupted search did not reach; points: grid points per axis; ax: axes to draw into, or fig: a Figure to
+    fill (cleared first); default a new figure;
     progress: spp.root_map's (True: a line on stderr, a callable: called with RootMapProgress; Ctrl-C raises
     KeyboardInterrupt, no figure drawn). The legend is outside the axes (below), so that it covers nothing.
     computed: a RootMap of this window already computed (spp.root_map(system, ...)), drawn as it is (points and
@@ -287,7 +302,7 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
                           t2_points=points, progress=progress)
     if rm.unsampled_cells:  # Ctrl-C: no figure of part of the window
         raise KeyboardInterrupt(f"root map interrupted: {rm.unsampled_cells} cell(s) not sampled")
-    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5))
+    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.5, COLUMN_WIDTH_IN * 1.5), fig)
     for p in rm.flight_poles:
         ax.axvline(p, color="0.8", lw=0.5, zorder=0)
     for p in rm.contact_poles:
@@ -320,11 +335,12 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     return _save(fig, path)
 
 
-def frequency_energy_figure(solutions, path=None, ax=None):
+def frequency_energy_figure(solutions, path=None, ax=None, fig=None):
     """Frequency 2 pi / T against energy of SPPs (solutions of a result: anything with period, energy,
-    admissible); admissible ones filled. ax: axes to draw into (default a new figure)."""
+    admissible); admissible ones filled. ax: axes to draw into, or fig: a Figure to fill (cleared first); default a
+    new figure."""
     sols = list(solutions)
-    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN, 2.8))
+    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN, 2.8), fig)
     _frequency_energy_spps(ax, sols, "transversally stable (Floquet)")
     # Below the axes, as the root map's: inside them "best" still covered chain5's SPP #0 (E = 20, f = 0.956).
     ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
@@ -334,14 +350,15 @@ def frequency_energy_figure(solutions, path=None, ax=None):
     return _save(fig, path)
 
 
-def multipliers_figure(solutions, path=None, ax=None):
+def multipliers_figure(solutions, path=None, ax=None, fig=None):
     """Floquet multipliers (docs/stability.md) of the admissible SPPs in the complex plane, with the unit circle:
     one colour per SPP, its index in `solutions` (the result's solution index: the # of README's and docs/stability.md's
     tables for an admissible-only solve) and spectral radius in the legend; filled markers for stable SPPs, open for
     the others (their verdict, unstable / undecided / neutral, in the legend). The two structural multipliers 1 and the two zeros are drawn too. solutions: Solution objects
-    (with floquet_multipliers); ax: axes to draw into (default a new figure)."""
+    (with floquet_multipliers); ax: axes to draw into, or fig: a Figure to fill (cleared first); default a new
+    figure."""
     sols = [(k, s) for k, s in enumerate(solutions) if s.admissible and len(s.floquet_multipliers)]
-    fig, ax, own = _axes(ax, (1.7 * COLUMN_WIDTH_IN, 1.1 * COLUMN_WIDTH_IN))
+    fig, ax, own = _axes(ax, (1.7 * COLUMN_WIDTH_IN, 1.1 * COLUMN_WIDTH_IN), fig)
     th = np.linspace(0.0, 2 * np.pi, 400)
     ax.plot(np.cos(th), np.sin(th), color="0.5", lw=0.8, gid="unit_circle")
     for i, (k, s) in enumerate(sols):
@@ -362,12 +379,12 @@ def multipliers_figure(solutions, path=None, ax=None):
     return _save(fig, path)
 
 
-def modes_figure(result, solutions=(), path=None, ax=None, admissible_spps_only=True):
+def modes_figure(result, solutions=(), path=None, ax=None, admissible_spps_only=True, fig=None):
     """Frequency-energy plot of the nonsmooth modes (docs/modes.md): the backbone of every k-IPP family of a
     spp.modes() result (genuine families solid, coloured by k, gid "k<k>"; repetitions of a shorter orbit thin grey
     dashes, gid "repetition"), the linear frequencies omega_j as dotted lines (gid "linear"), and the SPPs of
     `solutions` (solve() solutions or result candidates) as markers, a ring around the transversally stable ones."""
-    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.4, 3.2))
+    fig, ax, own = _axes(ax, (COLUMN_WIDTH_IN * 1.4, 3.2), fig)
     ks = sorted({f.k for f in result.families})
     colors = {k: f"C{i % 10}" for i, k in enumerate(ks)}
     labelled = set()

@@ -134,3 +134,26 @@ def test_default_frames_are_800_by_600_and_dof_ticks_are_whole(tmp_path):
     ticks = [t for t in ax.get_xticks() if 0.3 <= t <= 20.7]
     assert ticks and all(float(t).is_integer() for t in ticks), ticks
     plt.close(fig)
+
+
+# Issue 13: an animation could only be written to a file; in Jupyter it is shown inline from animation_html
+# (matplotlib's to_jshtml, frames embedded), drawn into a given figure when fig= is passed, as animate() now takes.
+def test_animation_shows_inline_and_draws_into_a_given_figure(tmp_path):
+    import matplotlib.pyplot as plt
+    system = spp.chain(5)
+    sol = first_admissible(system, 12, 12)
+    before = set(plt.get_fignums())
+    html = animate.animation_html(system, sol, frames=6)
+    assert html._repr_html_() == html and "<script" in html and html.count("data:image/png;base64") == 6
+    assert set(plt.get_fignums()) == before  # its own figure closed: the cell shows the animation only
+    anim = animate.animation_of(system, sol, frames=5, periods=2)
+    assert anim.to_jshtml().count("data:image/png;base64") == 10
+    plt.close(anim._fig)
+    fig = plt.figure(figsize=(5, 4), dpi=40)
+    assert animate.animate(system, sol, tmp_path / "a.gif", frames=4, dpi=40, fig=fig) == 4
+    with Image.open(tmp_path / "a.gif") as im:
+        assert im.size == (200, 160) and im.n_frames == 4
+    assert plt.fignum_exists(fig.number) and len(fig.axes) >= 3  # the caller's figure, drawn into, kept open
+    with pytest.raises(ValueError, match="frames must be an integer"):
+        animate.animation_html(system, sol, frames=1)
+    plt.close("all")

@@ -4,6 +4,7 @@ import os
 import matplotlib
 import matplotlib.image as mpimg
 import numpy as np
+import pytest
 
 import spp
 from spp import plot
@@ -329,3 +330,28 @@ def test_frequency_energy_legend_covers_no_spp(tmp_path):
     inside = [k for k, (u, v) in enumerate(pts) if box.x0 <= u <= box.x1 and box.y0 <= v <= box.y1]
     assert inside == []
     assert box.x0 >= 0 and box.y0 >= 0 and box.x1 <= fig.bbox.x1  # and on the figure, not cut off
+
+
+# Issue 13: spp_figure, which makes two axes, could be given its axes but not a figure; no function took fig=.
+# Every figure function now fills a Figure it is given (cleared first, its size kept) and returns it.
+def test_every_figure_function_fills_a_given_figure():
+    import matplotlib.pyplot as plt
+    s, r = result()
+    sol = [x for x in r.solutions if x.admissible][0]
+    fig = plt.figure(figsize=(9, 5))
+    fig.add_subplot().plot([0, 1])  # what was there is cleared
+    assert plot.spp_figure(s, sol, fig=fig) is fig
+    assert len(fig.axes) == 3 and tuple(fig.get_size_inches()) == (9, 5)  # gap, positions, the force's twin
+    assert fig.axes[0].lines[2].get_label().startswith("gap")
+    m = spp.modes(spp.two_dof(), k=1, energy_max=2.0)
+    for draw in (lambda f: plot.frequency_energy_figure(r.solutions, fig=f),
+                 lambda f: plot.multipliers_figure(r.solutions, fig=f),
+                 lambda f: plot.modes_figure(m, r.solutions, fig=f),
+                 lambda f: plot.root_map_figure(s, r.solutions, (0, 3, 0, 3), points=40, fig=f)):
+        fig = plt.figure(figsize=(4, 3))
+        old = fig.add_subplot()
+        assert draw(fig) is fig and len(fig.axes) == 1 and fig.axes[0] is not old
+    other = plt.figure()
+    with pytest.raises(ValueError, match="expected ax in fig"):
+        plot.frequency_energy_figure(r.solutions, ax=other.add_subplot(), fig=plt.figure())
+    plt.close("all")
