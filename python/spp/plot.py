@@ -316,11 +316,6 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     shaded = _shade_uncertified(ax, uncertified, w, stats.get("unsearched_cells") if isinstance(stats, dict) else None)
     solutions = list(solutions)
     _scatter_spps(ax, solutions, lambda s: s.t1, lambda s: s.t2)
-    if numbers:  # the table's index beside each marker (gid "spp_number")
-        for k, sol in enumerate(solutions):
-            if w["t1_min"] <= sol.t1 <= w["t1_max"] and w["t2_min"] <= sol.t2 <= w["t2_max"]:
-                ax.annotate(str(k), (sol.t1, sol.t2), xytext=(2.5, 2.5), textcoords="offset points", fontsize=6,
-                            color="C3" if sol.admissible else "0.3", zorder=4, gid="spp_number")
     ax.set_xlim(w["t1_min"], w["t1_max"])
     ax.set_ylim(w["t2_min"], w["t2_max"])
     ax.set_xlabel("flight half-duration $t_1$ (-)")
@@ -332,7 +327,61 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
     if own:
         fig.tight_layout()
+    if numbers:  # the table's index beside each marker (gid "spp_number"), placed once the axes have their size
+        inside = [(k, sol) for k, sol in enumerate(solutions)
+                  if w["t1_min"] <= sol.t1 <= w["t1_max"] and w["t2_min"] <= sol.t2 <= w["t2_max"]]
+        _place_numbers(ax, inside)
     return _save(fig, path)
+
+
+NUMBER_FONTSIZE = 6  # the SPP numbers of the root map (5 was unreadable at the column width)
+
+
+def _place_numbers(ax, numbered):
+    """Each SPP's number (numbered: (k, solution) pairs) beside its marker, at the first of 16 offsets (up right,
+    down right, up left, down left, above, below, right, left, then the same twice as far) where its box overlaps no
+    number placed before, no other marker and stays inside the axes; where none does, at the offset of least
+    overlap. (Every number up right of its marker overlapped its neighbours' on the paper's chain: 12/14, 35/40,
+    46/48; found by an attack on issue 13.) Display units, so this is done after the figure's layout."""
+    fig = ax.figure
+    texts = [ax.annotate(str(k), (sol.t1, sol.t2), xytext=(2.5, 2.5), textcoords="offset points", ha="left",
+                         va="bottom", fontsize=NUMBER_FONTSIZE, color="C3" if sol.admissible else "0.3", zorder=4,
+                         gid="spp_number") for k, sol in numbered]
+    renderer = getattr(fig.canvas, "get_renderer", lambda: None)()
+    if renderer is None or not texts:  # (a backend without a renderer to measure text: the offsets above)
+        return
+    px = fig.dpi / 72.0  # display pixels per point
+    frame = ax.get_window_extent(renderer)
+    centres = ax.transData.transform([(sol.t1, sol.t2) for _, sol in numbered])
+    mark = 2.5 * px  # half the marker's size (s=16: 4 pt across), with a margin
+    markers = np.column_stack([centres - mark, centres + mark])  # x0, y0, x1, y1
+    placed = []
+
+    def overlap(a, b):
+        return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
+
+    for i, (t, (x, y)) in enumerate(zip(texts, centres)):
+        ext = t.get_window_extent(renderer)
+        wd, ht = ext.width, ext.height
+        gap = 2.5 * px
+        best = None
+        for far in (1.0, 2.0):
+            g = gap * far
+            for dx, dy in ((g, g), (g, -g - ht), (-g - wd, g), (-g - wd, -g - ht), (-wd / 2, g + mark),
+                           (-wd / 2, -g - mark - ht), (g + mark, -ht / 2), (-g - mark - wd, -ht / 2)):
+                box = (x + dx, y + dy, x + dx + wd, y + dy + ht)
+                cost = sum(overlap(box, b) for b in placed)
+                cost += sum(overlap(box, m) for j, m in enumerate(markers) if j != i)
+                if box[0] < frame.x0 or box[2] > frame.x1 or box[1] < frame.y0 or box[3] > frame.y1:
+                    cost += 0.5 * wd * ht  # outside the axes: clipped, or over the labels
+                if best is None or cost < best[0]:
+                    best = (cost, dx, dy, box)
+                if cost == 0:
+                    break
+            if best[0] == 0:
+                break
+        t.xyann = (best[1] / px, best[2] / px)
+        placed.append(best[3])
 
 
 def frequency_energy_figure(solutions, path=None, ax=None, fig=None):

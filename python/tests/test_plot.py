@@ -355,3 +355,26 @@ def test_every_figure_function_fills_a_given_figure():
     with pytest.raises(ValueError, match="expected ax in fig"):
         plot.frequency_energy_figure(r.solutions, ax=other.add_subplot(), fig=plt.figure())
     plt.close("all")
+
+
+# Issue 13: the root map's SPP numbers, each up right of its marker, overlapped on the paper's chain (12/14, 35/40,
+# 46/48 in (0, 12]^2). Each is now placed where it overlaps no other number and no other marker.
+def test_root_map_numbers_do_not_overlap_each_other_or_other_markers():
+    import itertools
+    s, r = result()
+    fig = plot.root_map_figure(s, r.solutions, r, points=60)
+    ax = fig.axes[0]
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    numbers = [t for t in ax.texts if t.get_gid() == "spp_number"]
+    assert len(numbers) == len(r.solutions)
+    boxes = [t.get_window_extent(renderer) for t in numbers]
+    assert not [(a.get_text(), b.get_text()) for (a, x), (b, y) in itertools.combinations(zip(numbers, boxes), 2)
+                if x.overlaps(y)]
+    centres = ax.transData.transform([(x.t1, x.t2) for x in r.solutions])
+    for k, box in enumerate(boxes):
+        others = [c for j, c in enumerate(centres) if j != k]
+        assert not any(box.x0 < cx < box.x1 and box.y0 < cy < box.y1 for cx, cy in others), k
+    frame = ax.get_window_extent(renderer)
+    assert all(frame.x0 <= b.x0 and b.x1 <= frame.x1 and frame.y0 <= b.y0 and b.y1 <= frame.y1 for b in boxes)
+    matplotlib.pyplot.close(fig)
