@@ -8,6 +8,8 @@ builder) would be fetched from it into the isolated environment. Written here fo
 config_settings (pip: -C key=value):
   build-dir  CMake build directory (default: a temporary one for wheels, <source>/build-python for editable installs;
              give a persistent one to make repeated installs incremental)
+  jobs       parallel compile jobs (default: the environment's CMAKE_BUILD_PARALLEL_LEVEL, else the number of cores
+             this process may run on; Ninja's own default, cores + 2, overloaded a shared machine)
 """
 import base64
 import hashlib
@@ -43,12 +45,30 @@ def _metadata():
             "License: BSD-3-Clause\nRequires-Python: >=3.9\nRequires-Dist: numpy\n")
 
 
-def _cmake_build(build_dir):
-    """Configures and builds the _spp extension for this interpreter; returns the package directory it fills."""
+def _jobs(config_settings):
+    """Compile jobs: config setting `jobs`, else CMAKE_BUILD_PARALLEL_LEVEL, else the cores this process may use.
+    Raises ValueError naming where a value that is not a positive integer came from."""
+    for where, value in (("config setting jobs", (config_settings or {}).get("jobs")),
+                         ("CMAKE_BUILD_PARALLEL_LEVEL", os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or None)):
+        if value is None:
+            continue
+        if not (isinstance(value, str) and value.strip().isdigit() and int(value) >= 1):
+            raise ValueError(f"spp build backend: {where}: expected a positive integer, got {value!r}")
+        return int(value)
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # (not Linux)
+        return os.cpu_count() or 1
+
+
+def _cmake_build(build_dir, config_settings=None):
+    """Configures and builds the _spp extension for this interpreter with _jobs(config_settings) compile jobs;
+    returns the package directory it fills."""
     build_dir = pathlib.Path(build_dir)
     configure = ["cmake", "-S", str(ROOT), "-B", str(build_dir), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
                  "-DSPP_BUILD_TESTS=OFF", "-DSPP_BUILD_BENCH=OFF", f"-DPython_EXECUTABLE={sys.executable}"]
-    for cmd in (configure, ["cmake", "--build", str(build_dir), "--target", "_spp"]):
+    build = ["cmake", "--build", str(build_dir), "--target", "_spp", "--parallel", str(_jobs(config_settings))]
+    for cmd in (configure, build):
         print("spp build backend:", " ".join(cmd), file=sys.stderr, flush=True)
         subprocess.run(cmd, check=True, stdout=sys.stderr)
     return build_dir / "python" / NAME
@@ -124,7 +144,7 @@ def get_requires_for_build_editable(config_settings=None):
 def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
     build_dir = (config_settings or {}).get("build-dir")
     with tempfile.TemporaryDirectory(prefix="spp-wheel-") as tmp:
-        pkg = _cmake_build(build_dir or tmp)
+        pkg = _cmake_build(build_dir or tmp, config_settings)
         files = {f"{NAME}/{p.name}": p.read_bytes() for p in sorted(pkg.iterdir())
                  if p.is_file() and (p.suffix in (".py", ".so") or p.name.startswith("_spp"))}
         if not any(n.startswith(f"{NAME}/_spp") for n in files):
@@ -136,5 +156,5 @@ def build_editable(wheel_directory, config_settings=None, metadata_directory=Non
     """A wheel holding one .pth that puts the CMake build's python/ directory on sys.path: the package then runs
     from the build tree (after editing a .py file or the C++ sources, `cmake --build build-python --target _spp`)."""
     build_dir = pathlib.Path((config_settings or {}).get("build-dir") or ROOT / "build-python").resolve()
-    pkg = _cmake_build(build_dir)
+    pkg = _cmake_build(build_dir, config_settings)
     return _write_wheel(wheel_directory, {f"__editable__.{NAME}.pth": f"{pkg.parent}\n".encode()})

@@ -39,3 +39,26 @@ def test_pip_install_into_a_venv(tmp_path):
     assert status.lower().endswith("success")
     run([str(pip), "uninstall", "-y", "spp"])
     assert not list((venv / "lib").glob("python3*/site-packages/spp"))
+
+
+# Issue 13: `pip install .` compiled with Ninja's default, cores + 2 jobs (4 on 2 cores), and did not finish in 25 min
+# on a loaded machine, with no way to ask for fewer. The backend now runs `cmake --build --parallel N`: N from the
+# config setting jobs (pip -C jobs=N), else CMAKE_BUILD_PARALLEL_LEVEL, else the cores the process may use.
+def test_build_jobs_come_from_the_setting_the_environment_or_the_cores(monkeypatch, tmp_path):
+    monkeypatch.syspath_prepend(str(ROOT / "python" / "build_backend"))
+    import spp_build
+    commands = []
+    monkeypatch.setattr(spp_build.subprocess, "run", lambda cmd, **kw: commands.append(cmd))
+    monkeypatch.delenv("CMAKE_BUILD_PARALLEL_LEVEL", raising=False)
+    spp_build._cmake_build(tmp_path)
+    assert commands[-1][-2:] == ["--parallel", str(len(os.sched_getaffinity(0)))], commands
+    monkeypatch.setenv("CMAKE_BUILD_PARALLEL_LEVEL", "3")
+    spp_build._cmake_build(tmp_path)
+    assert commands[-1][-2:] == ["--parallel", "3"]
+    spp_build._cmake_build(tmp_path, {"jobs": "1"})
+    assert commands[-1][-2:] == ["--parallel", "1"]
+    with pytest.raises(ValueError, match="config setting jobs: expected a positive integer, got '0'"):
+        spp_build._cmake_build(tmp_path, {"jobs": "0"})
+    monkeypatch.setenv("CMAKE_BUILD_PARALLEL_LEVEL", "many")
+    with pytest.raises(ValueError, match="CMAKE_BUILD_PARALLEL_LEVEL: expected a positive integer, got 'many'"):
+        spp_build._cmake_build(tmp_path)
