@@ -350,7 +350,8 @@ inline py::tuple of(const spp::modes::ModesResult& r) {
   py::list fams;
   for (const spp::modes::ModeFamily& f : r.families) fams.append(of(f));
   return py::make_tuple(static_cast<int>(r.status), fams, r.linear_frequencies,
-                        py::make_tuple(r.corrector_solves, r.stalled_families, r.seconds), r.interrupted);
+                        py::make_tuple(r.corrector_solves, r.stalled_families, r.seconds, r.inadmissible_stretches),
+                        r.interrupted);
 }
 inline spp::modes::ModesResult modes_result(const py::tuple& t) {
   sized(t, 5, "ModesResult");
@@ -358,10 +359,11 @@ inline spp::modes::ModesResult modes_result(const py::tuple& t) {
   r.status = static_cast<spp::modes::ModesStatus>(t[0].cast<int>());
   for (const py::handle f : t[1]) r.families.push_back(mode_family(f.cast<py::tuple>()));
   r.linear_frequencies = t[2].cast<Eigen::VectorXd>();
-  const py::tuple c = sized(t[3].cast<py::tuple>(), 3, "ModesResult (counts)");
+  const py::tuple c = sized(t[3].cast<py::tuple>(), 4, "ModesResult (counts)");
   r.corrector_solves = c[0].cast<long>();
   r.stalled_families = c[1].cast<long>();
   r.seconds = c[2].cast<double>();
+  r.inadmissible_stretches = c[3].cast<long>();
   r.interrupted = t[4].cast<bool>();
   return r;
 }

@@ -98,6 +98,8 @@ def test_every_event_kind_reads_as_a_mode_event_kind():
     assert "grazing_continuation" in kinds
     assert {"grazing_start", "branch_point", "energy_max"} <= kinds
     assert all(isinstance(e.kind, spp.ModeEventKind) for f in r.families for e in f.events)
+
+
 # Issue 13: ModesResult, ModeFamily, ModePoint and ModeEvent printed as <spp._spp.ModesResult object at 0x...>, could
 # not be pickled (a process pool returning families failed) and had no DataFrame, unlike the other result types.
 def test_modes_results_show_themselves_pickle_and_make_frames():
