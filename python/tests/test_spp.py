@@ -1180,3 +1180,19 @@ def test_solution_at_polishes_a_point_into_the_spp_there():
     with pytest.raises(TypeError, match="t1"):
         spp.solution_at(s, "1", 1.0)
     assert "solution_at(system, t1, t2)" in spp.solution_at.__doc__
+# Issue 11, found by an independent attack: a message holding a byte that is not UTF-8 (a Latin-1 system file, \xff in
+# a Matrix Market line) became an empty ValueError(): file and field lost. The byte is shown escaped, file named.
+def test_a_message_with_bytes_that_are_not_utf8_keeps_its_file_and_reason(tmp_path):
+    latin1 = tmp_path / "latin1.json"
+    latin1.write_bytes('{"name": "chaîne", "M": [[1]], "K": [[1]], "w": [1], "g0": 1}'.encode("latin-1"))
+    with pytest.raises(ValueError) as e:
+        spp.System.from_json(str(latin1))
+    assert str(latin1) in str(e.value) and "malformed JSON" in str(e.value) and "\\xee" in str(e.value)
+    (tmp_path / "ff.mtx").write_bytes(b"%%MatrixMarket matrix coordinate real general\n1 1 1\n1 1 1\xff\n")
+    mm = tmp_path / "mm.json"
+    mm.write_text('{"M": {"matrix_market": "ff.mtx"}, "K": [[1]], "w": [1], "g0": 1}')
+    with pytest.raises(ValueError, match=r"ff.mtx:3: bad entry \"1 1 1\\xff\""):
+        spp.System.from_json(str(mm))
+    # C1 controls are refused in names like C0 ones
+    with pytest.raises(ValueError, match=r"^system: name: expected printable text, got the control character U\+009B"):
+        spp.System(np.eye(1), np.eye(1), [1.0], 1.0, "a\x9b")

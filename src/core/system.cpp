@@ -1,6 +1,8 @@
 #include "spp/core/system.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -10,6 +12,7 @@
 #include "spp/detail/invalid.hpp"
 #include "spp/detail/out_of_memory.hpp"
 #include "spp/detail/symmetric_eigen.hpp"
+#include "spp/detail/utf8.hpp"
 
 namespace spp {
 namespace {
@@ -33,9 +36,10 @@ Eigen::MatrixXd check_spd(const Eigen::MatrixXd& A, const char* field) {
   if (asym > kSymmetryTolerance * scale) {
     Eigen::Index i = 0, j = 0;
     (A - A.transpose()).cwiseAbs().maxCoeff(&i, &j);
-    std::ostringstream os;
+    std::ostringstream os;  // (17 digits: "K[1][0] = -1 but K[0][1] = -1" hid the difference; an attack)
     os << "system: " << field << " must be symmetric (relative tolerance " << kSymmetryTolerance << "), got " << field
-       << "[" << i << "][" << j << "] = " << A(i, j) << " but " << field << "[" << j << "][" << i << "] = " << A(j, i);
+       << "[" << i << "][" << j << "] = " << std::setprecision(17) << A(i, j) << " but " << field << "[" << j << "]["
+       << i << "] = " << A(j, i);
     detail::invalid(os.str());
   }
   // (halved before the sum: A + A^T overflowed to inf for entries above 8.99e307, and masses of 1e308 were reported
@@ -75,11 +79,28 @@ void check_text(const std::string& text, const std::string& where, std::size_t m
   if (text.size() > max_bytes)
     detail::invalid(where + ": expected at most " + std::to_string(max_bytes) + " bytes, got " +
                     std::to_string(text.size()) + " (" + kind + ")");
-  for (std::size_t i = 0; i < text.size(); ++i) {
+  // UTF-8 only (JSON holds nothing else: a name of Latin-1 bytes was built, then no file could be written), and no
+  // control character, C0 nor C1 (U+0080 to U+009F: U+009B was accepted where U+001B was refused; found by an
+  // independent attack)
+  for (std::size_t i = 0; i < text.size();) {
     const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t len = detail::utf8_sequence(text, i);
+    if (len == 0) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned>(c));
+      detail::invalid(where + ": expected UTF-8 text, got the byte " + byte + " at byte " + std::to_string(i) +
+                      ", which starts no UTF-8 character (Latin-1 text?)");
+    }
     if ((c < 0x20 && !(line_breaks && (c == '\t' || c == '\n' || c == '\r'))) || c == 0x7f)
       detail::invalid(where + ": expected printable text, got the control character " +
                       std::to_string(static_cast<int>(c)) + " at byte " + std::to_string(i));
+    if (detail::utf8_c1_control(text, i, len)) {
+      char code[16];
+      std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(static_cast<unsigned char>(text[i + 1])));
+      detail::invalid(where + ": expected printable text, got the control character " + code + " at byte " +
+                      std::to_string(i));
+    }
+    i += len;
   }
 }
 

@@ -62,7 +62,13 @@ bool read_line(std::istream& in, std::string& line, const std::string& path, int
   line.clear();
   std::streambuf* sb = in.rdbuf();
   for (;;) {
-    const int c = sb->sbumpc();
+    int c = 0;
+    try {
+      c = sb->sbumpc();
+    } catch (const std::exception& e) {  // (a read error: /proc/self/mem gave libstdc++'s bare filebuf message)
+      invalid("cannot read Matrix Market file \"" + shorten(path, io::kQuotedPathChars) + "\" at line " +
+              std::to_string(lineno) + ": " + shorten(e.what(), 200) + ": expected a readable file");
+    }
     if (c == std::char_traits<char>::eof()) {
       in.setstate(std::ios::eofbit);
       return !line.empty();

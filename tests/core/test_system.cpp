@@ -71,6 +71,14 @@ TEST(System, RejectsNonSymmetricAndIndefinite) {
   expect_error([] { System(I2(), Eigen::MatrixXd::Zero(2, 2), w2(), 1); }, "K must be positive definite");
 }
 
+// Found by an independent attack (issue 11): the entries were printed with 6 digits, "K[1][0] = -1 but K[0][1] = -1",
+// which hid the difference the check refused.
+TEST(System, AsymmetryIsShownWithEveryDigit) {
+  Eigen::MatrixXd K = K2();
+  K(0, 1) = -1.0000001;
+  expect_error([&] { System(I2(), K, w2(), 1); }, "K[1][0] = -1 but K[0][1] = -1.0000001000000001");
+}
+
 TEST(System, RejectsZeroContactDirection) {
   expect_error([] { System(I2(), K2(), Eigen::Vector2d(0, 0), 1); }, "w must be non-zero");
 }

@@ -649,10 +649,73 @@ TEST(Io, NulByteInsideAMatrixMarketLineIsShownEscapedNamingFileAndLine) {
   const fs::path d = tmpdir();
   write(d / "nul.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\0junk\n2 2 1\n"s);
   expect_load_refused(R"({"M": {"matrix_market": "nul.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
-                      "nul.mtx:3: bad entry \"1 1 1\\0junk\" (expected row col value");
+                      "nul.mtx:3: bad entry \"1 1 1\\x00junk\" (expected row col value");
   write(d / "nul1.mtx", "%%MatrixMarket matrix coord\0inate real general\n2 2 2\n1 1 1\n2 2 1\n"s);
   expect_load_refused(R"({"M": {"matrix_market": "nul1.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
-                      "nul1.mtx:1: expected format coordinate or array, got \"coord\\0inate\"");
+                      "nul1.mtx:1: expected format coordinate or array, got \"coord\\x00inate\"");
+}
+
+// Found by an independent attack (issue 11): a byte that is not UTF-8 (a Latin-1 file, \xff in a Matrix Market line)
+// was quoted raw, and Python, which decodes messages as UTF-8, raised an empty ValueError(). Escaped as \xNN, the
+// message valid UTF-8; a character that is UTF-8 (é) is kept whole, never cut in two; C1 controls escaped like C0.
+TEST(Io, BytesThatAreNotUtf8AreShownEscapedSoThatEveryMessageIsUtf8) {
+  using namespace std::string_literals;
+  const fs::path d = tmpdir();
+  write(d / "ff.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\xff\n2 2 1\n"s);
+  expect_load_refused(R"({"M": {"matrix_market": "ff.mtx"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "ff.mtx:3: bad entry \"1 1 1\\xff\"");
+  // a system file in Latin-1: "name": "chaîne" with î as the one byte 0xee
+  expect_load_refused(
+      "{\"name\": \"cha\xee"
+      "ne\", \"M\": [[1]], \"K\": [[1]], \"w\": [1], \"g0\": 1}"s,
+      "\\xee");
+  try {
+    write(d / "latin1.json",
+          "{\"name\": \"cha\xee"
+          "ne\", \"M\": [[1]], \"K\": [[1]], \"w\": [1], \"g0\": 1}"s);
+    load_system((d / "latin1.json").string());
+    ADD_FAILURE() << "a Latin-1 file was read";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("latin1.json: malformed JSON"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\xee'), std::string::npos) << m;  // (the raw byte)
+  }
+  // the quoting itself: UTF-8 kept, never cut inside a character; other bytes and C0/C1 controls escaped
+  EXPECT_EQ(io::shorten("caf\xc3\xa9 \xff\xc3 \x00"s + "1 \xc2\x9b!"), "caf\xc3\xa9 \\xff\\xc3 \\x001 \\xc2\\x9b!");
+  EXPECT_EQ(io::shorten("\xc3\xa9\xc3\xa9\xc3\xa9", 2), "\xc3\xa9\xc3\xa9...");
+  EXPECT_EQ(io::shorten("\xed\xa0\x80\xe0\x80\x80"),
+            "\\xed\\xa0\\x80\\xe0\\x80\\x80");  // (a surrogate, an overlong form)
+  // a name is UTF-8 without controls, C1 as C0 (U+009B was accepted where U+001B was refused)
+  const Eigen::MatrixXd one = Eigen::MatrixXd::Identity(1, 1);
+  const Eigen::VectorXd w1 = Eigen::VectorXd::Ones(1);
+  for (const auto& [name, why] :
+       {std::pair<std::string, std::string>{"a\xc2\x9b", "control character U+009B at byte 1"},
+        {"cha\xee"
+         "ne",
+         "expected UTF-8 text, got the byte 0xee at byte 3"},
+        {"a\x1b", "control character 27 at byte 1"}}) {
+    try {
+      System(one, one, w1, 1.0, name);
+      ADD_FAILURE() << "accepted the name " << io::shorten(name);
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("system: name: expected "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(System(one, one, w1, 1.0,
+                   "cha\xc3\xae"
+                   "ne \xe2\x82\xac")
+                .name(),
+            "cha\xc3\xae"
+            "ne \xe2\x82\xac");
+}
+
+// Found by an independent attack (issue 11): "matrix_market": "/proc/self/mem" (a regular file that cannot be read)
+// gave libstdc++'s bare "basic_filebuf::underflow error reading the file", naming no file.
+TEST(Io, MatrixMarketFileThatCannotBeReadIsNamedWithTheReason) {
+  if (!fs::exists("/proc/self/mem")) GTEST_SKIP() << "no /proc/self/mem here";
+  expect_load_refused(R"({"M": {"matrix_market": "/proc/self/mem"}, "K": [[2,-1],[-1,1]], "w": [0,-1], "g0": 1})",
+                      "cannot read Matrix Market file \"/proc/self/mem\" at line 1: ");
 }
 
 TEST(Io, MatrixMarketIndicesAndCountsAreWholeNumbersAsWritten) {

@@ -15,7 +15,8 @@ namespace spp {
 inline constexpr std::size_t kMaxNameBytes = 4096;
 
 /// Refuses (std::invalid_argument "<where>: expected ..., got ...") a name longer than kMaxNameBytes or holding a
-/// control character (a NUL cut the name short in every table and figure title). O(length).
+/// control character, C0 or C1 (a NUL cut the name short in every table and figure title), or bytes that are not
+/// UTF-8 (no JSON file can hold them). O(length).
 void check_name(const std::string& name, const std::string& where);
 
 /// The same for a text of at most max_bytes whose tabs and line breaks are kept when line_breaks (a description);
