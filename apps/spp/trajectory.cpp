@@ -39,7 +39,9 @@ Solution file_solution(const System& sys, const ModalForm& md, const Solution& s
     std::ostringstream os;
     os.precision(3);
     os << which << " is no SPP of its system: its x0, v0 differ from those of the SPP at its (t1, t2) = ("
-       << stored.t1() << ", " << stored.t2() << ") by " << moved / scale << " (relative)";
+       << stored.t1() << ", " << stored.t2() << ") by " << moved / scale
+       << " (relative): the file was edited, or its SPP is another system's (load_result reads a file as written; "
+          "trajectory and verify check its SPPs against the system)";
     detail::invalid(os.str());
   }
   if (s.admissible() != stored.admissible())

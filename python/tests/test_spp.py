@@ -594,7 +594,7 @@ def test_solve_result_from_json_refuses_unknown_fields_and_contradictions(tmp_pa
     good = json.loads(r.to_json(s))
     cases = [(("solutions", 0, "foo"), 1, r'field "solutions"\[0\]: unknown field "foo"'),
              (("solutions", 0, "period"), 123.0, r'field "solutions"\[0\]: field "period" must be 2 \(t1 \+ t2\)'),
-             (("window", "t1_max"), -5.0, r'field "window": expected 0 <= t1_min < t1_max'),
+             (("window", "t1_max"), -5.0, r'field "window": expected 0 < t1_min < t1_max'),
              (("stats", "roots"), -1, r'field "stats": field "roots" must be a count, a whole number from 0 to')]
     for keys, value, message in cases:
         j = json.loads(json.dumps(good))

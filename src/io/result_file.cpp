@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/json.hpp"
+#include "search/tolerances.hpp"
 
 namespace spp::io {
 
@@ -108,6 +109,12 @@ void check_solution_values(const json& o, const std::string& at) {
   for (const char* k : {"energy", "residual"})  // (a sum of squares, a norm)
     if (o.contains(k) && o.at(k).is_number() && o.at(k).get<double>() < 0.0)
       invalid(at + ": field \"" + k + "\": expected a number >= 0, got " + describe(o.at(k)));
+  // the solver lists an SPP only once Newton converged (polish: residual below search::kConvergedResidual); a
+  // residual of 0.5 was read as an SPP (found by an independent attack)
+  if (o.contains("residual") && o.at("residual").is_number() &&
+      !(o.at("residual").get<double>() < search::kConvergedResidual))
+    invalid(at + ": field \"residual\": expected a number below " + num(search::kConvergedResidual) +
+            " (the residual below which the solver accepts a root as an SPP), got " + describe(o.at("residual")));
   for (const char* k : {"x0", "v0"}) {
     if (!o.contains(k) || !o.at(k).is_array()) continue;  // (the reader names a missing or malformed vector)
     const json& v = o.at(k);
@@ -272,10 +279,24 @@ void check_consistency(const json& r, const std::string& where) {
       if (r.at("stats").contains(k) && r.at("stats").at(k).is_number_integer() && r.at("stats").at(k).get<long>() < 1)
         invalid(where + ": field \"stats\".\"" + k + "\" is " + std::to_string(r.at("stats").at(k).get<long>()) +
                 " beside " + std::to_string(sols.size()) + " SPP(s) in \"solutions\": expected at least 1");
-  if (has_stats && r.at("stats").contains("roots") && r.at("stats").at("roots").is_number_integer() &&
-      r.at("stats").at("roots").get<long>() < static_cast<long>(sols.size()))
-    invalid(where + ": field \"stats\".\"roots\" must count at least the " + std::to_string(sols.size()) +
-            " SPP(s) listed in \"solutions\", got " + std::to_string(r.at("stats").at("roots").get<long>()));
+  if (has_stats && r.at("stats").contains("roots") && r.at("stats").at("roots").is_number_integer()) {
+    const long roots = r.at("stats").at("roots").get<long>(), listed = static_cast<long>(sols.size());
+    if (roots < listed)
+      invalid(where + ": field \"stats\".\"roots\" must count at least the " + std::to_string(listed) +
+              " SPP(s) listed in \"solutions\", got " + std::to_string(roots));
+    // solve() lists every root it counts (finalize), unless admissible_only drops the non-admissible ones: a file
+    // that lists a non-admissible SPP was solved without it and lists them all. One SPP deleted from such a file
+    // read as a complete "success" (found by an independent attack).
+    const auto inadmissible = std::find_if(sols.begin(), sols.end(), [](const json& o) {
+      return o.is_object() && o.contains("admissible") && o.at("admissible") == false;
+    });
+    if (roots != listed && inadmissible != sols.end())
+      invalid(where + ": field \"stats\".\"roots\" is " + std::to_string(roots) + " but field \"solutions\" lists " +
+              std::to_string(listed) + " SPP(s), among them the non-admissible \"solutions\"[" +
+              std::to_string(inadmissible - sols.begin()) +
+              "]: a solve that keeps non-admissible SPPs (admissible_only off) lists every root it counts: expected " +
+              std::to_string(roots) + " SPP(s) listed, got " + std::to_string(listed) + " (an SPP deleted?)");
+  }
   if (!r.contains("window") || !r.at("window").is_object()) return;
   const Reader win{r.at("window"), where + ": field \"window\""};
   // (a root within rounding of an edge is kept on it: search::kOnEdgeUlps)
@@ -328,9 +349,10 @@ void check_result(const json& r, const std::string& where) {
     const Reader win{r.at("window"), at};
     for (const auto& [lo_key, hi_key] : {std::make_pair("t1_min", "t1_max"), std::make_pair("t2_min", "t2_max")}) {
       const double lo = win.number(lo_key), hi = win.number(hi_key);
-      if (!(lo >= 0.0 && lo < hi && std::isfinite(hi)))
-        invalid(at + ": expected 0 <= " + lo_key + " < " + hi_key + " < inf, got " + lo_key + " = " + num(lo) +
-                " and " + hi_key + " = " + num(hi));
+      // (solve() reports the lower ends it searched from, filled in and raised to the axis bands: never 0)
+      if (!(lo > 0.0 && lo < hi && std::isfinite(hi)))
+        invalid(at + ": expected 0 < " + lo_key + " < " + hi_key + " < inf, got " + lo_key + " = " + num(lo) + " and " +
+                hi_key + " = " + num(hi));
     }
   }
   if (r.contains("stats")) {

@@ -387,7 +387,7 @@ TEST(Io, ResultWithUnknownFieldsOrContradictionsIsRefused) {
   expect_refused(j, "unknown field \"extra\" (expected: system, window");
   j = good;
   j["window"]["t1_max"] = -5;
-  expect_refused(j, "field \"window\": expected 0 <= t1_min < t1_max < inf, got t1_min = ");
+  expect_refused(j, "field \"window\": expected 0 < t1_min < t1_max < inf, got t1_min = ");
   j = good;
   j["window"]["t3"] = 1;
   expect_refused(j, "field \"window\": unknown field \"t3\"");
@@ -457,8 +457,12 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   j = good;
   j["stats"]["roots"] = 1;
   expect_refused(j, "field \"stats\".\"roots\" must count at least the ");
-  j = good;
-  j["stats"]["roots"] = 1000;  // (an admissible_only solve lists fewer SPPs than it found)
+  j = good;  // an admissible_only solve lists fewer SPPs than it found, and no non-admissible one
+  j["stats"]["roots"] = 1000;
+  io::json kept = io::json::array();
+  for (const io::json& o : good["solutions"])
+    if (o["admissible"] == true) kept.push_back(o);
+  j["solutions"] = kept;
   EXPECT_EQ(refusal(j), "(accepted)");
   j = good;
   j["window"]["t1_max"] = 0.5 * good["solutions"][0]["t1"].get<double>() + 0.5 * good["window"]["t1_min"].get<double>();
@@ -535,6 +539,56 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
     j = good;
     j["stats"][count] = 0;
     expect_refused(j, std::string("field \"stats\".\"") + count + "\" is 0 beside ");
+  }
+}
+
+// Found by an independent attack (issue 11): a full result (non-admissible SPPs kept) with one SPP deleted still read
+// as "success" (stats.roots 18, 17 listed: only roots >= listed was checked); so did a residual of 0.5, which the
+// solver never accepts, and a window whose lower end is 0, which the solver never reports.
+TEST(Io, ResultWithAnSppDeletedOrWhatTheSolverCannotWriteIsRefused) {
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  ASSERT_EQ(good["status"], "success");
+  const size_t listed = good["solutions"].size();
+  ASSERT_EQ(good["stats"]["roots"].get<size_t>(), listed);
+  auto refusal = [](const io::json& j) -> std::string {
+    try {
+      parse_result_file(j.dump(), "r.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(refusal(good), "(accepted)");
+  // an SPP deleted, a non-admissible one left: every SPP of the window was listed (admissible_only off)
+  size_t inadmissible = listed, admissible = listed;
+  for (size_t i = 0; i < listed; ++i) (good["solutions"][i]["admissible"] == true ? admissible : inadmissible) = i;
+  ASSERT_LT(inadmissible, listed);
+  ASSERT_LT(admissible, listed);
+  io::json j = good;
+  j["solutions"].erase(admissible);
+  const std::string deleted = refusal(j);
+  EXPECT_NE(deleted.find("r.json: field \"stats\".\"roots\" is " + std::to_string(listed) +
+                         " but field \"solutions\" lists " + std::to_string(listed - 1) + " SPP(s)"),
+            std::string::npos)
+      << deleted;
+  EXPECT_NE(deleted.find("expected " + std::to_string(listed) + " SPP(s) listed, got " + std::to_string(listed - 1)),
+            std::string::npos)
+      << deleted;
+  // a residual the solver would not accept; the one it wrote is accepted
+  j = good;
+  j["solutions"][0]["residual"] = 0.5;
+  EXPECT_NE(refusal(j).find("r.json: field \"solutions\"[0]: field \"residual\": expected a number below 1e-10"),
+            std::string::npos)
+      << refusal(j);
+  // a window's lower end at 0 (the solver searches from > 0 and writes where it started)
+  for (const char* end : {"t1_min", "t2_min"}) {
+    j = good;
+    j["window"][end] = 0.0;
+    EXPECT_NE(refusal(j).find(std::string("r.json: field \"window\": expected 0 < ") + end), std::string::npos)
+        << refusal(j);
   }
 }
 

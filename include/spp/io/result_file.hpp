@@ -24,7 +24,12 @@ struct ResultFile {
   SolveResult result;
 };
 /// The system and the SolveResult that result_json wrote, every field (tested: write, read, compare), the file read
-/// and parsed once. Throws std::invalid_argument naming the file and the field it cannot read.
+/// and parsed once. Throws std::invalid_argument naming the file and the field it cannot read, and the fields that
+/// contradict each other (a "success" beside unproved work, fewer SPPs listed than roots counted when non-admissible
+/// ones are kept, a residual the solver would not accept, a period other than 2 (t1 + t2), a window end <= 0, ...).
+/// A pure reader, linear in the file: it does not check an SPP against the system's equations (x0, v0 edited by
+/// 1e-3 read as written), which needs the modal form (O(n^3), ~1 s at n = 1000, on every read). spp verify (state
+/// mismatch, exit 3), verify() and spp trajectory --result recompute x0, v0 from (t1, t2) and refuse an edited file.
 ResultFile load_result_file(const std::string& path);
 /// The same from the file's text (`where` names it in errors): what Python's pickling reads back.
 ResultFile parse_result_file(const std::string& text, const std::string& where);
