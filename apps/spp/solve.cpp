@@ -191,6 +191,20 @@ int run(SolveArgs& a) {
     // an estimate is what --dry-run asks for, also of a window past --max-cells (it was refused like a solve; found by
     // an attack on issue 13): counted up to kDryRunMaxCells, whose pole lines (1e5 per axis) are listed in moments
     constexpr long kDryRunMaxCells = 10'000'000'000;
+    // past that, said as such (counted without listing, O(n)): the refusal named max_cells = 1e10, an option the
+    // user never set (found by an independent attack)
+    const double lines1 = count_tangent_poles(modal.omega(), a.options.t1_min, a.options.t1_max);
+    const double lines2 = count_tangent_poles(modal.d(), a.options.t2_min, a.options.t2_max);
+    if ((lines1 + 1.0) * (lines2 + 1.0) > static_cast<double>(kDryRunMaxCells)) {
+      std::ostringstream os;
+      os << std::setprecision(3) << "solve --dry-run: the window (" << a.options.t1_min << ", " << a.options.t1_max
+         << "] x (" << a.options.t2_min << ", " << a.options.t2_max << "] holds about "
+         << (lines1 + 1.0) * (lines2 + 1.0) << " cells (" << lines1 << " x " << lines2
+         << " pole lines): beyond what --dry-run can estimate (it plans "
+         << "at most " << static_cast<double>(kDryRunMaxCells) << " cells; spp solve refuses more than --max-cells "
+         << a.options.max_cells << "): expected a narrower window";
+      detail::invalid(os.str());
+    }
     SolveOptions counted = a.options;
     counted.max_cells = std::max(counted.max_cells, kDryRunMaxCells);
     const WindowEstimate e = estimate_window(sys, modal, counted);

@@ -640,6 +640,17 @@ TEST(Cli, DryRunCountsTheWorkAndWritesNothing) {
   EXPECT_EQ(big.code, 0) << big.out;
   EXPECT_NE(big.out.find("460 cells"), std::string::npos) << big.out;
   EXPECT_NE(big.out.find("the window exceeds --max-cells 100: spp solve refuses it"), std::string::npos) << big.out;
+  // a window past what the dry run plans (1e10 cells) is said as such, with its window and count: the refusal named
+  // "max_cells = 1e+10", an option the user never set (found by an independent attack, issue 11)
+  const CliRun huge = run("solve " + kChain + " --t1-max 1e6 --t2-max 1e6 --dry-run");
+  EXPECT_EQ(huge.code, 1) << huge.out;
+  EXPECT_NE(huge.out.find("solve --dry-run: the window (0, 1e+06] x (0, 1e+06] holds about "), std::string::npos)
+      << huge.out;
+  EXPECT_NE(huge.out.find("beyond what --dry-run can estimate (it plans at most 1e+10 cells; spp solve refuses more "
+                          "than --max-cells 10000000)"),
+            std::string::npos)
+      << huge.out;
+  EXPECT_EQ(huge.out.find("max_cells = "), std::string::npos) << huge.out;
 }
 
 TEST(Cli, TrajectoryFromAResultNeedsNoSystemFile) {
