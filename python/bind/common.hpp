@@ -215,34 +215,39 @@ inline std::string shown_value(const py::handle& v) {
   std::string r = py::repr(v).cast<std::string>();
   return r.size() > 60 ? r.substr(0, 60) + "..." : r;
 }
-[[noreturn]] inline void wrong_field_type(const std::string& label, const py::object& default_value,
-                                          const py::handle& v) {
-  throw py::type_error(label + " must be " + std::string(py::str(py::type::of(default_value).attr("__name__"))) +
-                       " like its default " + py::repr(default_value).cast<std::string>() + ", got " + typed_repr(v));
+[[noreturn]] inline void wrong_type(const std::string& label, const std::string& expected, const py::handle& v) {
+  throw py::type_error(label + " must be " + expected + ", got " + typed_repr(v));
 }
 // Largest whole float taken as a count (max_cells=1e7, as the CLI and --help write counts): every integer up to it is
 // exact in a double (2^53 ~ 9.007e15).
 inline constexpr double kMaxWholeFloatCount = 9e15;
 
+// One scalar (a Python number or bool, a numpy scalar, or a 0-d numpy array: its item) as T, `label` named when it
+// cannot be: a wrong type is a TypeError (`expected` says what was), a number out of T's range a ValueError. The one
+// conversion of scalar Options fields (field_value) and scalar arguments (scalar_argument): spp.System(M, K, w,
+// 10**400) was pybind11's "incompatible function arguments", spp.modes(s, 1, 10**400) a RuntimeError and
+// o.threads = np.array(2.0) numpy's own TypeError (found by independent attacks).
 template <class T>
-T field_value(const py::handle& v, const std::string& label, const T& default_value) {
-  const py::object def = py::cast(default_value);
+T scalar_value(const py::handle& given, const std::string& label, const std::string& expected) {
+  const py::module_ np = py::module_::import("numpy");
+  py::object v = py::reinterpret_borrow<py::object>(given);
+  if (py::isinstance(v, np.attr("ndarray")) && v.attr("ndim").cast<int>() == 0) v = v.attr("item")();
   if constexpr (std::is_same_v<T, bool>) {
-    if (!is_python_bool(v)) wrong_field_type(label, def, v);
+    if (!is_python_bool(v)) wrong_type(label, expected, given);
     return PyObject_IsTrue(v.ptr()) != 0;
   } else if constexpr (std::is_integral_v<T>) {
     static_assert(std::is_signed_v<T>, "an unsigned Options field needs its own range check");
-    if (is_python_bool(v)) wrong_field_type(label, def, v);  // (True is no count)
+    if (is_python_bool(v)) wrong_type(label, expected, given);  // (True is no count)
     py::object whole;
-    if (PyFloat_Check(v.ptr()) || py::isinstance(v, py::module_::import("numpy").attr("floating"))) {
+    if (PyFloat_Check(v.ptr()) || py::isinstance(v, np.attr("floating"))) {
       const double d = py::cast<double>(v);
-      if (!(std::floor(d) == d && std::abs(d) <= kMaxWholeFloatCount)) wrong_field_type(label, def, v);
+      if (!(std::floor(d) == d && std::abs(d) <= kMaxWholeFloatCount)) wrong_type(label, expected, given);
       whole = py::int_(static_cast<long long>(d));
     } else if (PyIndex_Check(v.ptr())) {  // int, numpy integers
       whole = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()));
       if (!whole) throw py::error_already_set();
     } else {
-      wrong_field_type(label, def, v);
+      wrong_type(label, expected, given);
     }
     int overflow = 0;
     const long long x = PyLong_AsLongLongAndOverflow(whole.ptr(), &overflow);
@@ -252,21 +257,48 @@ T field_value(const py::handle& v, const std::string& label, const T& default_va
                       "] (the range of the C++ field; validate() then checks its own bounds), got " +
                       shown_value(whole));
     return static_cast<T>(x);
-  } else if constexpr (std::is_same_v<T, double>) {
-    const py::module_ np = py::module_::import("numpy");
+  } else {
+    static_assert(std::is_same_v<T, double>, "a scalar of another type needs its conversion");
     const bool number = PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr()) || py::isinstance(v, np.attr("floating")) ||
                         py::isinstance(v, np.attr("integer"));
-    if (is_python_bool(v) || !number) wrong_field_type(label, def, v);
+    if (is_python_bool(v) || !number) wrong_type(label, expected, given);
     const double d = PyFloat_AsDouble(v.ptr());
     if (d == -1.0 && PyErr_Occurred()) {  // an int beyond the doubles (10**400): OverflowError
       PyErr_Clear();
       detail::invalid(label + ": expected a number within the range of doubles (magnitude at most " + "1.8e308), got " +
-                      shown_value(v));
+                      shown_value(given));
     }
     return d;
-  } else {
-    static_assert(std::is_same_v<T, std::vector<double>>, "an Options field of another type needs its conversion");
+  }
+}
+
+// A scalar argument of a bound function, through scalar_value; `label` as spp._args names the arguments pybind11
+// converts ("spp.System: argument g0"), and so is the type expected ("must be float, got str '1'").
+template <class T>
+T scalar_argument(const py::handle& v, const std::string& label) {
+  if constexpr (std::is_same_v<T, bool>)
+    return scalar_value<T>(v, label, "bool");
+  else if constexpr (std::is_integral_v<T>)
+    return scalar_value<T>(v, label, "int");
+  else
+    return scalar_value<T>(v, label, "float");
+}
+// The same for an optional one: None is nullopt.
+template <class T>
+std::optional<T> optional_argument(const py::handle& v, const std::string& label) {
+  if (v.is_none()) return std::nullopt;
+  return scalar_argument<T>(v, label);
+}
+
+template <class T>
+T field_value(const py::handle& v, const std::string& label, const T& default_value) {
+  if constexpr (std::is_same_v<T, std::vector<double>>) {
     return vector_of_numbers(v, label);
+  } else {
+    const py::object def = py::cast(default_value);
+    return scalar_value<T>(v, label,
+                           std::string(py::str(py::type::of(def).attr("__name__"))) + " like its default " +
+                               py::repr(def).cast<std::string>());
   }
 }
 

@@ -157,8 +157,10 @@ void bind_continuation(py::module_& m) {
       .def("__repr__", [](const py::object& o) { return fields_repr(o, "ContinueOptions"); });
   m.def(
       "continue_branches",
-      [](const spp::ParametricSystem& s, std::optional<double> t1_max, std::optional<double> t2_max,
-         const py::object& options, const py::kwargs& fields) {
+      [](const spp::ParametricSystem& s, const py::object& t1_arg, const py::object& t2_arg, const py::object& options,
+         const py::kwargs& fields) {
+        const auto t1_max = optional_argument<double>(t1_arg, "spp.continue_branches: argument t1_max");
+        const auto t2_max = optional_argument<double>(t2_arg, "spp.continue_branches: argument t2_max");
         spp::ContinueOptions o =
             with_fields<spp::ContinueOptions>(options, fields, "continue_branches", "ContinueOptions");
         if (t1_max) o.t1_max = *t1_max;
@@ -171,8 +173,11 @@ void bind_continuation(py::module_& m) {
       "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Raises ValueError.");
   m.def(
       "continue_branch",
-      [](const spp::ParametricSystem& s, double mu, const spp::Solution& solution, std::optional<double> t1_max,
-         std::optional<double> t2_max, const py::object& options, const py::kwargs& fields) {
+      [](const spp::ParametricSystem& s, const py::object& mu_arg, const spp::Solution& solution,
+         const py::object& t1_arg, const py::object& t2_arg, const py::object& options, const py::kwargs& fields) {
+        const double mu = scalar_argument<double>(mu_arg, "spp.continue_branch: argument mu");
+        const auto t1_max = optional_argument<double>(t1_arg, "spp.continue_branch: argument t1_max");
+        const auto t2_max = optional_argument<double>(t2_arg, "spp.continue_branch: argument t2_max");
         spp::ContinueOptions o =
             with_fields<spp::ContinueOptions>(options, fields, "continue_branch", "ContinueOptions");
         if (t1_max) o.t1_max = *t1_max;

@@ -13,12 +13,13 @@ namespace spp::python {
 
 void bind_core(py::module_& m) {
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
-      .def(py::init(
-               [](const py::object& M, const py::object& K, const py::object& w, double g0, const std::string& name) {
-                 // (python/bind/common.hpp: numpy, lists, scipy.sparse; w as (n,), (1, n) or (n, 1))
-                 return spp::System(matrix_input(M, "System: M"), matrix_input(K, "System: K"),
-                                    vector_input(w, "System: w"), g0, name);
-               }),
+      .def(py::init([](const py::object& M, const py::object& K, const py::object& w, const py::object& g0,
+                       const std::string& name) {
+             // (python/bind/common.hpp: numpy, lists, scipy.sparse; w as (n,), (1, n) or (n, 1))
+             return spp::System(matrix_input(M, "System: M"), matrix_input(K, "System: K"),
+                                vector_input(w, "System: w"), scalar_argument<double>(g0, "spp.System: argument g0"),
+                                name);
+           }),
            "M"_a, "K"_a, "w"_a, "g0"_a, "name"_a = "",
            "M, K: (n, n) symmetric positive definite (numpy, lists or scipy.sparse); w: non-zero, (n,), (1, n) or "
            "(n, 1); g0: gap at rest. Raises ValueError.")
@@ -49,7 +50,9 @@ void bind_core(py::module_& m) {
 
   m.def(
       "chain",
-      [](int n, const py::object& masses, const py::object& stiffnesses, int contact_dof, bool upper, double g0) {
+      [](int n, const py::object& masses, const py::object& stiffnesses, int contact_dof, bool upper,
+         const py::object& g0_arg) {
+        const double g0 = scalar_argument<double>(g0_arg, "spp.chain: argument g0");
         // checked here, 0-based as the docstring says (the C++ message is the CLI's, 1-based: "in [1, 5], got 6"
         // for contact_dof=5 confused; found by an independent attack)
         if (n >= 1 && (contact_dof < -1 || contact_dof >= n))
@@ -63,23 +66,39 @@ void bind_core(py::module_& m) {
       "n"_a, "masses"_a = py::cast(std::vector<double>{1.0}), "stiffnesses"_a = py::cast(std::vector<double>{1.0}),
       "contact_dof"_a = -1, "upper"_a = true, "g0"_a = 1.0,
       "Spring-mass chain fixed at one end (paper §5.2); contact_dof is 0-based (default: the last).");
-  m.def("rod_with_slip", &spp::rod_with_slip, "a"_a = -0.25, "b"_a = 0.25,
-        "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b.");
-  m.def("two_dof", &spp::two_dof, "m1"_a = 1.0, "m2"_a = 1.0, "k1"_a = 1.0, "k2"_a = 1.0, "g0"_a = 1.0,
-        "2-dof system of paper §2.3.");
+  m.def(
+      "rod_with_slip",
+      [](const py::object& a, const py::object& b) {
+        return spp::rod_with_slip(scalar_argument<double>(a, "spp.rod_with_slip: argument a"),
+                                  scalar_argument<double>(b, "spp.rod_with_slip: argument b"));
+      },
+      "a"_a = -0.25, "b"_a = 0.25, "4-dof finite-element rod with slip (paper §5.3), obstacle y = a x + b.");
+  m.def(
+      "two_dof",
+      [](const py::object& m1, const py::object& m2, const py::object& k1, const py::object& k2, const py::object& g0) {
+        return spp::two_dof(scalar_argument<double>(m1, "spp.two_dof: argument m1"),
+                            scalar_argument<double>(m2, "spp.two_dof: argument m2"),
+                            scalar_argument<double>(k1, "spp.two_dof: argument k1"),
+                            scalar_argument<double>(k2, "spp.two_dof: argument k2"),
+                            scalar_argument<double>(g0, "spp.two_dof: argument g0"));
+      },
+      "m1"_a = 1.0, "m2"_a = 1.0, "k1"_a = 1.0, "k2"_a = 1.0, "g0"_a = 1.0, "2-dof system of paper §2.3.");
 
   py::class_<spp::ParametricSystem>(m, "ParametricSystem",
                                     "M(mu) = M_constant + mu M_mu, K(mu) likewise, w(mu) likewise, g0 fixed")
       .def(py::init([](const py::object& M0, const py::object& M1, const py::object& K0, const py::object& K1,
-                       const py::object& w0, const py::object& w1, double g0, const std::string& name, double lo,
-                       double hi, const std::string& label) {
+                       const py::object& w0, const py::object& w1, const py::object& g0, const std::string& name,
+                       const py::object& lo, const py::object& hi, const std::string& label) {
              // the same conversion as System's (scipy.sparse, lists, w as a row or column): ParametricSystem refused
              // what System accepts (found by an independent attack); an empty mu part: independent of mu
              const std::string p = "ParametricSystem: ";
              return spp::ParametricSystem(matrix_input(M0, p + "M_constant"), matrix_input(M1, p + "M_mu", true),
                                           matrix_input(K0, p + "K_constant"), matrix_input(K1, p + "K_mu", true),
-                                          vector_input(w0, p + "w_constant"), vector_input(w1, p + "w_mu", true), g0,
-                                          {name, lo, hi}, label);
+                                          vector_input(w0, p + "w_constant"), vector_input(w1, p + "w_mu", true),
+                                          scalar_argument<double>(g0, "spp.ParametricSystem: argument g0"),
+                                          {name, scalar_argument<double>(lo, "spp.ParametricSystem: argument min"),
+                                           scalar_argument<double>(hi, "spp.ParametricSystem: argument max")},
+                                          label);
            }),
            "M_constant"_a, "M_mu"_a, "K_constant"_a, "K_mu"_a, "w_constant"_a, "w_mu"_a, "g0"_a, "parameter"_a, "min"_a,
            "max"_a, "name"_a = "",

@@ -40,15 +40,6 @@ std::vector<int> k_values(const py::object& k) {
   return out;
 }
 
-// A real number argument: int or float (numpy's too), not a bool, a string or None.
-double number(const char* name, const py::object& v) {
-  const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
-  const bool real = py::isinstance(v, py::module_::import("numbers").attr("Real"));
-  if (is_bool || !real)
-    throw py::type_error(std::string("modes: ") + name + ": expected a number, got " + typed_repr(v));
-  return v.cast<double>();
-}
-
 }  // namespace
 
 void bind_modes(py::module_& m) {
@@ -144,12 +135,13 @@ void bind_modes(py::module_& m) {
       });
   m.def(
       "modes",
-      [](const spp::System& s, const py::object& k, const py::object& energy_max, double max_step, bool branch_points) {
+      [](const spp::System& s, const py::object& k, const py::object& energy_max, const py::object& max_step,
+         const py::object& branch_points) {
         md::ModesOptions o;
         o.k_values = k_values(k);
-        o.energy_max = number("energy_max", energy_max);
-        o.max_step = max_step;
-        o.branch_points = branch_points;
+        o.energy_max = scalar_argument<double>(energy_max, "spp.modes: argument energy_max");
+        o.max_step = scalar_argument<double>(max_step, "spp.modes: argument max_step");
+        o.branch_points = scalar_argument<bool>(branch_points, "spp.modes: argument branch_points");
         o.validate();
         // Ctrl-C checked before each family point: stopped, the families traced so far are returned (status
         // incomplete, interrupted) with a RuntimeWarning, as solve does

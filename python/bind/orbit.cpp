@@ -99,7 +99,9 @@ void bind_orbit(py::module_& m) {
 
   m.def(
       "trajectory",
-      [](const spp::System& s, double t1, double t2, const py::object& samples_arg) {
+      [](const spp::System& s, const py::object& t1_arg, const py::object& t2_arg, const py::object& samples_arg) {
+        const double t1 = scalar_argument<double>(t1_arg, "spp.trajectory: argument t1"),
+                     t2 = scalar_argument<double>(t2_arg, "spp.trajectory: argument t2");
         // taken as any Python integer (an int parameter made samples=10**12 a signature mismatch, "incompatible
         // function arguments"; found by an independent attack): its range is said instead
         if (py::isinstance<py::bool_>(samples_arg))

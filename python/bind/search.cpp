@@ -285,8 +285,11 @@ void bind_search(py::module_& m) {
       });
   m.def(
       "nearest_spp",
-      [solve_options](const spp::System& s, double t1, double t2, double radius, const py::object& options,
-                      const py::kwargs& fields) {
+      [solve_options](const spp::System& s, const py::object& t1_arg, const py::object& t2_arg,
+                      const py::object& radius_arg, const py::object& options, const py::kwargs& fields) {
+        const double t1 = scalar_argument<double>(t1_arg, "spp.nearest_spp: argument t1"),
+                     t2 = scalar_argument<double>(t2_arg, "spp.nearest_spp: argument t2"),
+                     radius = scalar_argument<double>(radius_arg, "spp.nearest_spp: argument radius");
         py::dict rest;
         const py::object progress = take_progress(fields, rest);
         spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "nearest_spp");

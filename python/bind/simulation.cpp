@@ -100,9 +100,12 @@ void bind_simulation(py::module_& m) {
       .def("__repr__", [](const py::object& o) { return fields_repr(o, "SimulateOptions"); });
   m.def(
       "simulate",
-      [](const spp::System& s, const py::object& x0_arg, const py::object& v0_arg, std::optional<double> duration,
-         std::optional<double> restitution, double samples_per_unit, const py::object& options,
+      [](const spp::System& s, const py::object& x0_arg, const py::object& v0_arg, const py::object& duration_arg,
+         const py::object& restitution_arg, const py::object& samples_arg, const py::object& options,
          const py::kwargs& fields) {
+        const auto duration = optional_argument<double>(duration_arg, "spp.simulate: argument duration");
+        const auto restitution = optional_argument<double>(restitution_arg, "spp.simulate: argument restitution");
+        const double samples_per_unit = scalar_argument<double>(samples_arg, "spp.simulate: argument samples_per_unit");
         // (a ragged or 2-D list named with the shape expected, not pybind11's cast failure)
         const Eigen::VectorXd x0 = array_of_numbers(x0_arg, "simulate: x0", 1);
         const Eigen::VectorXd v0 = array_of_numbers(v0_arg, "simulate: v0", 1);

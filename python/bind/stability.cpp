@@ -15,7 +15,9 @@ void bind_stability(py::module_& m) {
                "Solution.stability_verdict (docs/stability.md)");
   m.def(
       "monodromy",
-      [](const spp::System& s, double t1, double t2) {
+      [](const spp::System& s, const py::object& t1_arg, const py::object& t2_arg) {
+        const double t1 = scalar_argument<double>(t1_arg, "spp.monodromy: argument t1"),
+                     t2 = scalar_argument<double>(t2_arg, "spp.monodromy: argument t2");
         const spp::ModalForm md(s);
         spp::SolveOptions o;
         o.compute_return_error = false;

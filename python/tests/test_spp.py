@@ -1196,3 +1196,34 @@ def test_a_message_with_bytes_that_are_not_utf8_keeps_its_file_and_reason(tmp_pa
     # C1 controls are refused in names like C0 ones
     with pytest.raises(ValueError, match=r"^system: name: expected printable text, got the control character U\+009B"):
         spp.System(np.eye(1), np.eye(1), [1.0], 1.0, "a\x9b")
+
+
+# Issue 11, found by an independent attack: a float argument beyond the doubles (10**400) gave pybind11's
+# "incompatible function arguments" (a RuntimeError in modes), and a 0-d float array for an integer field numpy's own
+# TypeError; one conversion (scalar_value) names the argument.
+def test_scalar_arguments_beyond_the_doubles_or_of_the_wrong_kind_are_named():
+    s = spp.two_dof()
+    huge = 10**400
+    beyond = r": expected a number within the range of doubles \(magnitude at most 1.8e308\), got 1000"
+    calls = [("spp.System: argument g0", lambda: spp.System(np.eye(2), np.eye(2), [0.0, 1.0], huge)),
+             ("spp.trajectory: argument t1", lambda: spp.trajectory(s, huge, 1.0)),
+             ("spp.nearest_spp: argument t2", lambda: spp.nearest_spp(s, 1.0, huge)),
+             ("spp.simulate: argument duration", lambda: spp.simulate(s, [0, 0], [0, 0], huge)),
+             ("spp.monodromy: argument t1", lambda: spp.monodromy(s, huge, 1.0)),
+             ("spp.chain: argument g0", lambda: spp.chain(3, g0=huge)),
+             ("spp.two_dof: argument k2", lambda: spp.two_dof(k2=huge)),
+             ("spp.rod_with_slip: argument b", lambda: spp.rod_with_slip(b=huge)),
+             ("spp.modes: argument energy_max", lambda: spp.modes(s, 1, huge))]
+    for label, call in calls:
+        with pytest.raises(ValueError, match="^" + label + beyond):
+            call()
+    with pytest.raises(TypeError, match=r"^spp.System: argument g0 must be float, got ndarray array\(\[\[1.5\]\]\)$"):
+        spp.System(np.eye(2), np.eye(2), [0.0, 1.0], np.array([[1.5]]))
+    assert spp.System(np.eye(2), np.eye(2), [0.0, 1.0], np.array(1.5)).g0 == 1.5  # a 0-d array is its number
+    with pytest.raises(TypeError, match=r"^spp.modes: argument branch_points must be bool, got NoneType None$"):
+        spp.modes(s, 1, 2.0, branch_points=None)
+    o = spp.SolveOptions()
+    o.threads = np.array(2.0)  # (numpy's own TypeError before)
+    assert o.threads == 2
+    with pytest.raises(TypeError, match=r"^spp.SolveOptions.threads must be int like its default 0, got ndarray "):
+        o.threads = np.array(2.5)
