@@ -139,6 +139,37 @@ inline void require_real(const py::object& a, const std::string& what) {
                     py::str(np.attr("asarray")(a).attr("dtype")).cast<std::string>() + ")");
 }
 
+// Numbers only: numpy's conversion to float64 took a datetime64, timedelta64 or bool array as numbers (days, 0/1), a
+// masked array without its mask, and an object array of whatever converts; each is refused, named with its dtype
+// (found by an independent attack). Integers and floats pass; a complex array is require_real's; strings and ragged
+// lists are refused by the conversion itself, with numpy's reason.
+inline void require_plain_numbers(const py::object& a, const std::string& what, const std::string& expected) {
+  const py::module_ np = py::module_::import("numpy");
+  if (py::isinstance(a, np.attr("ma").attr("MaskedArray")))
+    detail::invalid(what + " must be " + expected +
+                    ", got a masked array (its mask would be dropped): pass "
+                    "a.filled(value) or the plain array");
+  py::object dtype;
+  if (py::isinstance(a, np.attr("ndarray")) || py::isinstance(a, np.attr("generic")))
+    dtype = a.attr("dtype");
+  else if (py::isinstance<py::list>(a) || py::isinstance<py::tuple>(a)) {
+    try {
+      dtype = np.attr("asarray")(a).attr("dtype");
+    } catch (const py::error_already_set&) {
+      return;  // (ragged: refused by the conversion, with numpy's reason)
+    }
+  }
+  if (!dtype) return;
+  const std::string kind = py::str(dtype.attr("kind"));
+  if (kind == "b" || kind == "M" || kind == "m" || kind == "O")
+    detail::invalid(what + " must be " + expected + ", got an array of dtype " + py::str(dtype).cast<std::string>() +
+                    " (" +
+                    (kind == "b"   ? "booleans"
+                     : kind == "O" ? "Python objects"
+                                   : "dates or times") +
+                    "): expected integers or floats");
+}
+
 // Matrix and vector input, one conversion for System and ParametricSystem: numpy arrays, nested lists, scipy.sparse
 // matrices (densified: the solver is dense), and a vector as (n,), (1, n) or (n, 1); the argument named (`what`,
 // e.g. "System: M") when it cannot be converted. An empty part (`empty_ok`: a parametric system's M_mu, K_mu, w_mu)
@@ -148,6 +179,7 @@ inline py::object float_array(const py::object& a, const std::string& what) {
   py::object d = py::hasattr(a, "toarray") ? a.attr("toarray")() : a;
   // (the complex check inside the try: numpy's iscomplexobj already fails on a ragged list, [[1, 2], [3]], and its
   // "inhomogeneous shape" message named no argument; found by an independent attack)
+  require_plain_numbers(d, what, "an array of numbers");
   try {
     require_real(d, what);
     return np.attr("asarray")(d, "dtype"_a = "float64");
@@ -184,6 +216,7 @@ inline Eigen::MatrixXd array_of_numbers(const py::handle& a, const std::string& 
   const std::string expected =
       ndim == 1 ? "a vector of numbers, shape (n,)" : "a matrix of numbers, shape (rows, cols)";
   py::object arr;
+  require_plain_numbers(py::reinterpret_borrow<py::object>(a), what, expected);
   try {
     require_real(py::reinterpret_borrow<py::object>(a), what);
     arr = py::module_::import("numpy").attr("asarray")(a, "dtype"_a = "float64");

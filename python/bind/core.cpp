@@ -111,7 +111,24 @@ void bind_core(py::module_& m) {
             return spp::load_parametric_system(path);
           },
           "path"_a, "Loads a system file with \"parameter\".")
-      .def("at", &spp::ParametricSystem::at, "mu"_a, "The System at this parameter value.")
+      .def(
+          "at",
+          [](const spp::ParametricSystem& s, const py::object& mu_arg) {
+            // a number (ps.at(True) was taken as 1); outside the declared range a RuntimeWarning (it was silent):
+            // the system there is validated, but the range is where the file's author vouched for the model
+            const double mu = scalar_argument<double>(mu_arg, "spp.ParametricSystem.at: argument mu");
+            const spp::Parameter& p = s.parameter();
+            if (std::isfinite(mu) && !(mu >= p.min && mu <= p.max)) {
+              std::ostringstream os;
+              os << std::setprecision(17) << "ParametricSystem.at: " << p.name << " = " << mu
+                 << " lies outside the declared range [" << p.min << ", " << p.max
+                 << "]: the system there is built and validated, but the range is where the model was declared";
+              if (PyErr_WarnEx(PyExc_RuntimeWarning, os.str().c_str(), 1) < 0) throw py::error_already_set();
+            }
+            return s.at(mu);
+          },
+          "mu"_a,
+          "The System at this parameter value (a RuntimeWarning outside the declared range). Raises ValueError.")
       .def_property_readonly("n", &spp::ParametricSystem::n)
       .def_property_readonly("g0", &spp::ParametricSystem::g0)
       .def_property_readonly("parameter", [](const spp::ParametricSystem& s) { return s.parameter().name; })

@@ -1227,3 +1227,25 @@ def test_scalar_arguments_beyond_the_doubles_or_of_the_wrong_kind_are_named():
     assert o.threads == 2
     with pytest.raises(TypeError, match=r"^spp.SolveOptions.threads must be int like its default 0, got ndarray "):
         o.threads = np.array(2.5)
+
+
+# Issue 11, found by an independent attack: numpy's conversion took datetime64, bool, masked and object arrays as
+# numbers; ps.at(True) was mu = 1, ps.at(mu) outside the declared range was silent, ps.at(nan) blamed M[0][0].
+def test_arrays_that_are_not_numbers_and_parameter_values_are_refused_or_said():
+    K = np.array([[2.0, -1.0], [-1.0, 1.0]])
+    for w, kind in [(np.array(["2020-01-01", "2020-01-02"], dtype="datetime64[D]"), "dates or times"),
+                    (np.array([False, True]), "booleans"), (np.array([0.0, 1.0], dtype=object), "Python objects")]:
+        with pytest.raises(ValueError, match=r"^System: w must be an array of numbers, got an array of dtype .* \(" + kind):
+            spp.System(np.eye(2), K, w, 1.0)
+    with pytest.raises(ValueError, match=r"^System: M must be an array of numbers, got a masked array"):
+        spp.System(np.ma.masked_array(np.eye(2), mask=[[0, 1], [0, 0]]), K, [0.0, 1.0], 1.0)
+    ps = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                              np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 1.0, "k2", 1.0, 10.0)
+    with pytest.raises(TypeError, match=r"^spp.ParametricSystem.at: argument mu must be float, got bool True$"):
+        ps.at(True)
+    with pytest.raises(ValueError, match=r"^parametric system: the parameter k2 must be a finite number, got nan$"):
+        ps.at(float("nan"))
+    with pytest.warns(RuntimeWarning, match=r"k2 = 20 lies outside the declared range \[1, 10\]"):
+        assert ps.at(20.0).n == 2
+    with pytest.raises(ValueError, match=r"^verify: follow_tol must be >= return_tol and finite, got inf$"):
+        spp.verify(spp.two_dof(), [], follow_tol=float("inf"))

@@ -57,6 +57,11 @@ ParametricSystem::ParametricSystem(Eigen::MatrixXd M_constant, Eigen::MatrixXd M
 }
 
 System ParametricSystem::at(double mu) const {
+  if (!std::isfinite(mu)) {  // (M(nan) was refused as "M[0][0] must be finite, got nan": the value was the fault)
+    std::ostringstream os;
+    os << "parametric system: the parameter " << parameter_.name << " must be a finite number, got " << mu;
+    detail::invalid(os.str());
+  }
   try {
     return System(M0_ + mu * M1_, K0_ + mu * K1_, w0_ + mu * w1_, g0_, name_);
   } catch (const std::invalid_argument& e) {

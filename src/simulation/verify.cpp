@@ -159,9 +159,12 @@ void VerifyOptions::validate() const {
   if (periods < 1 || periods > 100000) bad("periods", periods, "in [1, 100000]");
   if (!(perturbation >= 0.0 && perturbation < 0.5)) bad("perturbation", perturbation, "in [0, 0.5)");
   if (!(restitution >= 0.0 && restitution <= 1.0)) bad("restitution", restitution, "in [0, 1]");
-  if (!(return_tol > 0.0)) bad("return_tol", return_tol, "> 0");
-  if (!(follow_tol >= return_tol)) bad("follow_tol", follow_tol, ">= return_tol");
-  if (!(potential_return_tol >= return_tol)) bad("potential_return_tol", potential_return_tol, ">= return_tol");
+  // (finite: follow_tol = inf counted every period as followed, whatever the state did; found by an attack)
+  if (!(return_tol > 0.0 && std::isfinite(return_tol))) bad("return_tol", return_tol, "> 0 and finite");
+  if (!(follow_tol >= return_tol && std::isfinite(follow_tol)))
+    bad("follow_tol", follow_tol, ">= return_tol and finite");
+  if (!(potential_return_tol >= return_tol && std::isfinite(potential_return_tol)))
+    bad("potential_return_tol", potential_return_tol, ">= return_tol and finite");
   if (!(event_time_tol > 0.0 && event_time_tol < 0.1)) bad("event_time_tol", event_time_tol, "in (0, 0.1)");
 }
 

@@ -1,6 +1,8 @@
 // ParametricSystem: the affine family, validation at the ends of the range, errors naming the parameter.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "spp/core/parametric.hpp"
 
 using namespace spp;
@@ -44,6 +46,25 @@ TEST(Parametric, RefusesWhatIsNotAFamilyOfSystems) {
 
 // Issue 11 (found by an independent attack): the parameter's name and the system's are checked by the constructor as
 // the system-file reader checks them (core/names.hpp): a parametric system built in Python or C++ can be written.
+// Found by an independent attack (issue 11): at(nan) blamed M[0][0] ("must be finite, got nan"), not the value asked
+// for.
+TEST(Parametric, ANonFiniteParameterValueIsNamed) {
+  const ParametricSystem ps(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd(), Eigen::MatrixXd::Identity(2, 2),
+                            Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(0, 1), Eigen::VectorXd(), 1.0,
+                            {"k2", 0.0, 1.0});
+  for (const double mu : {std::nan(""), static_cast<double>(INFINITY)}) {
+    try {
+      ps.at(mu);
+      ADD_FAILURE() << "accepted mu = " << mu;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("parametric system: the parameter k2 must be a finite number, got "),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(ps.at(0.5).n(), 2);
+}
+
 TEST(Parametric, NamesAreCheckedAsTheReaderChecksThem) {
   Eigen::MatrixXd K0(2, 2), K1(2, 2);
   K0 << 1, 0, 0, 0;

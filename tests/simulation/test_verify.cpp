@@ -97,6 +97,21 @@ TEST(Verify, RejectsSolutionsOfTheWrongSize) {
   EXPECT_THROW(verify(chain5(), {}, o), std::invalid_argument);
 }
 
+// Found by an independent attack (issue 11): follow_tol = inf counted every period as followed, whatever the state.
+TEST(Verify, ToleranceThatIsNotFiniteIsRefused) {
+  for (double VerifyOptions::*tol :
+       {&VerifyOptions::return_tol, &VerifyOptions::follow_tol, &VerifyOptions::potential_return_tol}) {
+    VerifyOptions o;
+    o.*tol = INFINITY;
+    try {
+      o.validate();
+      ADD_FAILURE() << "an infinite tolerance was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("and finite, got inf"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Verify, AnSppMislabelledAdmissibleMakesTheResultInconsistent) {
   auto spps = spps_of(rod4(), 8.0, 3.0);
   const auto leaving = std::find_if(spps.begin(), spps.end(), [](const Solution& c) { return !c.admissible(); });

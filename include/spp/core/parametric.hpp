@@ -25,7 +25,7 @@ class ParametricSystem {
                    std::string name = "");
 
   /// The system at mu (need not lie in the range), validated like any System (O(n^3)); throws
-  /// std::invalid_argument naming the parameter value.
+  /// std::invalid_argument naming the parameter value (a mu that is not finite: naming the parameter).
   System at(double mu) const;
 
   int n() const { return static_cast<int>(M0_.rows()); }
