@@ -77,10 +77,12 @@ void bind_search(py::module_& m) {
                   typed_repr(sys) +
                   (py::isinstance<py::str>(sys) ? " (to_json returns the text: open(path, \"w\").write(r.to_json()))"
                                                 : ""));
-            return spp::result_json(sys.cast<const spp::System&>(), self.cast<const spp::SolveResult&>(), -1);
+            // (the CLI's indentation: the same text as spp solve --json, not one line; issue 11's attack)
+            return spp::result_json(sys.cast<const spp::System&>(), self.cast<const spp::SolveResult&>());
           },
           "system"_a = py::none(),
-          "The result JSON text, as spp solve --json writes it, for `system` (default: the result's own, r.system).")
+          "The result JSON text, as spp solve --json writes it (the same text), for `system` (default: the result's "
+          "own, r.system).")
       .def("__repr__", [](const spp::SolveResult& r) { return "<spp.SolveResult " + r.brief_report().substr(5) + ">"; })
       .def("_repr_html_",
            [](const spp::SolveResult& r) {

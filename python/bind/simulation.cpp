@@ -4,6 +4,7 @@
 
 #include "common.hpp"
 #include "spp/detail/invalid.hpp"
+#include "spp/io.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/simulation/verify.hpp"
@@ -185,6 +186,9 @@ void bind_simulation(py::module_& m) {
   py::class_<spp::VerifyResult>(m, "VerifyResult")
       .def_property_readonly("status", [](const spp::VerifyResult& r) { return outcome(r.status); })
       .def_readonly("checks", &spp::VerifyResult::checks)
+      .def(
+          "to_json", [](const spp::VerifyResult& r) { return spp::verify_json(r); },
+          "The verify JSON text, the same text spp verify --json writes (io/verify_file.hpp).")
       .def_readonly("returned", &spp::VerifyResult::returned)
       .def_readonly("left", &spp::VerifyResult::left)
       .def_readonly("inconsistent", &spp::VerifyResult::inconsistent)

@@ -1249,3 +1249,43 @@ def test_arrays_that_are_not_numbers_and_parameter_values_are_refused_or_said():
         assert ps.at(20.0).n == 2
     with pytest.raises(ValueError, match=r"^verify: follow_tol must be >= return_tol and finite, got inf$"):
         spp.verify(spp.two_dof(), [], follow_tol=float("inf"))
+
+
+# Issue 11, found by an independent attack: ContinuationResult and VerifyResult had no JSON in Python, and
+# SolveResult.to_json() was one line where spp solve --json writes an indented file: one writer, the same text.
+def test_every_result_type_writes_the_text_the_cli_writes_and_reads_back(tmp_path):
+    import subprocess
+    spp_cli = os.path.join(SRC, "build", "spp")
+    s = chain5()
+    r = spp.solve(s, t1_max=6, t2_max=6)
+    assert "\n  \"solutions\"" in r.to_json()  # indented as the CLI's file
+    ps_path = os.path.join(SRC, "examples", "two_dof_zero_gap.json")
+    ps = spp.ParametricSystem.from_json(ps_path)
+    c = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    path = tmp_path / "c.json"
+    path.write_text(c.to_json(ps))
+    back = spp.ContinuationResult.from_json(str(path))
+    assert back.to_json() == c.to_json(ps)  # the round trip: the same text again
+    assert back.status == c.status and len(back.branches) == len(c.branches)
+    assert [len(b.points) for b in back.branches] == [len(b.points) for b in c.branches]
+    with pytest.raises(TypeError, match=r"^ContinuationResult.to_json: argument system must be the "):
+        c.to_json()
+    v = spp.verify(s, r)
+    assert json.loads(v.to_json())["checks"][0]["t1"] == r.solutions[0].t1
+    if os.path.exists(spp_cli):  # the CLI's own files hold the same text (but the seconds each run took)
+        import re
+
+        def timeless(text):
+            return re.sub(r'"seconds": [0-9.e+-]+', '"seconds": T', text)
+        cli_r = tmp_path / "cli_r.json"
+        subprocess.run([spp_cli, "solve", os.path.join(SRC, "examples", "chain5.json"), "--t1-max", "6", "--t2-max",
+                        "6", "--quiet", "--json", str(cli_r)], check=False, capture_output=True)
+        assert timeless(cli_r.read_text()) == timeless(r.to_json())
+        res, out = tmp_path / "r.json", tmp_path / "v.json"
+        res.write_text(r.to_json())
+        subprocess.run([spp_cli, "verify", str(res), "--json", str(out)], check=False, capture_output=True)
+        assert out.read_text() == spp.verify(s, spp.load_result(str(res))).to_json()
+        cli_c = tmp_path / "cli_c.json"
+        subprocess.run([spp_cli, "continue", ps_path, "--t1-max", "3", "--t2-max", "1", "--json", str(cli_c)],
+                       check=False, capture_output=True)
+        assert timeless(cli_c.read_text()) == timeless(c.to_json(ps))
