@@ -55,6 +55,9 @@ void bind_continuation(py::module_& m) {
       .def_readonly("margin", &spp::BranchPoint::margin, "admissibility margin (NaN where meaningless)")
       .def_readonly("spectral_radius", &spp::BranchPoint::spectral_radius,
                     "largest |Floquet multiplier| but the two structural 1s (NaN where not computed)")
+      .def_readonly("spectral_radius_error", &spp::BranchPoint::spectral_radius_error,
+                    "its error bound: rounding and the point's location error, large near a fold (NaN where not "
+                    "computed, inf where unbounded)")
       .def_readonly("closure", &spp::BranchPoint::closure)
       .def_readonly("energy", &spp::BranchPoint::energy)
       .def_readonly("x0", &spp::BranchPoint::x0)

@@ -71,8 +71,13 @@ void bind_orbit(py::module_& m) {
           "stability_margin", [](const spp::Solution& s) { return s.floquet.margin; }, "1 - spectral_radius")
       .def_property_readonly(
           "spectral_radius_error", [](const spp::Solution& s) { return s.floquet.spectral_radius_error; },
-          "estimated rounding-error bound of spectral_radius (inf: defective leading multiplier; NaN: not computed "
-          "or read from a file written before it)")
+          "estimated error bound of spectral_radius: rounding, and the SPP's location error (spectral_radius_"
+          "location_error; inf: defective leading multiplier or no bound on the location; NaN: not computed or read "
+          "from a file written before it)")
+      .def_property_readonly(
+          "spectral_radius_location_error", [](const spp::Solution& s) { return s.floquet.location_error; },
+          "the part of spectral_radius_error from the SPP's location error (large near a fold of a branch, "
+          "docs/stability.md; 0 for solutions read from a result file)")
       .def_property_readonly(
           "stability_verdict", [](const spp::Solution& s) { return outcome(s.floquet.verdict); },
           "StabilityVerdict: stable / unstable when |spectral_radius - 1| exceeds spectral_radius_error, undecided "

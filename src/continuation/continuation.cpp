@@ -309,7 +309,9 @@ class Tracer {
       // symmetric orbits are never admissible (no margin).
       if (!free_scale && eq.can_be_admissible()) {
         p.margin = admissibility_margin(md, o);
-        p.spectral_radius = floquet(md, o).spectral_radius;
+        const Floquet f = floquet(eq, o);
+        p.spectral_radius = f.spectral_radius;
+        p.spectral_radius_error = f.spectral_radius_error;
       }
     }
     p.admissible = p.margin >= 0.0;
@@ -594,6 +596,13 @@ class BranchWalker {
       const bool lost = s.point.spectral_radius < 1.0;
       BranchEvent ev{lost ? BranchEventKind::StabilityLost : BranchEventKind::StabilityGained, x.p, ""};
       classify_crossing(ev, tr_.leading_multipliers(x.y, x.e));
+      // The radius there with its bound: the point is located where the computed rho crosses 1, but near a fold its
+      // (t1, t2) can be off the SPP of its parameter value, where rho is not 1 (issue 14's attack: 3.6e-11 off, rho - 1
+      // = 8.7e-12 there, reported -1.6e-14); the bound says how far the true crossing may be.
+      std::ostringstream os;
+      os << std::setprecision(3) << "; spectral radius 1 " << (x.p.spectral_radius >= 1.0 ? "+ " : "- ")
+         << std::abs(x.p.spectral_radius - 1.0) << " +- " << x.p.spectral_radius_error;
+      ev.detail += os.str();
       found.push_back({(x.y - s.y).norm(), std::move(ev)});
     }
     std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.hp < b.hp; });

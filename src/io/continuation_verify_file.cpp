@@ -23,6 +23,8 @@ json point_json(const BranchPoint& p, const std::string& parameter) {
   j["margin"] = std::isfinite(p.margin) ? json(p.margin) : json(nullptr);
   j["admissible"] = p.admissible;
   j["spectral_radius"] = std::isfinite(p.spectral_radius) ? json(p.spectral_radius) : json(nullptr);
+  // null: not computed (NaN) or unbounded (infinite), read back as NaN
+  j["spectral_radius_error"] = std::isfinite(p.spectral_radius_error) ? json(p.spectral_radius_error) : json(nullptr);
   return j;
 }
 
@@ -41,6 +43,9 @@ BranchPoint point_from_json(const Reader& o, const std::string& parameter) {
   // (absent from files written before stability was computed along branches)
   p.spectral_radius = o.o.contains("spectral_radius") ? o.number("spectral_radius")
                                                       : std::numeric_limits<double>::quiet_NaN();
+  // (absent from files written before it was computed)
+  p.spectral_radius_error = o.o.contains("spectral_radius_error") ? o.number("spectral_radius_error")
+                                                                  : std::numeric_limits<double>::quiet_NaN();
   return p;
 }
 

@@ -19,6 +19,21 @@ double residual_of(const EquationSet& eq, double t1, double t2, const Vec& a) {
   return std::max(r1, r2);
 }
 
+void spp_equations(const EquationSet& eq, double t1, double t2, const Vec& a, Vec& F, Mat& J) {
+  const ModalForm& md = eq.modal();
+  const int m = md.m();
+  const Mat N = eq.N(t1, t2);
+  F.resize(m + 1);
+  F.head(m) = N * a;
+  F(m) = md.z().dot(eq.onset_position(t1, a));
+  J = Mat::Zero(m + 1, m + 2);
+  J.block(0, 0, m, 1) = eq.dN_dt1(t1, t2) * a;
+  J.block(0, 1, m, 1) = eq.dN_dt2(t1, t2) * a;
+  J.block(0, 2, m, m) = N;
+  J(m, 0) = md.z().dot(eq.onset_position_dt1(t1, a));
+  J.block(m, 2, 1, m) = eq.onset_position(t1, md.z()).transpose();  // a diagonal map: its row is z's image
+}
+
 // Starting vector: a = p0 ./ cos(W t1) from the traced null vector p0 of H when the cosines are not small
 // (near the axis t1 = 0, N has two small singular values and its SVD may pick the wrong one), else the SVD.
 Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
@@ -38,17 +53,12 @@ Polished polish(const EquationSet& eq, double t1, double t2, const Vec& b) {
   double best = residual_of(eq, t1, t2, a);
   out = {false, t1, t2, best, a};
   for (int it = 0; it < kPolishIterations; ++it) {
-    const Mat N = eq.N(t1, t2);
-    Vec F(m + 2);
-    F.head(m) = N * a;
-    F(m) = md.z().dot(eq.onset_position(t1, a));
+    Vec F(m + 2), Fs;
+    Mat J = Mat::Zero(m + 2, m + 2), Js;
+    spp_equations(eq, t1, t2, a, Fs, Js);
+    F.head(m + 1) = Fs;
     F(m + 1) = aref.dot(a) - 1.0;
-    Mat J = Mat::Zero(m + 2, m + 2);
-    J.block(0, 0, m, 1) = eq.dN_dt1(t1, t2) * a;
-    J.block(0, 1, m, 1) = eq.dN_dt2(t1, t2) * a;
-    J.block(0, 2, m, m) = N;
-    J(m, 0) = md.z().dot(eq.onset_position_dt1(t1, a));
-    J.block(m, 2, 1, m) = eq.onset_position(t1, md.z()).transpose();  // a diagonal map: its row is z's image
+    J.topRows(m + 1) = Js;
     J.block(m + 1, 2, 1, m) = aref.transpose();
     Vec dx = J.fullPivLu().solve(-F);
     // trust region: stay near the candidate (the limit points on the axes attract Newton) and keep t1 > 0

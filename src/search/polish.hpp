@@ -14,6 +14,12 @@ struct Polished {
   Eigen::VectorXd a;  ///< modal position at mid-flight (axial) / velocity at onset (point), up to scale
 };
 
+/// The SPP equations F = (N a, z^T p0(a)) (m + 1) at (t1, t2, a) and their Jacobian J (m + 1) x (m + 2) in the
+/// unknowns (t1, t2, a): what polish solves (with a row fixing a's scale), and what the location error of a computed
+/// SPP is estimated from (stability/floquet.hpp). O(m^3).
+void spp_equations(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a, Eigen::VectorXd& F,
+                   Eigen::MatrixXd& J);
+
 /// Relative residual of N a = 0 and z^T p0 = 0 at (t1, t2).
 double residual_of(const EquationSet& eq, double t1, double t2, const Eigen::VectorXd& a);
 

@@ -142,7 +142,7 @@ Solution build_solution(const System& system, const EquationSet& eq, const Polis
       s.flags.push_back("decoupled_mode_resonant");
   }
   if (with_return_error) s.return_error = return_error(system, s.orbit);
-  if (opt.compute_stability && eq.can_be_admissible()) s.floquet = floquet(md, s.orbit);
+  if (opt.compute_stability && eq.can_be_admissible()) s.floquet = floquet(eq, s.orbit);
   return s;
 }
 

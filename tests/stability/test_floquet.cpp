@@ -7,12 +7,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <random>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "paper_reference.hpp"
+#include "spp/continuation/continuation.hpp"
 #include "spp/core/generators.hpp"
+#include "spp/core/parametric.hpp"
+#include "spp/io/system_file.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/simulator.hpp"
 #include "spp/stability/floquet.hpp"
@@ -102,11 +106,16 @@ TEST(Floquet, EveryTwoDofSppHasMultipliersZeroZeroOneOne) {
     for (const Solution& sol : spps) {
       const Floquet f = floquet(md, sol.orbit);
       ASSERT_EQ(f.multipliers.size(), 4u);
-      EXPECT_LT(std::abs(f.multipliers[0]), 1e-10);
-      EXPECT_LT(std::abs(f.multipliers[1]), 1e-10);
+      // the structural zeros exactly (they were the eigensolver's rounding, 2e-16 to 7e-16, and so was the radius:
+      // found by issue 14's attack), and nothing else
+      EXPECT_EQ(f.multipliers[0], std::complex<double>(0.0));
+      EXPECT_EQ(f.multipliers[1], std::complex<double>(0.0));
       EXPECT_EQ(f.multipliers[2], std::complex<double>(1.0));
-      EXPECT_LT(f.spectral_radius, 1e-10);
+      EXPECT_EQ(f.spectral_radius, 0.0);
+      EXPECT_EQ(f.spectral_radius_error, 0.0);
+      EXPECT_TRUE(f.leading.empty());
       EXPECT_TRUE(f.stable);
+      EXPECT_EQ(sol.floquet.spectral_radius, 0.0);  // as solve() reports it
       const Eigen::MatrixXd mono = monodromy(md, sol.orbit);
       EXPECT_NEAR(mono.trace(), 2.0, 1e-9);
       EXPECT_NEAR((mono * mono).trace(), 2.0, 1e-9);
@@ -535,4 +544,171 @@ TEST(Floquet, RadiusBoundCoversLongDoubleReferenceOnPaperChainAndRod) {
 // (reference_radius); at the SPP the error is 4.9e-14. Every SPP, admissible or not, within its bound.
 TEST(Floquet, RadiusBoundCoversLongDoubleReferenceOnEveryChainSppAdmissibleOrNot) {
   expect_bound_covers_reference(chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0), 12.0, 12.0, false, 1e-10);
+}
+
+namespace {
+using VecL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+
+// The axial SPP near a double solution, re-solved in long double from the physical first-order flows (paper eqs.
+// 3.9-3.11), independent of the modal form and of its equations: unknowns the mid-contact position y (velocity 0 there
+// by symmetry) and t1, t2; equations w^T y + g0 = 0 (in contact), zero contact force t2 later (the release) and zero
+// velocity t1 after that (mid-flight). Newton with a central-difference Jacobian. Its radius: the largest modulus of
+// the long double monodromy exp(2 t1 A1) exp(2 t2 A2) Pi on the complement of its structural multipliers (1, 1 of the
+// flow direction f and the energy gradient, 0, 0 of Pi's kernel), removed by the same quotient as floquet() but in
+// physical coordinates: near a fold a third multiplier is within 1e-11 of 1, and an eigensolve of the full monodromy
+// cannot tell it from the split Jordan pair.
+struct ReferenceSpp {
+  long double t1 = 0, t2 = 0, rho = 0, residual = 0;
+};
+
+ReferenceSpp long_double_spp(const System& s, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, double t1,
+                             double t2) {
+  const int n = s.n();
+  const MatL M = s.M().cast<long double>(), K = s.K().cast<long double>();
+  const VecL w = s.w().cast<long double>();
+  const long double g0 = s.g0();
+  const MatL Mi = M.inverse();
+  const long double b2 = w.dot(Mi * w);
+  const VecL k = (w.transpose() * Mi * K).transpose() / b2;  // contact force lambda(x) = k^T x (eq. 2.7)
+  const MatL I = MatL::Identity(n, n), P = I - Mi * w * w.transpose() / b2;
+  MatL A1 = MatL::Zero(2 * n, 2 * n), A2 = A1, Pi = A1;
+  A1.topRightCorner(n, n) = I;
+  A2.topRightCorner(n, n) = I;
+  A1.bottomLeftCorner(n, n) = -Mi * K;
+  A2.bottomLeftCorner(n, n) = -Mi * (K - w * k.transpose());
+  Pi.topLeftCorner(n, n) = P;
+  Pi.bottomRightCorner(n, n) = P;
+  const auto equations = [&](const VecL& z) {
+    VecL Y = VecL::Zero(2 * n);
+    Y.head(n) = z.head(n);
+    const VecL Xr = (z(n + 1) * A2).exp() * Y, Xm = (z(n) * A1).exp() * Xr;
+    VecL F(n + 2);
+    F(0) = w.dot(z.head(n)) + g0;
+    F(1) = k.dot(Xr.head(n));
+    F.tail(n) = Xm.tail(n);
+    return F;
+  };
+  VecL X0(2 * n), z(n + 2);
+  X0 << x0.cast<long double>(), v0.cast<long double>();
+  z << ((static_cast<long double>(t2) * A2).exp() * X0).head(n), t1, t2;
+  for (int it = 0; it < 8; ++it) {
+    constexpr long double h = 1e-8L;
+    MatL J(n + 2, n + 2);
+    for (int j = 0; j < n + 2; ++j) {
+      VecL zp = z, zm = z;
+      zp(j) += h;
+      zm(j) -= h;
+      J.col(j) = (equations(zp) - equations(zm)) / (2.0L * h);
+    }
+    z -= J.fullPivLu().solve(equations(z));
+  }
+  ReferenceSpp r;
+  r.residual = equations(z).norm();
+  r.t1 = z(n);
+  r.t2 = z(n + 1);
+  VecL Y = VecL::Zero(2 * n);
+  Y.head(n) = z.head(n);
+  const VecL X = (-r.t2 * A2).exp() * Y;  // the onset state
+  const MatL mono = (2.0L * r.t1 * A1).exp() * (2.0L * r.t2 * A2).exp() * Pi;
+  MatL B = MatL::Zero(2 * n, 4);
+  B.col(0) << K * X.head(n), M * X.tail(n);  // grad E, a left eigenvector
+  B.col(1) = A1 * X;                         // f, a right one
+  B.col(2).head(n) = Mi * w;                 // Pi's kernel
+  B.col(3).tail(n) = Mi * w;
+  const MatL Q = MatL(Eigen::HouseholderQR<MatL>(B).householderQ()).rightCols(2 * n - 4);
+  const Eigen::EigenSolver<MatL> es(Q.transpose() * mono * Q, false);
+  r.rho = es.eigenvalues().cwiseAbs().maxCoeff();
+  return r;
+}
+
+ReferenceSpp long_double_spp(const System& s, const Solution& sol) {
+  return long_double_spp(s, sol.x0(), sol.v0(), sol.t1(), sol.t2());
+}
+
+std::vector<Solution> spps_in(const System& s, double t1_min, double t1_max, double t2_min, double t2_max) {
+  SolveOptions o;
+  o.t1_min = t1_min;
+  o.t1_max = t1_max;
+  o.t2_min = t2_min;
+  o.t2_max = t2_max;
+  o.compute_return_error = false;
+  return solve(s, o).solutions;
+}
+}  // namespace
+
+// Found by issue 14's attack: near a fold of the chain's k5 branch the SPP equations are ill-conditioned; at k5 =
+// 0.9410560159612414 the polished (t1, t2) was 7.1e-11 off the SPP of the same double matrices (a 60-digit mpmath
+// re-solve, residual 3e-33), where rho - 1 = +1.53e-11, while floquet() gave rho - 1 = -2.06e-12 +- 1.48e-12 and the
+// verdict "stable". The bound now counts the location error (floquet(EquationSet, Orbit)): it covers the long double
+// reference and the verdict is no longer "stable".
+TEST(Floquet, RadiusBoundCoversTheLocationErrorNearAFold) {
+  const System s = load_system(std::string(SPP_SOURCE_DIR) + "/tests/data/chain5_k5_fold.json");
+  const std::vector<Solution> sols = spps_in(s, 7.6, 7.7, 10.45, 10.55);
+  ASSERT_EQ(sols.size(), 1u);
+  const Floquet& f = sols[0].floquet;
+  const ReferenceSpp ref = long_double_spp(s, sols[0]);
+  std::printf(
+      "t1 %.17g t2 %.17g, reference %.20Lg %.20Lg (residual %.2Lg): rho - 1 = %.3g +- %.3g (location %.3g), "
+      "reference %.3Lg, %s\n",
+      sols[0].t1(), sols[0].t2(), ref.t1, ref.t2, ref.residual, f.spectral_radius - 1.0, f.spectral_radius_error,
+      f.location_error, ref.rho - 1.0L, to_string(f.verdict));
+  EXPECT_LT(ref.residual, 1e-15L);
+  EXPECT_GT(ref.rho, 1.0L);  // the true verdict: unstable (mpmath: rho - 1 = +1.53e-11)
+  EXPECT_LE(std::abs(static_cast<long double>(f.spectral_radius) - ref.rho), f.spectral_radius_error);
+  EXPECT_NE(f.verdict, StabilityVerdict::Stable);
+}
+
+// The same over 16 values of k5 four ulps apart from there (the attack: 9 labelled stable while rho > 1): every SPP of
+// the window within its bound of the long double reference, and none whose reference radius exceeds 1 called stable.
+TEST(Floquet, NoVerdictContradictsTheReferenceAlongAFold) {
+  double k5 = 0.9410560159612414;
+  int checked = 0;
+  for (int i = 0; i < 16; ++i) {
+    if (i > 0)
+      for (int ulp = 0; ulp < 4; ++ulp) k5 = std::nextafter(k5, 2.0);
+    const System s = chain(5, {1.0}, {1.0, 1.0, 1.0, 1.0, k5}, 4, ContactSide::Upper, 1.0);
+    for (const Solution& sol : spps_in(s, 7.6, 7.7, 10.45, 10.55)) {
+      const Floquet& f = sol.floquet;
+      const ReferenceSpp ref = long_double_spp(s, sol);
+      std::printf("k5 %.17g: rho - 1 = %.3g +- %.3g (location %.3g), reference %.3Lg (t1 off by %.2Lg), %s\n", k5,
+                  f.spectral_radius - 1.0, f.spectral_radius_error, f.location_error, ref.rho - 1.0L, ref.t1 - sol.t1(),
+                  to_string(f.verdict));
+      EXPECT_LE(std::abs(static_cast<long double>(f.spectral_radius) - ref.rho), f.spectral_radius_error) << k5;
+      if (ref.rho > 1.0L) {
+        EXPECT_NE(f.verdict, StabilityVerdict::Stable) << k5;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 16);
+}
+
+// Found by issue 14's attack: the stability_gained event of the chain's k5 branch there (k5 = 0.9410560159612439) was
+// 3.6e-11 off the SPP of its k5, where rho - 1 = +8.7e-12, and reported rho - 1 = -1.6e-14 with no bound. Each branch
+// point now carries spectral_radius_error with its location error: at the event it covers the long double reference
+// at the event's k5, and the event's detail prints it.
+TEST(Floquet, StabilityEventNearAFoldCarriesABoundThatCoversTheReference) {
+  const auto make = [](double k5) { return chain(5, {1.0}, {1.0, 1.0, 1.0, 1.0, k5}, 4, ContactSide::Upper, 1.0); };
+  const ParametricSystem ps = parametrize(make, {"k5", 0.94, 0.942});
+  ContinueOptions o;
+  o.t1_min = 7.5;
+  o.t1_max = 7.8;
+  o.t2_min = 10.3;
+  o.t2_max = 10.7;
+  o.seeds = 3;
+  const ContinuationResult r = continue_branches(ps, o);
+  int events = 0;
+  for (const Branch& b : r.branches)
+    for (const BranchEvent& e : b.events) {
+      if (e.kind != BranchEventKind::StabilityGained && e.kind != BranchEventKind::StabilityLost) continue;
+      const ReferenceSpp ref = long_double_spp(ps.at(e.at.mu), e.at.x0, e.at.v0, e.at.t1, e.at.t2);
+      std::printf("k5 %.17g: rho - 1 = %.3g +- %.3g, reference %.3Lg (residual %.2Lg, t1 off by %.2Lg)\n", e.at.mu,
+                  e.at.spectral_radius - 1.0, e.at.spectral_radius_error, ref.rho - 1.0L, ref.residual,
+                  ref.t1 - e.at.t1);
+      EXPECT_LT(ref.residual, 1e-15L);
+      EXPECT_LE(std::abs(static_cast<long double>(e.at.spectral_radius) - ref.rho), e.at.spectral_radius_error);
+      EXPECT_NE(e.detail.find("spectral radius 1 "), std::string::npos) << e.detail;
+      ++events;
+    }
+  EXPECT_EQ(events, 1);
 }

@@ -79,6 +79,9 @@ struct BranchPoint {
   /// Largest |Floquet multiplier| but the two structural 1s (stability/floquet.hpp, docs/stability.md), whether the
   /// SPP is admissible or not; NaN where not computed (g0 = 0, point symmetry, undefined orbit).
   double spectral_radius = std::numeric_limits<double>::quiet_NaN();
+  /// Its error bound (Floquet::spectral_radius_error: rounding and the point's location error at its parameter value,
+  /// large near a fold); NaN where not computed, infinite where unbounded.
+  double spectral_radius_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// How a Floquet multiplier crosses the unit circle at a StabilityLost / StabilityGained event.

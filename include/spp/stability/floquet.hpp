@@ -42,7 +42,7 @@ struct Floquet {
   /// Modes that never see the contact (ModalForm::omega_decoupled) give exp(+-i omega T), of modulus 1.
   std::vector<std::complex<double>> multipliers;
   /// The multiplier of largest modulus among those of the modes that see the contact (not the structural 1s), with
-  /// its conjugate when complex (one real or a conjugate pair, positive imaginary part first); empty for m <= 1 and
+  /// its conjugate when complex (one real or a conjugate pair, positive imaginary part first); empty for m <= 2 and
   /// for solutions read from a result file (not written there: the multipliers are).
   std::vector<std::complex<double>> leading;
   /// Largest modulus over every multiplier but the two structural 1s (dimensionless), the decoupled modes' taken as
@@ -52,6 +52,10 @@ struct Floquet {
   /// the monodromy's estimated backward error times the eigenvalue condition numbers, floquet.cpp). Infinite when
   /// the leading multiplier is (numerically) defective. NaN: not computed, or read from a file written before it.
   double spectral_radius_error = std::numeric_limits<double>::quiet_NaN();
+  /// The part of spectral_radius_error that comes from the SPP's location error (floquet(EquationSet, Orbit) only;
+  /// 0 from floquet(ModalForm, Orbit), which takes the orbit as exact): how far rho moves over the estimated distance
+  /// of the computed (t1, t2, a) from the SPP, large near a fold of a branch (docs/stability.md §2, "The verdict").
+  double location_error = 0.0;
   /// 1 - spectral_radius.
   double margin = std::numeric_limits<double>::quiet_NaN();
   StabilityVerdict verdict = StabilityVerdict::NotComputed;
@@ -76,6 +80,13 @@ StabilityVerdict stability_verdict(double rho, double error, bool has_decoupled_
 /// eigenproblem of size 2m - 2 (m the modes that see the contact). Throws std::invalid_argument for a point-symmetric
 /// orbit (its obstacle moves during contact) or an orbit whose sizes do not match.
 Floquet floquet(const ModalForm& modal, const Orbit& orbit);
+
+/// floquet(eq.modal(), orbit) with the SPP's location error in spectral_radius_error (and location_error) and the
+/// verdict that gives: orbit is the SPP of eq's equations near (orbit.t1, orbit.t2) as computed, and near a fold its
+/// (t1, t2) can be far from it (1e-11 and more) where the radius moves with them. What solve(), the continuation and
+/// verify report. Cost O(m^3): floquet's, one SVD of size m + 2 and two more monodromies. Throws
+/// std::invalid_argument as floquet(modal, orbit) does, and for a point-symmetric equation set.
+Floquet floquet(const EquationSet& eq, const Orbit& orbit);
 
 /// The monodromy itself, 2n x 2n in physical coordinates (dx, dv), from just before the contact onset to one period
 /// later (the formula above). For checks against a finite-difference monodromy of the simulator. Cost O(n^3).
