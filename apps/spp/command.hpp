@@ -2,9 +2,9 @@
 // The spp command line: one file per subcommand (solve.cpp, continue.cpp, ...), each registering its options on the
 // application and returning how to run it. Exit codes (README "Exit codes", spp --help's footer; main.cpp maps usage
 // errors and exceptions): 0 success (also an incomplete status), 1 invalid input, usage error or failed run (message
-// on stderr), 3 verify: a simulation disagrees with the solver's admissibility, 4 sweep: at least one item failed,
-// 5 simulate: stopped at --max-events (the CSV holds the trajectory so far), 130 solve, modes: stopped by
-// Ctrl-C, 143 solve: stopped by SIGTERM.
+// on stderr), 3 verify: the result disagrees with the simulation or the system (admissibility, stability, x0/v0),
+// 4 sweep: at least one item failed, 5 simulate: stopped at --max-events (the CSV holds the trajectory so far), 130
+// solve, modes: stopped by Ctrl-C, 143 solve: stopped by SIGTERM.
 
 #include <CLI/CLI.hpp>
 #include <stdexcept>

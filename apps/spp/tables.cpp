@@ -66,8 +66,17 @@ std::string verify_table(const VerifyResult& r) {
         os << std::setprecision(6) << std::setw(12) << c.growth_per_period;
     }
     const bool departs = c.verdict == Verdict::Leaves || c.periods_followed < periods;
-    os << "  " << (c.consistent ? "" : "INCONSISTENT with the solver: ")
-       << (departs ? (c.verdict == Verdict::Returns ? "later: " : "") + c.departure : "") << "\n";
+    // An inconsistency's reason is printed whatever the orbit did: verify stores it in departure, also for an orbit
+    // that returns and is followed (a claimed stability or x0, v0 that are not the system's), where the note read
+    // "INCONSISTENT with the solver: " and nothing more (found by issue 14's attack).
+    std::string note = departs ? (c.verdict == Verdict::Returns ? "later: " : "") + c.departure : "";
+    if (!c.consistent)
+      note = "INCONSISTENT with the solver: " +
+             (!c.departure.empty() ? c.departure
+                                   : std::string(c.verdict == Verdict::Returns
+                                                     ? "the simulation returns, but the solver says not admissible"
+                                                     : "the simulation leaves, but the solver says admissible"));
+    os << "  " << note << "\n";
   }
   return os.str();
 }

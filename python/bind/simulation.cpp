@@ -35,8 +35,10 @@ void bind_simulation(py::module_& m) {
                "SimulationResult.status");
   bind_outcome(m, "EventKind", {spp::EventKind::Impact, spp::EventKind::ContactOnset, spp::EventKind::Release},
                "Event.kind");
-  bind_outcome(m, "VerifyStatus", {spp::VerifyStatus::Success, spp::VerifyStatus::Inconsistent},
-               "VerifyResult.status: inconsistent when a simulation disagrees with the solver's admissibility");
+  bind_outcome(
+      m, "VerifyStatus", {spp::VerifyStatus::Success, spp::VerifyStatus::Inconsistent},
+      "VerifyResult.status: inconsistent when the result disagrees with the simulation or the system (admissibility, "
+      "claimed stability, x0/v0: the three counters)");
   bind_outcome(m, "Verdict", {spp::Verdict::Returns, spp::Verdict::Leaves}, "SppCheck.verdict");
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)
@@ -194,6 +196,12 @@ void bind_simulation(py::module_& m) {
       .def_readonly("inconsistent", &spp::VerifyResult::inconsistent)
       .def("all_consistent", &spp::VerifyResult::all_consistent)
       .def_readonly("unchecked", &spp::VerifyResult::unchecked, "SPPs not checked (a stopped run)")
+      .def_readonly("admissibility_mismatches", &spp::VerifyResult::admissibility_mismatches,
+                    "SPPs whose simulation (returns or leaves) is not the solver's admissibility")
+      .def_readonly("stability_mismatches", &spp::VerifyResult::stability_mismatches,
+                    "SPPs whose claimed stability the Floquet multipliers recomputed from (t1, t2) contradict")
+      .def_readonly("state_mismatches", &spp::VerifyResult::state_mismatches,
+                    "SPPs whose x0, v0 are not the orbit at (t1, t2)")
       .def("brief_report", &spp::VerifyResult::brief_report)
       .def(py::pickle([](const spp::VerifyResult& x) { return state::of(x); },
                       [](const py::tuple& t) { return state::verify_result(t); }))

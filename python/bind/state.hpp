@@ -36,7 +36,8 @@ inline py::tuple of(const spp::Solution& s) {
                         py::make_tuple(a.admissible, a.min_gap, a.min_force, a.mid_flight_gap, a.mid_contact_force,
                                        a.onset_force_rate, a.ends_ok, a.certified),
                         py::make_tuple(f.multipliers, f.spectral_radius, f.margin, f.stable, f.structure_residual,
-                                       f.leading, f.spectral_radius_error, static_cast<int>(f.verdict)),
+                                       f.leading, f.spectral_radius_error, static_cast<int>(f.verdict),
+                                       f.location_error),
                         s.residual, s.return_error, s.flags);
 }
 inline spp::Solution solution(const py::tuple& t) {
@@ -64,7 +65,7 @@ inline spp::Solution solution(const py::tuple& t) {
   s.admissibility.onset_force_rate = a[5].cast<double>();
   s.admissibility.ends_ok = a[6].cast<bool>();
   s.admissibility.certified = a[7].cast<bool>();
-  const py::tuple f = sized(t[2].cast<py::tuple>(), 8, "Solution (floquet)");
+  const py::tuple f = sized(t[2].cast<py::tuple>(), 9, "Solution (floquet)");
   s.floquet.multipliers = f[0].cast<std::vector<std::complex<double>>>();
   s.floquet.spectral_radius = f[1].cast<double>();
   s.floquet.margin = f[2].cast<double>();
@@ -73,6 +74,7 @@ inline spp::Solution solution(const py::tuple& t) {
   s.floquet.leading = f[5].cast<std::vector<std::complex<double>>>();
   s.floquet.spectral_radius_error = f[6].cast<double>();
   s.floquet.verdict = static_cast<spp::StabilityVerdict>(f[7].cast<int>());
+  s.floquet.location_error = f[8].cast<double>();
   s.residual = t[3].cast<double>();
   s.return_error = t[4].cast<double>();
   s.flags = t[5].cast<std::vector<std::string>>();
@@ -81,10 +83,10 @@ inline spp::Solution solution(const py::tuple& t) {
 
 inline py::tuple of(const spp::BranchPoint& p) {
   return py::make_tuple(p.mu, p.t1, p.t2, p.period, p.admissible, p.margin, p.closure, p.energy, p.x0, p.v0,
-                        p.spectral_radius);
+                        p.spectral_radius, p.spectral_radius_error);
 }
 inline spp::BranchPoint branch_point(const py::tuple& t) {
-  sized(t, 11, "BranchPoint");
+  sized(t, 12, "BranchPoint");
   spp::BranchPoint p;
   p.mu = t[0].cast<double>();
   p.t1 = t[1].cast<double>();
@@ -97,6 +99,7 @@ inline spp::BranchPoint branch_point(const py::tuple& t) {
   p.x0 = t[8].cast<Eigen::VectorXd>();
   p.v0 = t[9].cast<Eigen::VectorXd>();
   p.spectral_radius = t[10].cast<double>();
+  p.spectral_radius_error = t[11].cast<double>();
   return p;
 }
 inline py::tuple of(const spp::BranchEvent& e) {
@@ -242,10 +245,11 @@ inline spp::SppCheck spp_check(const py::tuple& t) {
 inline py::tuple of(const spp::VerifyResult& r) {
   py::list checks;
   for (const spp::SppCheck& c : r.checks) checks.append(of(c));
-  return py::make_tuple(static_cast<int>(r.status), checks, r.returned, r.left, r.inconsistent, r.unchecked);
+  return py::make_tuple(static_cast<int>(r.status), checks, r.returned, r.left, r.inconsistent, r.unchecked,
+                        r.admissibility_mismatches, r.stability_mismatches, r.state_mismatches);
 }
 inline spp::VerifyResult verify_result(const py::tuple& t) {
-  sized(t, 6, "VerifyResult");
+  sized(t, 9, "VerifyResult");
   spp::VerifyResult r;
   r.status = static_cast<spp::VerifyStatus>(t[0].cast<int>());
   for (const py::handle c : t[1]) r.checks.push_back(spp_check(c.cast<py::tuple>()));
@@ -253,6 +257,9 @@ inline spp::VerifyResult verify_result(const py::tuple& t) {
   r.left = t[3].cast<int>();
   r.inconsistent = t[4].cast<int>();
   r.unchecked = t[5].cast<long>();
+  r.admissibility_mismatches = t[6].cast<int>();
+  r.stability_mismatches = t[7].cast<int>();
+  r.state_mismatches = t[8].cast<int>();
   return r;
 }
 

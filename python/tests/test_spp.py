@@ -78,6 +78,28 @@ def test_verify_agrees_with_the_solver():
     assert max(c.potential_return_error for c in v.checks) < 1e-12
 
 
+def test_verify_counts_each_kind_of_inconsistency(tmp_path):
+    # VerifyResult's three counters (the solver's admissibility, the claimed stability, x0/v0) were C++ only (issue
+    # 14); an edited multiplier (the chain's SPP #0, -1.535 flipped to +1.535: the file stays self-consistent) is a
+    # stability mismatch, not an admissibility one; the counters survive pickling
+    s = chain5()
+    r = spp.solve(s, t1_max=4, t2_max=1)
+    v = spp.verify(s, r)
+    assert (v.admissibility_mismatches, v.stability_mismatches, v.state_mismatches) == (0, 0, 0)
+    doc = json.loads(r.to_json(s))
+    flipped = 0
+    for m in doc["solutions"][1]["floquet_multipliers"]:
+        if m[0] < -1.0:
+            m[0], flipped = -m[0], flipped + 1
+    assert flipped == 1
+    path = tmp_path / "edited.json"
+    path.write_text(json.dumps(doc))
+    w = spp.verify(s, spp.load_result(str(path)))
+    assert (w.inconsistent, w.admissibility_mismatches, w.stability_mismatches, w.state_mismatches) == (1, 0, 1, 0)
+    q = pickle.loads(pickle.dumps(w))
+    assert (q.admissibility_mismatches, q.stability_mismatches, q.state_mismatches) == (0, 1, 0)
+
+
 def test_verify_refuses_a_result_of_another_system():
     # verify(system, result) with a system other than the one the result was solved for reported "7 disagree with
     # the solver's admissibility", blaming the solver (found by an independent review): now a ValueError

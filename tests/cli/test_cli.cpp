@@ -339,6 +339,29 @@ TEST(Cli, VerifyAgreesWithTheSolverOnThePaperChain) {
   }
 }
 
+// Found by issue 14's attack: an SPP that returns and is followed, with an edited stability claim, printed the note
+// "INCONSISTENT with the solver: " and no reason (verify keeps the reason where a departure goes, and the table printed
+// departures only for orbits that leave).
+TEST(Cli, VerifyPrintsTheReasonOfAnInconsistencyOfAFollowedSpp) {
+  const fs::path res = dir() / "res_reason.json", edited = dir() / "res_reason_edited.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 4 --t2-max 1 --quiet --json " + res.string()).code, 0);
+  nlohmann::json r = nlohmann::json::parse(std::ifstream(res));
+  ASSERT_EQ(r.at("solutions").size(), 2u);
+  nlohmann::json& spp = r["solutions"][1];  // the chain's SPP #0 (3.216, 0.528): admissible, leading multiplier -1.535
+  ASSERT_TRUE(spp["admissible"].get<bool>());
+  int flipped = 0;
+  for (auto& m : spp["floquet_multipliers"])
+    if (m[0].get<double>() < -1.0) m[0] = -m[0].get<double>(), ++flipped;
+  ASSERT_EQ(flipped, 1);
+  std::ofstream(edited) << r.dump();
+  const CliRun v = run("verify " + edited.string() + " --periods 3");
+  EXPECT_EQ(v.code, 3) << v.out;
+  EXPECT_NE(v.out.find("INCONSISTENT with the solver: the stability claimed is not the system's: multiplier"),
+            std::string::npos)
+      << v.out;
+  EXPECT_NE(v.out.find("3/3"), std::string::npos) << v.out;  // followed: no departure to print
+}
+
 TEST(Cli, VerifyRejectsWhatIsNotAResult) {
   const CliRun r = run("verify " + kChain);
   EXPECT_EQ(r.code, 1);

@@ -272,6 +272,30 @@ TEST(Verify, StabilityMismatchIsNotCalledAnAdmissibilityDisagreement) {
       << line;
 }
 
+// Found by issue 14's attack: a spectral radius edited by 1e-10 (with the leading multipliers, so that the file stays
+// consistent) passed verify, whose tolerance was the two error bounds plus 1e-9; it is the two bounds plus a few ulps
+// (the bounds are 7e-13 here).
+TEST(Verify, SpectralRadiusEditedByOneInTenBillionIsInconsistent) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0), admissible;
+  for (const Solution& c : all)
+    if (c.admissible()) admissible.push_back(c);
+  ASSERT_EQ(admissible.size(), 7u);
+  const Solution spp = admissible[2];
+  ASSERT_TRUE(verify(chain5(), {spp}, VerifyOptions{}).all_consistent());
+  for (const double edit : {1e-10, -1e-10}) {
+    Solution edited = spp;
+    const double rho = spp.floquet.spectral_radius;
+    for (auto& m : edited.floquet.multipliers)
+      if (std::abs(m) == rho) m *= (rho + edit) / rho;
+    edited.floquet.spectral_radius = rho + edit;
+    edited.floquet.margin = 1.0 - (rho + edit);
+    const VerifyResult r = verify(chain5(), {edited}, VerifyOptions{});
+    EXPECT_EQ(r.stability_mismatches, 1) << edit << ": " << r.brief_report();
+    ASSERT_EQ(r.checks.size(), 1u);
+    EXPECT_NE(r.checks[0].departure.find("spectral_radius"), std::string::npos) << r.checks[0].departure;
+  }
+}
+
 // Found by the attack of issue 14: --perturb with --restitution 1 printed a growth of 253.6 per period on a stable
 // SPP without saying that the stability theory excludes e = 1.
 TEST(Verify, PerturbationWithElasticImpactsWarnsThatFloquetDoesNotApply) {
