@@ -40,6 +40,25 @@ std::vector<int> k_values(const py::object& k) {
   return out;
 }
 
+// An integer argument in [lo, hi] (multiples): a Python integer (numpy's too, through operator.index), not a bool,
+// else TypeError; out of range, ValueError; both naming the keyword, as k is checked.
+int whole_in(const char* name, const py::object& v, int lo, int hi) {
+  const std::string expected = std::string("modes: ") + name + ": expected an int from " + std::to_string(lo) + " to " +
+                               std::to_string(hi) + ", got " + typed_repr(v);
+  const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
+  py::object whole;
+  if (!is_bool) {
+    try {
+      whole = py::module_::import("operator").attr("index")(v);
+    } catch (const py::error_already_set& e) {
+      if (!e.matches(PyExc_TypeError)) throw;
+    }
+  }
+  if (!whole) throw py::type_error(expected);
+  if (whole < py::int_(lo) || whole > py::int_(hi)) detail::invalid(expected);
+  return whole.cast<int>();
+}
+
 }  // namespace
 
 void bind_modes(py::module_& m) {
@@ -136,12 +155,15 @@ void bind_modes(py::module_& m) {
   m.def(
       "modes",
       [](const spp::System& s, const py::object& k, const py::object& energy_max, const py::object& max_step,
-         const py::object& branch_points) {
+         const py::object& branch_points, const py::object& multiples, const py::object& through_inadmissible) {
         md::ModesOptions o;
         o.k_values = k_values(k);
         o.energy_max = scalar_argument<double>(energy_max, "spp.modes: argument energy_max");
         o.max_step = scalar_argument<double>(max_step, "spp.modes: argument max_step");
         o.branch_points = scalar_argument<bool>(branch_points, "spp.modes: argument branch_points");
+        o.period_multiples = whole_in("multiples", multiples, 1, md::kMaxPeriodMultiples);
+        o.through_inadmissible =
+            scalar_argument<bool>(through_inadmissible, "spp.modes: argument through_inadmissible");
         o.validate();
         // Ctrl-C checked before each family point: stopped, the families traced so far are returned (status
         // incomplete, interrupted) with a RuntimeWarning, as solve does
@@ -158,11 +180,16 @@ void bind_modes(py::module_& m) {
                                 : std::string("Ctrl-C came after modes had finished: the result is complete"));
         return r;
       },
-      "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true,
+      "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true, "multiples"_a = 1,
+      "through_inadmissible"_a = false,
       "k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: the "
       "impacts per period, an int from 1 to 40 or a sequence of them (list, tuple, range(1, 4)); energy_max: a "
-      "number > 0. Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and "
-      "ValueError for a value out of range.");
+      "number > 0; multiples: J, an int from 1 to 100 (spp modes --multiples J): with k = 1, 1-IPP families also "
+      "from each mode's grazing orbit seen with period j times its own, j = 2..J (1: none; docs/modes.md §3); "
+      "through_inadmissible: follow each family through its inadmissible orbits to where it is admissible again "
+      "(spp modes --through-inadmissible; a new family there, event admissibility_regained). "
+      "Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and ValueError for a "
+      "value out of range.");
 }
 
 }  // namespace spp::python

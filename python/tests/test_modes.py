@@ -144,3 +144,26 @@ def test_modes_results_show_themselves_pickle_and_make_frames():
     ff = f.to_dataframe()
     assert list(ff.columns) == list(df.columns[6:]) and np.array_equal(ff[["energy", "frequency", "margin"]], f.arrays)
     assert "<table" in r._repr_html_() and isinstance(ff, pd.DataFrame)
+
+
+def test_multiples_follows_one_ipp_families_from_grazing_orbits_at_period_multiples():
+    # issue 15: spp modes --multiples J existed in the CLI only. On the 2-dof of §2.3 the admissible 1-IPP branch of
+    # T in [5.607, 7.766] leaves mode 2's grazing orbit seen with twice its period (tests/modes, C++: the same check)
+    s = spp.two_dof()
+
+    def covers(r, lo, hi):
+        return any(p.admissible and p.margin > 1e-6 and lo < p.period < hi for f in r.families for p in f.points)
+
+    assert not covers(spp.modes(s, k=1, energy_max=20.0), 5.62, 7.75)
+    r = spp.modes(s, k=1, energy_max=20.0, multiples=5)
+    assert covers(r, 5.62, 7.75) and covers(r, 18.36, 19.41)
+    labels = [f.label for f in r.families]
+    assert [f.label for f in spp.modes(s, k=1, energy_max=20.0, multiples=np.int64(5)).families] == labels
+
+
+@pytest.mark.parametrize("multiples, error", [(2.0, TypeError), ("3", TypeError), (None, TypeError),
+                                              (True, TypeError), (0, ValueError), (101, ValueError),
+                                              (2**63, ValueError)])
+def test_bad_multiples_names_multiples_and_what_is_expected(multiples, error):
+    with pytest.raises(error, match=r"multiples: expected an int from 1 to 100"):
+        spp.modes(spp.two_dof(), k=1, energy_max=1.0, multiples=multiples)
