@@ -5,6 +5,8 @@
 //   SppSymmetricEigen/m spp::detail::symmetric_eigen (dsyevd from kLapackFrom on)
 //   EigenTridiagonal/m  Eigen::internal::tridiagonalization_inplace
 //   SppTridiagonal/m    spp::detail::SymmetricTridiagonal's reduction (dsytrd from kLapackFrom on)
+//   Bisection/m         SymmetricTridiagonal::eigenvalue_by_bisection (one Sturm count per halving), k = m / 2
+//   SppEigenvalue/m     SymmetricTridiagonal::eigenvalue (two halvings per pass; the same result bit for bit)
 //   EigenProduct/m      C = A * B (m x m), Eigen
 //   SppProduct/m        spp::detail::product (dgemm from kLapackFrom on)
 #include <benchmark/benchmark.h>
@@ -63,6 +65,16 @@ void SppTridiagonal(benchmark::State& state) {
   }
 }
 
+void Bisection(benchmark::State& state) {
+  const spp::detail::SymmetricTridiagonal T(random_symmetric(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(T.eigenvalue_by_bisection(T.size() / 2));
+}
+
+void SppEigenvalue(benchmark::State& state) {
+  const spp::detail::SymmetricTridiagonal T(random_symmetric(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(T.eigenvalue(T.size() / 2));
+}
+
 void EigenProduct(benchmark::State& state) {
   const Eigen::MatrixXd A = random_symmetric(state.range(0)), B = random_symmetric(state.range(0)).reverse();
   Eigen::MatrixXd C(A.rows(), A.cols());
@@ -87,6 +99,8 @@ BENCHMARK(EigenSyevd)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::k
 BENCHMARK(SppSymmetricEigen)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(EigenTridiagonal)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(SppTridiagonal)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Bisection)->Arg(5)->Arg(10)->Arg(12)->Arg(20)->Arg(30)->Arg(100)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK(SppEigenvalue)->Arg(5)->Arg(10)->Arg(12)->Arg(20)->Arg(30)->Arg(100)->Arg(300)->Unit(benchmark::kMicrosecond);
 BENCHMARK(EigenProduct)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(SppProduct)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -11,6 +11,8 @@ namespace spp::detail {
 
 namespace {
 
+constexpr Eigen::Index kTwoHalvingsFrom = 12;  // eigenvalue(): size from which two halvings per pass pay
+
 // dsytrd with uplo = 'L' (reflectors below the sub-diagonal, as Eigen's; blocked, level-3 BLAS); false if LAPACK
 // reports an error.
 bool lapack_tridiagonalize(Eigen::MatrixXd& a, Eigen::VectorXd& diag, Eigen::VectorXd& sub, Eigen::VectorXd& tau) {
@@ -59,7 +61,64 @@ int SymmetricTridiagonal::count_below(double x) const {
   return count;
 }
 
+// Sturm counts below x0, x1, x2 in one pass: the three recurrences are count_below's, operation for operation (so
+// each count equals count_below's), interleaved so that their divisions overlap in the pipeline instead of waiting
+// on each other (the recurrence is a chain of dependent divisions).
+void SymmetricTridiagonal::count_below3(const double x[3], int count[3]) const {
+  const Eigen::Index m = a_.size();
+  double q[3];
+  for (int j = 0; j < 3; ++j) {
+    q[j] = a_(0) - x[j];
+    if (std::abs(q[j]) < pivmin_) q[j] = -pivmin_;
+    count[j] = q[j] < 0;
+  }
+  for (Eigen::Index i = 1; i < m; ++i) {
+    const double bb = b_(i - 1) * b_(i - 1);
+    for (int j = 0; j < 3; ++j) {
+      q[j] = a_(i) - x[j] - bb / q[j];
+      if (std::abs(q[j]) < pivmin_) q[j] = -pivmin_;
+      count[j] += q[j] < 0;
+    }
+  }
+}
+
+// Bisection on the Sturm count, two halvings per pass: the midpoint mid of [lo, hi] and the midpoints of both halves
+// are counted together (count_below3), and the two halvings then take exactly the steps, with the same midpoints
+// and the same stopping tests, that one-at-a-time bisection takes: the result is bit for bit that of
+// eigenvalue_by_bisection, at about half the latency (2 x 26 passes instead of 52 dependent ones). Below
+// kTwoHalvingsFrom the plain bisection is as fast or faster (bench_linalg Bisection/m vs SppEigenvalue/m, CPU time:
+// m = 5 0.59 vs 0.71 us, m = 10 1.61 vs 1.58 us, m = 30 7.4 vs 4.9 us, m = 100 29.7 vs 17.1 us), and is taken.
 double SymmetricTridiagonal::eigenvalue(int k) const {
+  if (a_.size() < kTwoHalvingsFrom) return eigenvalue_by_bisection(k);
+  double lo = -bound_ - 1e-300, hi = bound_ + 1e-300;
+  const double tol = 2.0 * std::numeric_limits<double>::epsilon() * bound_;
+  int it = 0;
+  while (it < 200 && hi - lo > tol) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    const double x[3] = {mid, 0.5 * (lo + mid), 0.5 * (mid + hi)};
+    int count[3];
+    count_below3(x, count);
+    if (count[0] > k)
+      hi = mid;
+    else
+      lo = mid;
+    ++it;
+    // the second halving, on the half just kept: its midpoint is x[1] (lower half) or x[2] (upper half)
+    if (!(it < 200 && hi - lo > tol)) break;
+    const int j = hi == mid ? 1 : 2;
+    const double mid2 = 0.5 * (lo + hi);  // == x[j]
+    if (mid2 == lo || mid2 == hi) break;
+    if (count[j] > k)
+      hi = mid2;
+    else
+      lo = mid2;
+    ++it;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double SymmetricTridiagonal::eigenvalue_by_bisection(int k) const {
   double lo = -bound_ - 1e-300, hi = bound_ + 1e-300;
   const double tol = 2.0 * std::numeric_limits<double>::epsilon() * bound_;
   for (int it = 0; it < 200 && hi - lo > tol; ++it) {

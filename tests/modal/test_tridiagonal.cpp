@@ -3,6 +3,8 @@
 // which LAPACK's dsytrd / dsyevd / dsygvd are called).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <random>
 #include <thread>
 #include <vector>
@@ -113,6 +115,37 @@ TEST(SymmetricEigen, ConcurrentLapackCallsFromSolverThreadsGiveTheSingleThreadRe
     });
   for (std::thread& th : pool) th.join();
   for (int t = 0; t < threads; ++t) EXPECT_EQ(mismatches[t], 0) << "thread " << t;
+}
+
+TEST(Tridiagonal, TwoHalvingsPerPassGiveThePlainBisectionBitForBit) {
+  // eigenvalue() counts three midpoints per pass; it must take exactly the steps of one-at-a-time bisection: random,
+  // clustered (eigenvalues equal or 1e-14 apart, where the last halvings decide between them), graded (1 to 1e12),
+  // diagonal (zero sub-diagonal: the pivmin guard), zero and 1 x 1 matrices.
+  std::mt19937 rng(12);
+  std::normal_distribution<double> nd;
+  std::vector<Eigen::MatrixXd> cases;
+  for (int m : {2, 5, 20, 30, 60}) cases.push_back(random_symmetric(m, rng));
+  for (int m : {6, 20, 40}) {
+    Eigen::VectorXd lam(m);
+    for (int i = 0; i < m; ++i) lam(i) = 1.0 + (i % 3 == 0 ? 0.0 : (i % 3) * 1e-14) + (i / 3);  // clusters of three
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(random_symmetric(m, rng));
+    const Eigen::MatrixXd Q = qr.householderQ();
+    cases.push_back(Q * lam.asDiagonal() * Q.transpose());
+    Eigen::VectorXd graded(m);
+    for (int i = 0; i < m; ++i) graded(i) = (i % 2 ? -1.0 : 1.0) * std::pow(10.0, 12.0 * i / (m - 1));
+    cases.push_back(Q * graded.asDiagonal() * Q.transpose());
+    cases.push_back(lam.asDiagonal());
+  }
+  cases.push_back(Eigen::MatrixXd::Zero(4, 4));
+  cases.push_back(Eigen::MatrixXd::Constant(1, 1, -3.5));
+  for (size_t c = 0; c < cases.size(); ++c) {
+    const SymmetricTridiagonal T(cases[c]);
+    for (int k = 0; k < T.size(); ++k) {
+      const double fast = T.eigenvalue(k), plain = T.eigenvalue_by_bisection(k);
+      EXPECT_EQ(std::memcmp(&fast, &plain, sizeof(double)), 0)
+          << "case " << c << ", k = " << k << ": " << fast << " vs " << plain;
+    }
+  }
 }
 
 TEST(Tridiagonal, InertiaOfAnIndefiniteMatrixWithAZeroPivot) {
