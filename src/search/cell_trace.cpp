@@ -23,6 +23,7 @@ struct TracePoint {
   // for the step certificate (residual, neighbouring eigenvalues and error bound filled with certify_steps only)
   double lam_below = -std::numeric_limits<double>::infinity(), lam_above = std::numeric_limits<double>::infinity();
   double residual = 0, eig_error = 0, offset_norm = 0, slope_sum = 0;
+  double tangent = 0;  // dtau/ds = -l2 / (l1 + l2) here (the curve's tangent, for the predictor of the next step)
   // distance along (1, 1) to the true curve point on the same anti-diagonal: (|lambda_k| + error) / (l1 + l2)
   double pos_err = 0;
   int proved_sign = 0;  // sign of the true g, proved by the certified step that reached this point (0: not proved)
@@ -109,6 +110,7 @@ class CellTracer::Impl {
     const Vec dHb = tp * eq_.dflight_dt1(q.t1).cwiseProduct(b0) + (tp + 1.0) * (md_.G() * e2.cwiseProduct(y));
     const Vec dbh = q.at->solve_bordered(q.lam, b0, -(dHb - b0.dot(dHb) * b0));
     p.slope_sum = l1 + l2;
+    p.tangent = tp;
     p.pos_err = (std::abs(q.lam) + q.at->eigen_error()) / (l1 + l2);
     if (opt_.certify_steps) {  // residual, neighbouring eigenvalues and error bound only feed the certificate
       // The true curve point that stands for this one: lambda_k = 0 at about |lambda_k| / l away along t1 (l = l1),
@@ -328,6 +330,7 @@ class CellTracer::Impl {
     TracePoint cur = pin;
     if (!(span > 0)) return point(out, &cur.b);  // the curve only touches the cell at a corner
     double h = span, slope = 0.0;                // slope: dtau/ds estimate for the predictor
+    double bend = 0.0;  // d2tau/ds2 estimate (the tangents' difference over the last step): certified predictor
     int halvings = 0;
     examine_budget_ = kPieceBudget;
     // Stall watch: when certified steps have shrunk 4x since the last step that grew, the trace may approach a pole
@@ -383,7 +386,8 @@ class CellTracer::Impl {
       }
       if (prove && !in_band && skip_proofs == 0) {
         TracePoint p =
-            last ? point(out, &cur.b) : point(diagonal_root(r, cur.s + step, cur.t1 + slope * step, k), &cur.b);
+            last ? point(out, &cur.b)
+                 : point(diagonal_root(r, cur.s + step, cur.t1 + (cur.tangent + 0.5 * bend * step) * step, k), &cur.b);
         auto box_free = [&] {  // the step's box, widened by the ends' distance to the true curve, inside the cell
           const double e = 2.0 * std::max(p.pos_err, cur.pos_err);
           return onset_free(std::max(r.a1, std::min(p.t1, cur.t1) - e), std::max(r.A, std::min(p.t2, cur.t2) - e),
@@ -411,7 +415,10 @@ class CellTracer::Impl {
             flip(p);
             p.proved_sign = 0;
           }
-          if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
+          if (p.s > cur.s) {
+            slope = (p.t1 - cur.t1) / (p.s - cur.s);
+            bend = (p.tangent - cur.tangent) / (p.s - cur.s);
+          }
           if (last) return p;
           // At least 1.5x: the Weyl bound's safe length can stay at the step's (next to pole lines) where a longer
           // step is proved by the spectral bounds; a failed try costs one halving.
@@ -458,7 +465,10 @@ class CellTracer::Impl {
           } else if (last) {
             abandon_run(r, k, run, certified);
           }
-          if (p.s > cur.s) slope = (p.t1 - cur.t1) / (p.s - cur.s);
+          if (p.s > cur.s) {
+            slope = (p.t1 - cur.t1) / (p.s - cur.s);
+            bend = (p.tangent - cur.tangent) / (p.s - cur.s);
+          }
           if (last) return p;
           cur = p;
           h = std::min(span, 1.5 * step);
@@ -528,7 +538,10 @@ class CellTracer::Impl {
         flip(q);  // q was oriented from mid
       }
       if (examine(r, k, mid, q, 0)) flip(q);
-      if (q.s > cur.s) slope = (q.t1 - cur.t1) / (q.s - cur.s);
+      if (q.s > cur.s) {
+        slope = (q.t1 - cur.t1) / (q.s - cur.s);
+        bend = (q.tangent - cur.tangent) / (q.s - cur.s);
+      }
       if (last) return q;
       cur = q;
       h = std::min(span, std::max(hmin_, step * std::clamp(factor, 0.3, 4.0)));

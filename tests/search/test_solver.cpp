@@ -149,6 +149,21 @@ TEST(Solver, ResultDoesNotDependOnTheNumberOfThreads) {
   EXPECT_EQ(a.stats.strip_pairs, b.stats.strip_pairs);
 }
 
+TEST(Solver, CertifiedStepsStartTheirRootFromTheCurvesTangentAndBend) {
+  // The certified trace's predictor for the next step's diagonal root is second order (the tangent -l2 / (l1 + l2) at
+  // the step's start, the bend from the tangents of the last step), not the secant of the last step: the 5-dof chain's
+  // fundamental box takes 59 593 evaluations instead of 65 659, for the same 28 SPPs and success.
+  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  std::tie(o.t1_max, o.t2_max) = fundamental_box(ModalForm(s));
+  o.threads = 1;
+  o.compute_return_error = false;
+  const SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success);
+  EXPECT_EQ(r.solutions.size(), 28u);
+  EXPECT_LT(r.stats.evaluations, 62000);
+}
+
 TEST(Solver, TraceTerminatesOnClusteredPoleLines) {
   // Regression: on the 100-dof chain near t = pi/4 the top frequencies give pole lines 1e-4 apart and nearly
   // equal eigenvalues; the last step to a curve's exit used to be rejected forever. Every root reported must
