@@ -7,7 +7,7 @@ frequency-energy plot: d = sqrt(ln(E / E_spp)^2 + ((f - f_spp) / f_spp)^2), with
 families of least period T (multiplicity 1); "all" also the repetitions of shorter orbits. Points only: the distance
 to a polyline between points is not interpolated (max_step bounds the spacing).
 
-usage: modes_vs_spps.py SYSTEM.json --kmax K [--window 12] [--spp build/spp]
+usage: modes_vs_spps.py SYSTEM.json --kmax K [--window 12] [--spp build/spp] [--modes-args '--multiples 13 ...']
 """
 import argparse
 import json
@@ -25,6 +25,8 @@ def main():
     ap.add_argument("--window", type=float, default=12.0)
     ap.add_argument("--spp", default=os.path.join(os.path.dirname(__file__), "..", "build", "spp"))
     ap.add_argument("--energy-factor", type=float, default=1.5, help="energy_max = factor * largest SPP energy")
+    ap.add_argument("--modes-args", default="", help="more arguments of spp modes, e.g. '--multiples 13 "
+                    "--through-inadmissible'")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as d:
         solve = os.path.join(d, "solve.json")
@@ -36,7 +38,7 @@ def main():
         emax = a.energy_factor * max(s["energy"] for s in spps)
         modes = os.path.join(d, "modes.json")
         out = subprocess.run([a.spp, "modes", a.system, "--k", f"1..{a.kmax}", "--energy-max", repr(emax),
-                              "--json", modes], check=True, capture_output=True, text=True)
+                              "--json", modes] + a.modes_args.split(), check=True, capture_output=True, text=True)
         families = json.load(open(modes))["families"]
     print(out.stdout.strip().splitlines()[-1])
     print(f"{len(spps)} admissible SPPs in (0, {a.window}]^2; energy_max {emax:.4g}")

@@ -167,3 +167,18 @@ def test_multiples_follows_one_ipp_families_from_grazing_orbits_at_period_multip
 def test_bad_multiples_names_multiples_and_what_is_expected(multiples, error):
     with pytest.raises(error, match=r"multiples: expected an int from 1 to 100"):
         spp.modes(spp.two_dof(), k=1, energy_max=1.0, multiples=multiples)
+
+
+def test_through_inadmissible_reaches_the_stretches_beyond_an_admissibility_event():
+    # chain5, E <= 5, multiples 13: T in [12.23, 13.04] is an admissible 1-IPP stretch separated from every seed by
+    # inadmissible orbits (tests/crosscheck/modes_one_ipp_scan.py); followed through them, a family starts there
+    s = spp.chain(5)
+    def covers(r):
+        return [f.label for f in r.families if any(p.admissible and 12.3 < p.period < 13.0 for p in f.points)]
+    assert covers(spp.modes(s, 1, 5.0, multiples=13)) == []
+    r = spp.modes(s, 1, 5.0, multiples=13, through_inadmissible=True)
+    assert len(covers(r)) == 1 and r.inadmissible_stretches > 0
+    first = [f.events[0].kind for f in r.families]
+    assert spp.ModeEventKind.admissibility_regained in first
+    with pytest.raises(TypeError, match="through_inadmissible"):
+        spp.modes(s, 1, 5.0, through_inadmissible="yes")
