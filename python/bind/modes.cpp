@@ -11,11 +11,9 @@ namespace md = spp::modes;
 
 namespace {
 
-// One k of spp.modes: a Python integer (numpy's too, through operator.index), not a bool (True was taken as 1), in
-// [1, kMaxImpactsPerPeriod] (compared as Python integers: 2**63 was pybind11's RuntimeError).
-int one_k(const py::handle& v, const py::object& given) {
-  const std::string expected = "k: expected an int from 1 to " + std::to_string(md::kMaxImpactsPerPeriod) +
-                               " or a sequence of them (e.g. [1, 2, 3] or range(1, 4)), got ";
+// A Python integer (numpy's too, through operator.index), not a bool, in [lo, hi]: else TypeError (not an integer)
+// or ValueError (out of range), with `message` (compared as Python integers: 2**63 was pybind11's RuntimeError).
+int index_in(const py::handle& v, int lo, int hi, const std::string& message) {
   const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
   py::object whole;
   if (!is_bool) {
@@ -25,10 +23,16 @@ int one_k(const py::handle& v, const py::object& given) {
       if (!e.matches(PyExc_TypeError)) throw;
     }
   }
-  if (!whole) throw py::type_error("modes: " + expected + typed_repr(given));
-  if (whole < py::int_(1) || whole > py::int_(md::kMaxImpactsPerPeriod))
-    detail::invalid("modes: " + expected + typed_repr(given));
+  if (!whole) throw py::type_error(message);
+  if (whole < py::int_(lo) || whole > py::int_(hi)) detail::invalid(message);
   return whole.cast<int>();
+}
+
+// One k of spp.modes, in [1, kMaxImpactsPerPeriod] (a bool is refused: True was taken as 1).
+int one_k(const py::handle& v, const py::object& given) {
+  const std::string expected = "k: expected an int from 1 to " + std::to_string(md::kMaxImpactsPerPeriod) +
+                               " or a sequence of them (e.g. [1, 2, 3] or range(1, 4)), got ";
+  return index_in(v, 1, md::kMaxImpactsPerPeriod, "modes: " + expected + typed_repr(given));
 }
 
 // k as documented: one int or a sequence of ints; a string ('1..3', the CLI's form) is no sequence of ints here.
@@ -40,23 +44,11 @@ std::vector<int> k_values(const py::object& k) {
   return out;
 }
 
-// An integer argument in [lo, hi] (multiples): a Python integer (numpy's too, through operator.index), not a bool,
-// else TypeError; out of range, ValueError; both naming the keyword, as k is checked.
+// An integer argument in [lo, hi] (multiples), checked as k is.
 int whole_in(const char* name, const py::object& v, int lo, int hi) {
-  const std::string expected = std::string("modes: ") + name + ": expected an int from " + std::to_string(lo) + " to " +
-                               std::to_string(hi) + ", got " + typed_repr(v);
-  const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
-  py::object whole;
-  if (!is_bool) {
-    try {
-      whole = py::module_::import("operator").attr("index")(v);
-    } catch (const py::error_already_set& e) {
-      if (!e.matches(PyExc_TypeError)) throw;
-    }
-  }
-  if (!whole) throw py::type_error(expected);
-  if (whole < py::int_(lo) || whole > py::int_(hi)) detail::invalid(expected);
-  return whole.cast<int>();
+  return index_in(v, lo, hi,
+                  std::string("modes: ") + name + ": expected an int from " + std::to_string(lo) + " to " +
+                      std::to_string(hi) + ", got " + typed_repr(v));
 }
 
 }  // namespace
