@@ -71,7 +71,7 @@ void read_verdict(const Reader& o, Floquet& f) {
     invalid(o.where + ": fields \"spectral_radius_error\" and \"stability_verdict\" go together, got only " +
             (has_error ? "the first" : "the second"));
   if (!has_verdict) {
-    f.spectral_radius_error = std::numeric_limits<double>::quiet_NaN();
+    f.spectral_radius_error = f.location_error = std::numeric_limits<double>::quiet_NaN();
     f.verdict = f.spectral_radius < 1.0 ? StabilityVerdict::Stable : StabilityVerdict::Unstable;
     return;
   }
@@ -91,6 +91,19 @@ void read_verdict(const Reader& o, Floquet& f) {
     invalid(o.where + ": field \"stability_verdict\" must be one of stable, unstable, undecided, neutral, got \"" +
             v.substr(0, 40) + "\"");
   f.verdict = *it;
+  // the location part of the bound (files written before it have none: NaN, not recorded), at most the bound
+  if (o.o.contains("spectral_radius_location_error")) {
+    const json& l = o.at("spectral_radius_location_error");
+    const bool ok = l.is_null() ? !std::isfinite(f.spectral_radius_error)
+                                : l.is_number() && l.get<double>() >= 0.0 && l.get<double>() <= f.spectral_radius_error;
+    if (!ok)
+      invalid(o.where + ": field \"spectral_radius_location_error\": expected a number from 0 to spectral_radius_error " +
+              "(" + num(f.spectral_radius_error) + "), or null with an unbounded spectral_radius_error, got " +
+              describe(l));
+    f.location_error = l.is_null() ? std::numeric_limits<double>::infinity() : l.get<double>();
+  } else {
+    f.location_error = std::numeric_limits<double>::quiet_NaN();
+  }
   const double rho = f.spectral_radius, err = f.spectral_radius_error;
   const bool consistent = f.verdict == StabilityVerdict::Neutral ? rho == 1.0
                                                                   : f.verdict == stability_verdict(rho, err, false);
@@ -408,7 +421,8 @@ void check_result(const json& r, const std::string& where) {
                        "return_error", "mid_flight_gap", "mid_contact_force", "onset_force_rate",
                        "admissibility_certified", "admissibility_ends_ok", "flags", "orbit", "obstacle_velocity",
                        "floquet_multipliers", "spectral_radius", "stability_margin", "stable",
-                       "floquet_structure_residual", "spectral_radius_error", "stability_verdict"}, at);
+                       "floquet_structure_residual", "spectral_radius_error", "spectral_radius_location_error",
+                       "stability_verdict"}, at);
       // clang-format on
       if (o.contains("orbit")) {
         if (!o.at("orbit").is_object())
@@ -503,6 +517,8 @@ json result_to_json(const System& s, const SolveResult& r) {
       // null: unbounded (a defective leading multiplier); NaN is not JSON
       const double err = x.floquet.spectral_radius_error;
       o["spectral_radius_error"] = std::isfinite(err) ? json(err) : json(nullptr);
+      const double loc = x.floquet.location_error;  // the part of err from the SPP's location (floquet.hpp)
+      o["spectral_radius_location_error"] = std::isfinite(loc) ? json(loc) : json(nullptr);
       o["stability_verdict"] = to_string(x.floquet.verdict);
     }
     sols.push_back(o);
@@ -587,6 +603,14 @@ SolveResult result_from_json(const json& r, const std::string& where) {
       b.energy = o.number("energy");
     }
     if (res.symmetry == Symmetry::Point) b.obstacle_velocity = o.number("obstacle_velocity");
+    if (!o.o.contains("floquet_multipliers")) {  // files written before stability was computed have none of it
+      // (a file with its multipliers deleted but "stable": true passed spp verify, which checks the multipliers given)
+      for (const char* key : {"spectral_radius", "stability_margin", "stable", "floquet_structure_residual",
+                              "spectral_radius_error", "spectral_radius_location_error", "stability_verdict"})
+        if (o.o.contains(key))
+          invalid(o.where + ": field \"" + key +
+                  "\" without \"floquet_multipliers\": expected the stability fields together, got this one alone");
+    }
     if (o.o.contains("floquet_multipliers")) {  // files written before stability was computed have none
       const json& mu = o.at("floquet_multipliers");
       const std::string mw = o.where + ": field \"floquet_multipliers\"";

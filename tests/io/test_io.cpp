@@ -175,6 +175,8 @@ void expect_same_result(const SolveResult& a, const SolveResult& b) {
       EXPECT_EQ(x.floquet.structure_residual, y.floquet.structure_residual) << at;
       EXPECT_EQ(x.stable(), y.stable()) << at;
       EXPECT_EQ(x.floquet.spectral_radius_error, y.floquet.spectral_radius_error) << at;
+      // (the part of it from the SPP's location: written since an attack found it read back as 0)
+      EXPECT_EQ(x.floquet.location_error, y.floquet.location_error) << at;
       EXPECT_EQ(x.floquet.verdict, y.floquet.verdict) << at;
     }
     const Admissibility &p = x.admissibility, &q = y.admissibility;
@@ -454,6 +456,12 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   expect_refused(j, "field \"status\" is \"incomplete\" but neither \"warnings\" nor \"uncertified\" says why");
   j["warnings"] = {"1 trace step(s) were not proved"};
   EXPECT_EQ(refusal(j), "(accepted)");
+  j = good;  // stability claimed with its multipliers deleted (spp verify checks the multipliers given: it passed)
+  j["solutions"][0].erase("floquet_multipliers");
+  expect_refused(j, "field \"solutions\"[0]: field \"spectral_radius\" without \"floquet_multipliers\"");
+  j = good;  // the location part of the bound: from 0 to the bound
+  j["solutions"][0]["spectral_radius_location_error"] = 2.0 * good["solutions"][0]["spectral_radius_error"].get<double>() + 1.0;
+  expect_refused(j, "field \"solutions\"[0]: field \"spectral_radius_location_error\": expected a number from 0");
   j = good;
   j["stats"]["roots"] = 1;
   expect_refused(j, "field \"stats\".\"roots\" must count at least the ");

@@ -55,6 +55,7 @@ struct Floquet {
   /// The part of spectral_radius_error that comes from the SPP's location error (floquet(EquationSet, Orbit) only;
   /// 0 from floquet(ModalForm, Orbit), which takes the orbit as exact): how far rho moves over the estimated distance
   /// of the computed (t1, t2, a) from the SPP, large near a fold of a branch (docs/stability.md §2, "The verdict").
+  /// Result files hold it ("spectral_radius_location_error"); NaN when read from a file written before it.
   double location_error = 0.0;
   /// 1 - spectral_radius.
   double margin = std::numeric_limits<double>::quiet_NaN();
