@@ -55,6 +55,10 @@ void SolveOptions::validate() const {
   };
   lower(t1_min, t1_max, "t1_min", "t1_max");
   lower(t2_min, t2_max, "t2_min", "t2_max");
+  validate_fields_but_window();
+}
+
+void SolveOptions::validate_fields_but_window() const {
   auto in_open = [](double v, double lo, double hi, const char* name) {
     if (!(v > lo && v < hi)) {
       std::ostringstream os;
@@ -180,6 +184,8 @@ SolutionAt solution_at(const System& system, double t1, double t2, const SolveOp
 }
 
 SolutionAt solution_at(const System& system, const ModalForm& md, double t1, double t2, const SolveOptions& options) {
+  // (the window is not used; an admissibility_tol of -1 gave an admissible SPP "not admissible", found by an attack)
+  options.validate_fields_but_window();
   require_positive_guess("solution_at", t1, t2);
   require_nonzero_gap(system);
   require_modal_of(system, md, "solution_at");

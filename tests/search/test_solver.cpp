@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <tuple>
 
 #include "paper_examples.hpp"
@@ -106,6 +108,19 @@ TEST(Solver, SolutionAtRefinesToTheNearestRoot) {
   EXPECT_NEAR(at.solution.t2(), ref.t2(), 1e-12);
   EXPECT_NE(at.brief_report().find("SPP at"), std::string::npos) << at.brief_report();
   EXPECT_THROW(solution_at(s, -1.0, 1.0), std::invalid_argument);  // the caller's mistake
+  // invalid options are refused as solve refuses them (an attack found admissibility_tol = -1 taken, and the admissible
+  // SPP reported "not admissible"); the window is not used, so the default one is never in the way
+  for (const auto& set : std::vector<std::function<void(SolveOptions&)>>{
+           [](SolveOptions& o) { o.admissibility_tol = -1.0; },
+           [](SolveOptions& o) { o.admissibility_tol = std::nan(""); }, [](SolveOptions& o) { o.max_turn = -1.0; },
+           [](SolveOptions& o) { o.min_step = std::nan(""); }, [](SolveOptions& o) { o.threads = -3; }}) {
+    SolveOptions o;
+    set(o);
+    EXPECT_THROW(solution_at(s, ref.t1(), ref.t2(), o), std::invalid_argument);
+  }
+  SolveOptions far;
+  far.t1_max = far.t2_max = 1.0;  // a window that does not hold the point: not solution_at's business
+  EXPECT_TRUE(solution_at(s, ref.t1(), ref.t2(), far).found);
 }
 
 TEST(Solver, SolutionAtFarFromAnyRootIsAStatusNotAnException) {

@@ -82,6 +82,8 @@ struct SolveOptions {
 
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
+  /// validate() without the window (t1_min .. t2_max): for solution_at, which uses no window.
+  void validate_fields_but_window() const;
 };
 
 enum class SolveStatus {
