@@ -50,6 +50,20 @@ for _type in (VerifyResult, ContinuationResult, Branch, RootMap, SimulationResul
     _type._repr_html_ = _frames.repr_html
 
 
+def _reduce_ex(self, protocol):
+    # pybind11's pickling needs protocol 2 or higher: protocols 0 and 1 aborted the interpreter (an uncatchable
+    # std::runtime_error "instance allocation failed", found by an attack), so they are a TypeError here
+    if protocol < 2:
+        raise TypeError(f"spp.{type(self).__name__} pickles with protocol 2 or higher (pickle's default is 4), "
+                        f"got protocol {protocol}")
+    return object.__reduce_ex__(self, protocol)
+
+
+for _type in vars(_spp).values():  # every picklable class (the ones bound with __getstate__)
+    if isinstance(_type, type) and "__getstate__" in vars(_type):
+        _type.__reduce_ex__ = _reduce_ex
+
+
 _nearest_spp = _named_type_errors(_spp.nearest_spp, "spp.nearest_spp")
 _root_map = _named_type_errors(_spp.root_map, "spp.root_map")
 

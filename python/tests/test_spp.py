@@ -1311,3 +1311,12 @@ def test_every_result_type_writes_the_text_the_cli_writes_and_reads_back(tmp_pat
         subprocess.run([spp_cli, "continue", ps_path, "--t1-max", "3", "--t2-max", "1", "--json", str(cli_c)],
                        check=False, capture_output=True)
         assert timeless(cli_c.read_text()) == timeless(c.to_json(ps))
+
+
+def test_pickle_protocols_0_and_1_are_a_type_error_not_an_abort():
+    # pybind11's pickling needs protocol 2: protocols 0 and 1 aborted the interpreter (found by an attack)
+    for x in (spp.VerifyOptions(), spp.SolveOptions(), spp.two_dof(), spp.modes(spp.two_dof(), [1], 2.0)):
+        for protocol in (0, 1):
+            with pytest.raises(TypeError, match="pickles with protocol 2 or higher"):
+                pickle.dumps(x, protocol)
+        assert type(pickle.loads(pickle.dumps(x, 2))) is type(x)
