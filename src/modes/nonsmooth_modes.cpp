@@ -346,6 +346,7 @@ struct Tracer {
         return;
       }
       ModePoint p = point(shape, zn);
+      bool energy_first = false;
       // admissibility lost between z and zn (prev admissible, or the start at margin 0)
       if (p.margin < 0) {
         Eigen::VectorXd ze;
@@ -354,14 +355,19 @@ struct Tracer {
         };
         locate(shape, z, tau, h, margin, ze);
         const ModePoint pe = point(shape, ze);  // the last admissible point, to locate_tol
-        const bool by_speed = speed_limited(shape, zn);
-        f.points.push_back(pe);
-        add_event(f, by_speed ? ModeEventKind::ImpactGrazing : ModeEventKind::FlightGrazing, pe,
-                  by_speed ? "an impact's incoming speed reaches 0" : "the gap touches 0 inside a flight");
-        follow_later(shape, zn, tn, h, f);
-        return;
+        // energy_max reached first within the step: the energy_max event below ends the family (an attack found
+        // families ending past energy_max at an admissibility event, E 10.06 for energy_max 10)
+        energy_first = pe.energy > options.energy_max;
+        if (!energy_first) {
+          const bool by_speed = speed_limited(shape, zn);
+          f.points.push_back(pe);
+          add_event(f, by_speed ? ModeEventKind::ImpactGrazing : ModeEventKind::FlightGrazing, pe,
+                    by_speed ? "an impact's incoming speed reaches 0" : "the gap touches 0 inside a flight");
+          follow_later(shape, zn, tn, h, f);
+          return;
+        }
       }
-      if (p.energy > options.energy_max) {
+      if (p.energy > options.energy_max || energy_first) {
         Eigen::VectorXd ze;
         const auto de = [&](const Eigen::VectorXd& zz) { return point(shape, zz).energy - options.energy_max; };
         locate(shape, z, tau, h, de, ze);

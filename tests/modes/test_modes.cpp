@@ -372,6 +372,22 @@ TEST(Modes, FamiliesFollowedThroughInadmissibleOrbitsReachTheStretchesBeyond) {
   EXPECT_LT(c.max_return_error, 1e-8);
 }
 
+// A step that crosses both energy_max and an admissibility boundary ends the family at the first of them: an attack
+// found a family of `spp generate random --n 3 --seed 11` ending at E = 10.0632 (an impact_grazing event located
+// past energy_max = 10).
+TEST(Modes, NoPointLiesAboveEnergyMax) {
+  ModesOptions o;
+  o.k_values = {1, 2, 3};
+  o.energy_max = 10.0;
+  o.period_multiples = 14;
+  for (bool through : {false, true}) {
+    o.through_inadmissible = through;
+    const ModesResult r = nonsmooth_modes(random_dense(3, 11, 1.0), o);
+    for (const ModeFamily& f : r.families)
+      for (const ModePoint& p : f.points) EXPECT_LE(p.energy, o.energy_max * (1 + 1e-12)) << f.label;
+  }
+}
+
 TEST(Modes, TwoDofHasGenuineTwoImpactFamilies) {
   // measured: the doubled 1-IPP of mode 1 has a branch point where genuine 2-IPPs (least period T) leave it
   const ModesResult r = run(paper_two_dof(), {2}, 5.0);
