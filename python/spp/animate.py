@@ -285,12 +285,23 @@ def _kind(system, layout):
     return kind
 
 
+def _whole_figure(fig):
+    """fig as given: None or a matplotlib Figure (an animation redraws a whole figure, so not a SubFigure); anything
+    else a TypeError naming it (it was an AttributeError from inside matplotlib; found by an attack)."""
+    from matplotlib.figure import Figure
+    if fig is not None and not isinstance(fig, Figure):
+        raise TypeError(f"fig: expected a matplotlib Figure (plt.figure(); an animation redraws a whole figure, not "
+                        f"a SubFigure or Axes), got {type(fig).__name__}")
+    return fig
+
+
 def animation_of(system, spp, frames=120, periods=1, fps=25, layout="auto", fig=None):
     """The animation of the SPP (anything with t1, t2, period, x0, v0) as a matplotlib FuncAnimation, written to no
     file: anim.to_jshtml() (or animation_html) shows it in Jupyter, anim.save(...) writes it. fig: a Figure to draw
     into (cleared; its size and dpi are kept), default a new one of FIGSIZE_IN; anim._fig is it. Raises ValueError
     on bad arguments (those of animate but the path and dpi)."""
     check_options("animation.gif", frames=frames, periods=periods, fps=fps, layout=layout)
+    _whole_figure(fig)
     kind = _kind(system, layout)
     fig, update, count = _figure(system, spp, frames, periods, kind, fig)
     return animation.FuncAnimation(fig, update, frames=count, interval=1000.0 / fps, blit=False)
@@ -327,7 +338,7 @@ def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, l
     (ffmpeg). frames: per period. fig: a Figure to draw into (cleared; its size is kept; not closed), default a new
     one of FIGSIZE_IN (closed when written). Returns the number of frames written. Raises ValueError on bad
     arguments. In a notebook, animation_html shows it inline instead."""
-    figsize = FIGSIZE_IN if fig is None else tuple(fig.get_size_inches())
+    figsize = FIGSIZE_IN if _whole_figure(fig) is None else tuple(fig.get_size_inches())
     check_options(path, frames=frames, periods=periods, fps=fps, dpi=dpi, layout=layout, figsize=figsize)
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()

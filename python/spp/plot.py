@@ -44,9 +44,33 @@ def _window(window):
     return dict(zip(keys, values))
 
 
+def _checked(ax=None, fig=None, where="ax"):
+    """ax and fig as given, refused with a TypeError naming what they are when they are not matplotlib Axes and a
+    Figure or SubFigure (a wrong kind gave AttributeErrors from deep inside matplotlib; found by an attack)."""
+    from matplotlib.axes import Axes
+    from matplotlib.figure import FigureBase
+    if ax is not None and not isinstance(ax, Axes):
+        raise TypeError(f"{where}: expected matplotlib Axes (e.g. plt.subplots()[1]), got {type(ax).__name__}")
+    if fig is not None and not isinstance(fig, FigureBase):
+        raise TypeError(f"fig: expected a matplotlib Figure or SubFigure (plt.figure(), fig.subfigures()), got "
+                        f"{type(fig).__name__}")
+    return ax, fig
+
+
+def _lay_out(fig):
+    """Lays out a figure this call made or filled: tight_layout on a Figure without a layout engine of its own; a
+    SubFigure is laid out with its root figure (make that one with layout="constrained"), as are figures with an
+    engine (tight_layout failed on every SubFigure given as fig=; found by an attack)."""
+    from matplotlib.figure import Figure
+    if isinstance(fig, Figure) and fig.get_layout_engine() is None:
+        fig.tight_layout()
+
+
 def _axes(ax, figsize, fig=None):
     """The axes to draw into, their figure, and whether the figure is this call's own (then laid out here): ax when
-    given; else one axes filling fig (a Figure, e.g. plt.figure(figsize=...), cleared first); else a new figure."""
+    given; else one axes filling fig (a Figure or SubFigure, e.g. plt.figure(figsize=...), cleared first); else a new
+    figure."""
+    _checked(ax, fig)
     if ax is not None:
         if fig is not None and ax.figure is not fig:
             raise ValueError("ax and fig: expected ax in fig (or only one of them), got axes of another figure")
@@ -60,7 +84,7 @@ def _axes(ax, figsize, fig=None):
 
 def _save(fig, path, dpi=200):
     if path is not None:
-        save_atomic(fig, path, dpi)
+        save_atomic(fig.figure, path, dpi)  # a SubFigure's root figure (Figure.figure is itself)
     return fig
 
 
@@ -102,20 +126,25 @@ def _one_period(system, solution, samples):
     return {"t": sim.t, "x": sim.x, "gap": sim.gap, "force": sim.force}
 
 
-def spp_figure(system, solution, samples=2000, path=None, axes=None, fig=None):
+def spp_figure(system, solution, samples=2000, path=None, axes=None, fig=None, ax=None):
     """Top: gap (left axis) and normal contact force (right axis, its own scale) over one period, contact phase
     shaded, symmetry axes at -t1 (mid-flight) and t2 (mid-contact); bottom: every position (coloured by dof index
     past 10 dofs, with a colour bar instead of a legend). Time origin at contact onset: flight on [-2 t1, 0], contact
     on [0, 2 t2]. The curves come from spp.trajectory (the SPP's own equations, exact flows), so an inadmissible
     SPP is drawn as the potential orbit it is (gap or force negative somewhere, marked), as spp trajectory writes it;
     a zero-gap SPP (g0 = 0, paper §6.1, e.g. a gap closure of continue_branches) from the exact simulator.
-    axes: (top, bottom) to draw into; fig: a Figure to draw both panels into (cleared first, e.g. plt.figure(
-    figsize=(8, 5)) or a subfigure); default a new figure. Returns the figure."""
+    axes (or ax, the same): (top, bottom) to draw into, or one Axes whose place (its subplot cell) the two panels
+    take (it is removed); fig: a Figure to draw both panels into (cleared first, e.g. plt.figure(figsize=(8, 5)) or
+    a subfigure, laid out by its root figure); default a new figure. Returns the figure (a SubFigure when given
+    one)."""
     T, t1, t2 = solution.period, solution.t1, solution.t2
     tr = _one_period(system, solution, samples)
     t = np.where(tr["t"] > 2 * t2, tr["t"] - T, tr["t"])  # flight after the contact is the flight before it
     order = np.argsort(t, kind="stable")
     t, x, gap, force = t[order], tr["x"][order], tr["gap"][order], tr["force"][order]
+    if ax is not None and axes is not None:
+        raise ValueError("spp_figure: ax and axes are the same argument: expected one of them, got both")
+    axes = _two_panels(ax if axes is None else axes, fig)
     own = axes is None
     if axes is not None:
         top, bottom = axes
@@ -164,12 +193,43 @@ def spp_figure(system, solution, samples=2000, path=None, axes=None, fig=None):
     for ax, tick, name in ((top, -t1, "$-t_1$"), (top, t2, "$t_2$")):
         ax.annotate(name, (tick, 1.0), xycoords=("data", "axes fraction"), ha="center", va="bottom", fontsize=8)
     if own:
-        fig.tight_layout()
+        _lay_out(fig)
     if n > 10:  # after the layout, under the positions (their width, so the time axes stay aligned)
         sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(1, n))
         fig.colorbar(sm, ax=bottom, orientation="horizontal", location="bottom", label="dof index", pad=0.3,
                      fraction=0.06, aspect=40)
     return _save(fig, path)
+
+
+def _two_panels(axes, fig):
+    """spp_figure's (top, bottom) axes from what was given: None; a pair of Axes; or one Axes made by add_subplot or
+    subplots, whose cell is split into the two panels (the Axes is removed)."""
+    from matplotlib.axes import Axes
+    _checked(fig=fig)
+    if axes is None:
+        return None
+    if isinstance(axes, Axes):
+        spec = axes.get_subplotspec()
+        if spec is None:
+            raise ValueError("spp_figure: ax: expected a pair (top, bottom) of Axes or one Axes of a subplot grid "
+                             "(add_subplot, subplots), got an Axes placed by add_axes")
+        parent = axes.figure
+        if fig is not None and parent is not fig:
+            raise ValueError("ax and fig: expected ax in fig (or only one of them), got axes of another figure")
+        axes.remove()
+        grid = spec.subgridspec(2, 1, height_ratios=[1, 1.3], hspace=0.1)
+        top = parent.add_subplot(grid[0])
+        return top, parent.add_subplot(grid[1], sharex=top)
+    try:
+        pair = tuple(axes)
+    except TypeError:
+        pair = ()
+    if len(pair) != 2:
+        raise TypeError(f"spp_figure: axes: expected a pair (top, bottom) of Axes or one Axes, got "
+                        f"{type(axes).__name__}")
+    for a in pair:
+        _checked(a, where="spp_figure: axes")
+    return pair
 
 
 def _scatter_spps(ax, solutions, x, y):
@@ -326,7 +386,7 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     handles += ax.get_legend_handles_labels()[0] + shaded
     ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
     if own:
-        fig.tight_layout()
+        _lay_out(fig)
     if numbers:  # the table's index beside each marker (gid "spp_number"), placed once the axes have their size
         inside = [(k, sol) for k, sol in enumerate(solutions)
                   if w["t1_min"] <= sol.t1 <= w["t1_max"] and w["t2_min"] <= sol.t2 <= w["t2_max"]]
@@ -347,9 +407,16 @@ def _place_numbers(ax, numbered):
     texts = [ax.annotate(str(k), (sol.t1, sol.t2), xytext=(2.5, 2.5), textcoords="offset points", ha="left",
                          va="bottom", fontsize=NUMBER_FONTSIZE, color="C3" if sol.admissible else "0.3", zorder=4,
                          gid="spp_number") for k, sol in numbered]
-    renderer = getattr(fig.canvas, "get_renderer", lambda: None)()
-    if renderer is None or not texts:  # (a backend without a renderer to measure text: the offsets above)
+    if not texts:
         return
+    renderer = getattr(fig.canvas, "get_renderer", None)
+    if renderer is not None:
+        renderer = renderer()
+    else:  # Figure() without pyplot, svg/pdf canvases: text measured by Agg at the figure's dpi (the same metrics);
+        # the numbers overlapped there (found by an attack)
+        from matplotlib.backends.backend_agg import RendererAgg
+        root = fig.figure
+        renderer = RendererAgg(int(root.bbox.width), int(root.bbox.height), root.dpi)
     px = fig.dpi / 72.0  # display pixels per point
     frame = ax.get_window_extent(renderer)
     centres = ax.transData.transform([(sol.t1, sol.t2) for _, sol in numbered])
@@ -395,7 +462,7 @@ def frequency_energy_figure(solutions, path=None, ax=None, fig=None):
     ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
               handletextpad=0.2, columnspacing=1.0)
     if own:
-        fig.tight_layout()
+        _lay_out(fig)
     return _save(fig, path)
 
 
@@ -424,7 +491,7 @@ def multipliers_figure(solutions, path=None, ax=None, fig=None):
     if sols:
         ax.legend(fontsize=6, frameon=False, loc="center left", bbox_to_anchor=(1.0, 0.5))
     if own:
-        fig.tight_layout()
+        _lay_out(fig)
     return _save(fig, path)
 
 
@@ -456,5 +523,5 @@ def modes_figure(result, solutions=(), path=None, ax=None, admissible_spps_only=
     _frequency_energy_spps(ax, sols, "transversally stable SPP")
     ax.legend(fontsize=6, frameon=False, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     if own:
-        fig.tight_layout()
+        _lay_out(fig)
     return _save(fig, path)

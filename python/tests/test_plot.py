@@ -378,3 +378,54 @@ def test_root_map_numbers_do_not_overlap_each_other_or_other_markers():
     frame = ax.get_window_extent(renderer)
     assert all(frame.x0 <= b.x0 and b.x1 <= frame.x1 and frame.y0 <= b.y0 and b.y1 <= frame.y1 for b in boxes)
     matplotlib.pyplot.close(fig)
+
+
+# Issue 13 (attack): fig= a SubFigure failed in every figure function (tight_layout), though the docstrings offer it;
+# a wrong kind of fig/ax gave AttributeErrors from inside matplotlib; spp_figure took axes= but not ax=.
+def test_every_figure_function_fills_a_subfigure_and_refuses_wrong_kinds(tmp_path):
+    import matplotlib.pyplot as plt
+    s, r = result()
+    sol = [x for x in r.solutions if x.admissible][0]
+    m = spp.modes(spp.two_dof(), k=1, energy_max=2.0)
+    root = plt.figure(figsize=(12, 8), layout="constrained")
+    subs = root.subfigures(2, 3).ravel()
+    draws = (lambda f: plot.spp_figure(s, sol, fig=f),
+             lambda f: plot.frequency_energy_figure(r.solutions, fig=f),
+             lambda f: plot.multipliers_figure(r.solutions, fig=f),
+             lambda f: plot.modes_figure(m, r.solutions, fig=f),
+             lambda f: plot.root_map_figure(s, r.solutions, (0, 3, 0, 3), points=40, fig=f,
+                                            path=tmp_path / "all.png"))
+    for sub, draw in zip(subs, draws):
+        assert draw(sub) is sub and sub.axes
+    assert (tmp_path / "all.png").stat().st_size > 0  # the root figure, saved
+    for bad, match in ((dict(ax=3), "ax: expected matplotlib Axes"), (dict(ax=root), "got Figure"),
+                       (dict(fig="x"), "fig: expected a matplotlib Figure or SubFigure")):
+        with pytest.raises(TypeError, match=match):
+            plot.frequency_energy_figure(r.solutions, **bad)
+    with pytest.raises(TypeError, match="pair"):
+        plot.spp_figure(s, sol, axes=3)
+    from spp import animate
+    with pytest.raises(TypeError, match="not a SubFigure"):
+        animate.animation_of(s, sol, fig=subs[5])
+    fig, axs = plt.subplots(1, 2)
+    assert plot.spp_figure(s, sol, ax=axs[0]) is fig  # one cell split into the two panels (plus the force's twin)
+    assert len(fig.axes) == 4 and axs[0] not in fig.axes and axs[1] in fig.axes
+    with pytest.raises(ValueError, match="same argument"):
+        plot.spp_figure(s, sol, ax=axs[1], axes=axs)
+    plt.close("all")
+
+
+# Issue 13 (attack): the root map's numbers were placed only on canvases that measure text (Agg); on a Figure()
+# made without pyplot (and svg/pdf canvases) every number stayed up right of its marker and overlapped.
+def test_root_map_numbers_are_placed_on_a_figure_without_an_agg_canvas():
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+    s, r = result()
+    bare, agg = Figure(), plt.figure()
+    assert not hasattr(bare.canvas, "get_renderer")
+    offsets = []
+    for f in (bare, agg):
+        plot.root_map_figure(s, r.solutions, r, points=60, fig=f)
+        offsets.append([t.xyann for t in f.axes[0].texts if t.get_gid() == "spp_number"])
+    assert offsets[0] == offsets[1] and len(set(offsets[0])) > 1
+    plt.close("all")
