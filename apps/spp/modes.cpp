@@ -86,7 +86,7 @@ int run(ModesArgs& a) {
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
   if (r.interrupted) {
     std::cerr << "interrupted: the families above (and in the JSON) are those traced before Ctrl-C (status "
-                 "incomplete; a family cut short ends with a stalled event \"interrupted\")\n";
+                 "incomplete; a family cut short ends with an event \"interrupted\")\n";
     return 130;
   }
   if (g_modes_interrupted) std::cerr << "note: Ctrl-C came after the tracing had finished: the result is complete\n";

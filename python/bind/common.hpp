@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -52,11 +53,19 @@ py::handle& outcome_class() {
   static py::handle cls;  // owned by the module (m.attr), never freed before it
   return cls;
 }
+// Every value of E is bound, enumerated from 0 until to_string gives the name of no value (that of an out-of-range
+// one): the result enums are contiguous from 0 and to_string names each. (Hand-written lists of the values drifted:
+// ModeEventKind lacked grazing_continuation, so reading such an event's kind raised a ValueError.)
 template <class E>
-void bind_outcome(py::module_& m, const char* name, std::initializer_list<E> values, const char* doc) {
+void bind_outcome(py::module_& m, const char* name, const char* doc) {
+  using U = std::underlying_type_t<E>;
+  constexpr U kLimit = 64;  // no result enum has as many values
+  const std::string none = to_string(static_cast<E>(kLimit));  // found by ADL, in spp or spp::modes
   py::list members;
-  for (const E v : values)
-    members.append(py::make_tuple(to_string(v), to_string(v)));  // found by ADL, in spp or spp::modes
+  for (U i = 0; to_string(static_cast<E>(i)) != none; ++i) {
+    if (i + 1 == kLimit) throw std::logic_error(std::string("bind_outcome: ") + name + " has no end");
+    members.append(py::make_tuple(to_string(static_cast<E>(i)), to_string(static_cast<E>(i))));
+  }
   py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
   cls.attr("__doc__") = doc;
   m.attr(name) = cls;

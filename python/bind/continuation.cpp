@@ -32,18 +32,12 @@ spp::ContinuationResult run_interruptible(const std::string& where, spp::Continu
 }  // namespace
 
 void bind_continuation(py::module_& m) {
-  bind_outcome(m, "ContinuationStatus", {spp::ContinuationStatus::Success, spp::ContinuationStatus::Incomplete},
+  bind_outcome<spp::ContinuationStatus>(m, "ContinuationStatus",
                "ContinuationResult.status");
-  bind_outcome(m, "BranchEventKind",
-               {spp::BranchEventKind::LeavesWindow, spp::BranchEventKind::RangeEnd, spp::BranchEventKind::Fold,
-                spp::BranchEventKind::AdmissibilityLost, spp::BranchEventKind::AdmissibilityGained,
-                spp::BranchEventKind::GapClosure, spp::BranchEventKind::ClosedLoop, spp::BranchEventKind::Stalled,
-                spp::BranchEventKind::StabilityLost, spp::BranchEventKind::StabilityGained},
+  bind_outcome<spp::BranchEventKind>(m, "BranchEventKind",
                "BranchEvent.kind");
 
-  bind_outcome(m, "MultiplierCrossing",
-               {spp::MultiplierCrossing::None, spp::MultiplierCrossing::PlusOne, spp::MultiplierCrossing::MinusOne,
-                spp::MultiplierCrossing::ComplexPair},
+  bind_outcome<spp::MultiplierCrossing>(m, "MultiplierCrossing",
                "BranchEvent.crossing");
 
   py::class_<spp::BranchPoint>(m, "BranchPoint")

@@ -54,14 +54,9 @@ int whole_in(const char* name, const py::object& v, int lo, int hi) {
 }  // namespace
 
 void bind_modes(py::module_& m) {
-  bind_outcome(m, "ModeEventKind",
-               {md::ModeEventKind::GrazingStart, md::ModeEventKind::BranchStart,
-                md::ModeEventKind::GrazingContinuation, md::ModeEventKind::BranchPoint,
-                md::ModeEventKind::ImpactGrazing, md::ModeEventKind::FlightGrazing, md::ModeEventKind::EnergyMax,
-                md::ModeEventKind::Stalled, md::ModeEventKind::NoAdmissibleSide,
-                md::ModeEventKind::AdmissibilityRegained},
+  bind_outcome<md::ModeEventKind>(m, "ModeEventKind",
                "ModeEvent.kind");
-  bind_outcome(m, "ModesStatus", {md::ModesStatus::NotRun, md::ModesStatus::Traced, md::ModesStatus::Incomplete},
+  bind_outcome<md::ModesStatus>(m, "ModesStatus",
                "ModesResult.status: traced (every family found followed to a located end; NOT every k-IPP family: "
                "docs/modes.md §5) or incomplete (a family stalled)");
   // Nonsmooth modes: k-IPP families (docs/modes.md). Kinds and statuses as their C++ to_string names.

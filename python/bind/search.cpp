@@ -12,7 +12,7 @@
 namespace spp::python {
 
 void bind_search(py::module_& m) {
-  bind_outcome(m, "SolveStatus", {spp::SolveStatus::NotRun, spp::SolveStatus::Success, spp::SolveStatus::Incomplete},
+  bind_outcome<spp::SolveStatus>(m, "SolveStatus",
                "SolveResult.status (and NearestSpp.search_status): success (every check of completeness passed) or "
                "incomplete (SolveResult.uncertified says where and why)");
   // Results of solve() carry their system (attribute `system`), so that they pickle (as their result file's text,

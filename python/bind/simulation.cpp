@@ -29,17 +29,14 @@ Eigen::MatrixXd rows(const spp::SimulationResult& r, Eigen::VectorXd spp::Sample
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  bind_outcome(m, "SimulationStatus",
-               {spp::SimulationStatus::NotRun, spp::SimulationStatus::Success, spp::SimulationStatus::EventLimit,
-                spp::SimulationStatus::Stalled, spp::SimulationStatus::Interrupted},
+  bind_outcome<spp::SimulationStatus>(m, "SimulationStatus",
                "SimulationResult.status");
-  bind_outcome(m, "EventKind", {spp::EventKind::Impact, spp::EventKind::ContactOnset, spp::EventKind::Release},
+  bind_outcome<spp::EventKind>(m, "EventKind",
                "Event.kind");
-  bind_outcome(
-      m, "VerifyStatus", {spp::VerifyStatus::Success, spp::VerifyStatus::Inconsistent},
+  bind_outcome<spp::VerifyStatus>(m, "VerifyStatus",
       "VerifyResult.status: inconsistent when the result disagrees with the simulation or the system (admissibility, "
       "claimed stability, x0/v0: the three counters)");
-  bind_outcome(m, "Verdict", {spp::Verdict::Returns, spp::Verdict::Leaves}, "SppCheck.verdict");
+  bind_outcome<spp::Verdict>(m, "Verdict", "SppCheck.verdict");
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)
       .def_property_readonly("kind", [](const spp::Event& e) { return outcome(e.kind); })

@@ -9,9 +9,7 @@
 namespace spp::python {
 
 void bind_stability(py::module_& m) {
-  bind_outcome(m, "StabilityVerdict",
-               {spp::StabilityVerdict::NotComputed, spp::StabilityVerdict::Stable, spp::StabilityVerdict::Unstable,
-                spp::StabilityVerdict::Undecided, spp::StabilityVerdict::Neutral},
+  bind_outcome<spp::StabilityVerdict>(m, "StabilityVerdict",
                "Solution.stability_verdict (docs/stability.md)");
   m.def(
       "monodromy",

@@ -182,3 +182,11 @@ def test_through_inadmissible_reaches_the_stretches_beyond_an_admissibility_even
     assert spp.ModeEventKind.admissibility_regained in first
     with pytest.raises(TypeError, match="through_inadmissible"):
         spp.modes(s, 1, 5.0, through_inadmissible="yes")
+
+
+# Every C++ value of a result enum is bound (enumerated from C++, no hand-written list: ModeEventKind lacked
+# grazing_continuation before); an interrupted family ends with its own kind `interrupted`, not `stalled`.
+def test_result_enums_have_every_cpp_value():
+    assert [m.value for m in spp.ModeEventKind][-2:] == ["admissibility_regained", "interrupted"]
+    assert [m.value for m in spp.StabilityVerdict] == ["not_computed", "stable", "unstable", "undecided", "neutral"]
+    assert [m.value for m in spp.SimulationStatus] == ["not_run", "success", "event_limit", "stalled", "interrupted"]

@@ -24,6 +24,7 @@ const char* to_string(ModeEventKind kind) {
     case ModeEventKind::Stalled: return "stalled";
     case ModeEventKind::NoAdmissibleSide: return "no_admissible_side";
     case ModeEventKind::AdmissibilityRegained: return "admissibility_regained";
+    case ModeEventKind::Interrupted: return "interrupted";
   }
   return "?";
 }
@@ -328,8 +329,8 @@ struct Tracer {
     ModePoint prev = f.points.back();
     for (int count = 1;; ++count) {
       if (!keep_going()) {
-        add_event(f, ModeEventKind::Stalled, prev, "interrupted");
-        ++result.stalled_families;
+        // not a stall: the status is incomplete through `interrupted` (it read "stalled"; found by an attack)
+        add_event(f, ModeEventKind::Interrupted, prev, "interrupted by the progress callback (Ctrl-C)");
         return;
       }
       if (count >= options.max_points) {

@@ -60,7 +60,7 @@ struct ModesOptions {
   bool through_inadmissible = false;
   /// Called before each family point, from the thread that called nonsmooth_modes() (so a Python callback may take
   /// the GIL): returning false stops the tracing; the families traced so far are kept (the one being traced ends
-  /// with a Stalled event "interrupted") and the status is Incomplete with `interrupted` set. Empty: never called.
+  /// with an Interrupted event) and the status is Incomplete with `interrupted` set. Empty: never called.
   std::function<bool()> progress;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
@@ -90,7 +90,8 @@ enum class ModeEventKind {
   NoAdmissibleSide,  ///< neither direction from the start is admissible (the family is its start only)
   /// the family's first point: the solution curve of an earlier family (ModesOptions::through_inadmissible), followed
   /// through inadmissible orbits from that family's admissibility event, is admissible again here
-  AdmissibilityRegained
+  AdmissibilityRegained,
+  Interrupted  ///< ModesOptions::progress stopped the tracing here (the family is not followed further)
 };
 const char* to_string(ModeEventKind kind);
 
