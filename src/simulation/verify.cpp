@@ -361,7 +361,12 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
       op.sample_times.insert(op.sample_times.begin(), 0.0);
       const SimulationResult p = sim.run(xm + s * dx, vm + s * dv, op);
       if (p.status == SimulationStatus::Interrupted) return stop(i);
-      for (const Sample& smp : p.samples) chk.perturbed_distances.push_back(distance(stack(smp.x, smp.v)));
+      // each distance is a few short simulations: Ctrl-C is heard between them (Python's verify went on for 39 s
+      // after SIGINT; found by an attack)
+      for (const Sample& smp : p.samples) {
+        if (opt.progress && !opt.progress()) return stop(i);
+        chk.perturbed_distances.push_back(distance(stack(smp.x, smp.v)));
+      }
       // The mean growth over the periods while the distance is small (the linear regime): averaged over every period,
       // a run that left the orbit and stopped growing read 1.147 for chain #0 of the paper, whose multiplier is
       // -1.535 (found by the stability work). Compare with Solution's spectral_radius (stability/floquet.hpp).
