@@ -45,6 +45,20 @@ def _metadata():
             "License: BSD-3-Clause\nRequires-Python: >=3.9\nRequires-Dist: numpy\n")
 
 
+SETTINGS = ("build-dir", "jobs")
+
+
+def _settings(config_settings):
+    """config_settings as given, every key one of SETTINGS: a misspelt one (-C job=1) was ignored without a word
+    (found by an attack). Raises ValueError naming it and the known ones."""
+    config_settings = config_settings or {}
+    unknown = sorted(k for k in config_settings if k not in SETTINGS)
+    if unknown:
+        raise ValueError(f"spp build backend: unknown config setting(s) {', '.join(map(repr, unknown))} (pip -C "
+                         f"key=value): expected {' or '.join(SETTINGS)}")
+    return config_settings
+
+
 def _jobs(config_settings):
     """Compile jobs: config setting `jobs`, else CMAKE_BUILD_PARALLEL_LEVEL, else the cores this process may use.
     Raises ValueError naming where a value that is not a positive integer came from."""
@@ -142,6 +156,7 @@ def get_requires_for_build_editable(config_settings=None):
 
 
 def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
+    config_settings = _settings(config_settings)
     build_dir = (config_settings or {}).get("build-dir")
     with tempfile.TemporaryDirectory(prefix="spp-wheel-") as tmp:
         pkg = _cmake_build(build_dir or tmp, config_settings)
@@ -155,6 +170,7 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
 def build_editable(wheel_directory, config_settings=None, metadata_directory=None):
     """A wheel holding one .pth that puts the CMake build's python/ directory on sys.path: the package then runs
     from the build tree (after editing a .py file or the C++ sources, `cmake --build build-python --target _spp`)."""
+    config_settings = _settings(config_settings)
     build_dir = pathlib.Path((config_settings or {}).get("build-dir") or ROOT / "build-python").resolve()
     pkg = _cmake_build(build_dir, config_settings)
     return _write_wheel(wheel_directory, {f"__editable__.{NAME}.pth": f"{pkg.parent}\n".encode()})

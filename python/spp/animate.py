@@ -313,6 +313,14 @@ class AnimationHTML(str):
     def _repr_html_(self):
         return str(self)
 
+    # Short text forms: Jupyter stores text/plain beside text/html, and the whole HTML as text/plain doubled the
+    # notebook's size (found by an attack).
+    def __repr__(self):
+        return f"<AnimationHTML: {len(self) / 1e6:.2f} MB of HTML (shown as an animation in Jupyter)>"
+
+    def _repr_pretty_(self, p, cycle):
+        p.text(repr(self))
+
 
 def animation_html(system, spp, frames=60, periods=1, fps=25, layout="auto", fig=None, embed_limit_mb=None):
     """The animation of the SPP as HTML with its frames embedded and play controls (matplotlib's to_jshtml): the

@@ -146,6 +146,10 @@ def test_animation_shows_inline_and_draws_into_a_given_figure(tmp_path):
     html = animate.animation_html(system, sol, frames=6)
     assert html._repr_html_() == html and "<script" in html and html.count("data:image/png;base64") == 6
     assert set(plt.get_fignums()) == before  # its own figure closed: the cell shows the animation only
+    # its text/plain form (stored by Jupyter beside the HTML) is one short line, not the HTML again
+    import IPython.lib.pretty as pretty
+    for text in (repr(html), pretty.pretty(html)):
+        assert text.startswith("<AnimationHTML:") and len(text) < 100
     anim = animate.animation_of(system, sol, frames=5, periods=2)
     assert anim.to_jshtml().count("data:image/png;base64") == 10
     plt.close(anim._fig)

@@ -62,3 +62,10 @@ def test_build_jobs_come_from_the_setting_the_environment_or_the_cores(monkeypat
     monkeypatch.setenv("CMAKE_BUILD_PARALLEL_LEVEL", "many")
     with pytest.raises(ValueError, match="CMAKE_BUILD_PARALLEL_LEVEL: expected a positive integer, got 'many'"):
         spp_build._cmake_build(tmp_path)
+    # a misspelt setting (-C job=1) was ignored without a word (found by an attack): refused before any build
+    monkeypatch.delenv("CMAKE_BUILD_PARALLEL_LEVEL")
+    ran = len(commands)
+    for build in (spp_build.build_wheel, spp_build.build_editable):
+        with pytest.raises(ValueError, match=r"unknown config setting\(s\) 'job' .*expected build-dir or jobs"):
+            build(str(tmp_path), {"job": "1"})
+    assert len(commands) == ran  # nothing run
