@@ -51,7 +51,7 @@ struct PlotArgs {
 };
 
 struct AnimateArgs {
-  std::string result, out, layout = "auto";
+  std::string result, out, layout = "auto", fe_layout;
   int solution = -1, frames = 120, periods = 1, fps = 25, dpi = 125;  // dpi: animate.py's DEFAULT_DPI
 };
 
@@ -77,15 +77,22 @@ std::vector<Subcommand> add_figures(CLI::App& app) {
   anim->add_option("--periods", a->periods, "periods shown (default 1)");
   anim->add_option("--fps", a->fps, "frames per second (default 25)");
   anim->add_option("--dpi", a->dpi, "resolution: the frame is 6.4 x 4.8 inches (default 125: 800 x 600)");
-  anim->add_option("--layout", a->layout, "auto, chain, plane or dofs (default auto: from M, K and w)");
+  anim->add_option("--layout", a->layout,
+                   "auto, chain, plane, dofs or fe (default auto: from M, K and w; fe with --fe-layout)");
+  anim->add_option("--fe-layout", a->fe_layout,
+                   "a layout file (spp generate bar's <stem>.layout.json, spp reduce --layout's OUT.layout.json): "
+                   "draw the finite-element model itself");
   auto run_plot = [p]() -> int {
     exec_python({"plot", p->result, "--out", p->out, "--formats", p->formats, "--root-map-points",
                  std::to_string(p->points), "--solutions", p->solutions});
   };
   auto run_animate = [a]() -> int {
-    exec_python({"animate", a->result, "--out", a->out, "--solution", std::to_string(a->solution), "--frames",
-                 std::to_string(a->frames), "--periods", std::to_string(a->periods), "--fps", std::to_string(a->fps),
-                 "--dpi", std::to_string(a->dpi), "--layout", a->layout});
+    std::vector<std::string> args = {"animate", a->result, "--out", a->out, "--solution", std::to_string(a->solution),
+                                     "--frames", std::to_string(a->frames), "--periods", std::to_string(a->periods),
+                                     "--fps", std::to_string(a->fps), "--dpi", std::to_string(a->dpi), "--layout",
+                                     a->layout};
+    if (!a->fe_layout.empty()) args.insert(args.end(), {"--fe-layout", a->fe_layout});
+    exec_python(args);
   };
   return {{plot, run_plot}, {anim, run_animate}};
 }

@@ -1,6 +1,7 @@
 // spp generate: system files of the paper's models (chain, rod, two-dof) and of random dense systems, optionally with
 // one value left free as the parameter of a parametric system; and a large sparse model (bar: a finite-element rod, M
 // and K in Matrix Market files beside the JSON, to reduce with spp reduce).
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -71,16 +72,29 @@ System make(const GenerateArgs& g, const std::optional<std::pair<std::string, do
 // The bar: sparse, its M and K written as Matrix Market files beside the JSON (<stem>.M.mtx, <stem>.K.mtx).
 int run_bar(const GenerateArgs& g) {
   const std::vector<std::string> mtx = sparse_system_matrix_files(g.out);
+  const std::string layout_path = (std::filesystem::path(g.out).parent_path() /
+                                   (std::filesystem::path(g.out).stem().string() + ".layout.json")).string();
   check_output(g.out, "--out", {});
   for (const std::string& f : mtx) check_output(f, "--out (its Matrix Market file)", {g.out});
+  check_output(layout_path, "--out (its layout file)", {g.out, mtx[0], mtx[1]});
   const int node = g.bar_contact_node == 0 ? g.bar_n : g.bar_contact_node;
   const SparseSystem sys = bar(g.bar_n, g.bar_lumped ? BarMass::Lumped : BarMass::Consistent, node,
                                g.side == "upper" ? ContactSide::Upper : ContactSide::Lower, g.chain_g0);
   write_sparse_system(sys, g.out,
                       "fixed-free bar, unit length, EA = rhoA = 1, " + std::to_string(g.bar_n) + " linear elements, " +
                           (g.bar_lumped ? "lumped" : "consistent") + " mass, contact at node " + std::to_string(node));
+  // the layout (io/layout_file.hpp): dof i moves node i + 1, at x = (i + 1) / n, along the bar
+  FeLayout layout;
+  layout.coordinates.resize(g.bar_n, 1);
+  layout.directions = Eigen::MatrixXd::Ones(g.bar_n, 1);
+  for (int i = 0; i < g.bar_n; ++i) {
+    layout.dofs.push_back(i);
+    layout.coordinates(i, 0) = static_cast<double>(i + 1) / g.bar_n;
+  }
+  write_file_atomic(layout_path, fe_layout_json(layout));
   std::cout << "wrote " << sys.name() << " (n = " << sys.n() << ", " << (g.bar_lumped ? "lumped" : "consistent")
-            << " mass, contact at node " << node << ") to " << g.out << " with " << mtx[0] << " and " << mtx[1] << "\n";
+            << " mass, contact at node " << node << ") to " << g.out << " with " << mtx[0] << ", " << mtx[1]
+            << " and its layout " << layout_path << " (spp reduce --layout)\n";
   return 0;
 }
 

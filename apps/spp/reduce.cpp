@@ -22,7 +22,7 @@ namespace spp::cli {
 namespace {
 
 struct ReduceArgs {
-  std::string model, out, modes = "20", window, csv, spp_csv;
+  std::string model, out, modes = "20", window, csv, spp_csv, layout;
   int frequencies = 6;
   int threads = 0;
   bool certify_steps = true;
@@ -49,6 +49,13 @@ std::string out_name(const std::string& out, int m, bool several) {
   return (p.parent_path() / (p.stem().string() + "-m" + std::to_string(m) + p.extension().string())).string();
 }
 
+// The layout file of a reduced model R.json: R.layout.json beside it (python3 -m spp animate --fe-layout)
+std::string layout_name(const std::string& out) {
+  namespace fs = std::filesystem;
+  const fs::path p(out);
+  return (p.parent_path() / (p.stem().string() + ".layout.json")).string();
+}
+
 int run(const ReduceArgs& a) {
   const std::vector<int> modes = parse_modes(a.modes);
   const bool several = modes.size() > 1;
@@ -69,6 +76,8 @@ int run(const ReduceArgs& a) {
           "--spp-csv: needs --window (the SPPs of the reduced models): expected --window with it, got none");
     outputs.push_back({"--spp-csv", a.spp_csv});
   }
+  if (!a.layout.empty())
+    for (int m : modes) outputs.push_back({"--layout (the reduced layout)", layout_name(out_name(a.out, m, several))});
   for (size_t k = 0; k < outputs.size(); ++k)
     check_output(outputs[k].path, outputs[k].option, inputs, {outputs.begin(), outputs.begin() + k});
 
@@ -81,8 +90,19 @@ int run(const ReduceArgs& a) {
                                 "reduced; give the gap at rest a non-zero g0");
   std::cout << model.name() << ": " << model.n() << " dofs, " << model.K().nonZeros() << " non-zeros in K\n";
 
+  // the dofs to draw (--layout): their rows of the reduction basis go into each reduced model's layout file
+  ReductionOptions ro;
+  FeLayout layout;
+  if (!a.layout.empty()) {
+    layout = read_fe_layout(a.layout, model.n());
+    if (layout.basis.size() > 0)
+      detail::invalid(a.layout + ": a layout with a \"basis\" belongs to a reduced model: expected the full model's "
+                      "layout (dofs, coordinates, directions), got a basis");
+    layout = sample_fe_layout(layout, kMaxExpansionDofs);
+    for (const long d : layout.dofs) ro.expansion_dofs.push_back(static_cast<int>(d));
+  }
   // one factorisation and one eigensolve (for the largest m) serve every m
-  std::vector<ReductionResult> results = reduce(model, modes);
+  std::vector<ReductionResult> results = reduce(model, modes, ro);
   for (const ReductionResult& r : results) {
     std::cout << "m = " << r.modes << ": " << r.brief_report() << "\n";
     if (r.status != ReductionResult::Status::Success)
@@ -159,6 +179,13 @@ int run(const ReduceArgs& a) {
   for (size_t i = 0; i < results.size(); ++i) {
     write_file_atomic(out_name(a.out, results[i].modes, several), texts[i]);
     std::cout << "wrote " << out_name(a.out, results[i].modes, several) << "\n";
+    if (!a.layout.empty()) {
+      layout.basis = results[i].expansion;
+      const std::string name = layout_name(out_name(a.out, results[i].modes, several));
+      write_file_atomic(name, fe_layout_json(layout));
+      std::cout << "wrote " << name << " (" << layout.dofs.size() << " dofs of the model for python3 -m spp animate "
+                << "--fe-layout)\n";
+    }
   }
   if (!a.csv.empty()) write_file_atomic(a.csv, csv.str());
   if (!a.spp_csv.empty()) write_file_atomic(a.spp_csv, spp_csv.str());
@@ -186,6 +213,10 @@ Subcommand add_reduce(CLI::App& app) {
                 "grows fast with m: the pole lines of the fast modes fill the window)");
   r->add_option("--spp-csv", a->spp_csv, "with --window: write the admissible SPPs per m as CSV");
   r->add_option("--threads", a->threads, "with --window: worker threads of each solve (default 0: all)");
+  r->add_option("--layout", a->layout,
+                "the model's layout file (node coordinates and directions of its dofs, io/layout_file.hpp; spp "
+                "generate bar writes one): each reduced model gets OUT.layout.json, for python3 -m spp animate "
+                "--fe-layout (at most 4000 dofs kept, evenly spaced)");
   r->add_flag("--certify-steps,!--no-certify-steps", a->certify_steps,
               "with --window: prove every trace step (default), as spp solve");
   return {r, [a] { return run(*a); }};

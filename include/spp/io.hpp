@@ -5,6 +5,7 @@
 #include "spp/io/continuation_file.hpp"
 #include "spp/io/csv.hpp"
 #include "spp/io/files.hpp"
+#include "spp/io/layout_file.hpp"
 #include "spp/io/matrix_market.hpp"
 #include "spp/io/modes_file.hpp"
 #include "spp/io/result_file.hpp"

@@ -125,8 +125,8 @@ def _animate(a):
     else:
         k = a.solution
     frames = animate.animate(system, spps[k], a.out, frames=a.frames, periods=a.periods, fps=a.fps, dpi=a.dpi,
-                             layout=a.layout)
-    layout = animate.layout_of(system) if a.layout == "auto" else a.layout
+                             layout=a.layout, fe_layout=a.fe_layout)
+    layout = "fe" if a.fe_layout else animate.layout_of(system) if a.layout == "auto" else a.layout
     print(f"wrote {a.out}: solution {k}, {frames} frames, layout {layout}")
 
 
@@ -148,7 +148,9 @@ def main(argv=None):
     q.add_argument("--periods", type=int, default=1)
     q.add_argument("--fps", type=int, default=25)
     q.add_argument("--dpi", type=int, default=125, help="the frame is 6.4 x 4.8 inches (default 125: 800 x 600)")
-    q.add_argument("--layout", default="auto", help="auto, chain, plane or dofs")
+    q.add_argument("--layout", default="auto", help="auto, chain, plane, dofs or fe (with --fe-layout)")
+    q.add_argument("--fe-layout", default=None,
+                   help="a layout file (spp generate bar's, spp reduce --layout's): draw the finite-element model")
     try:
         a = ap.parse_args(argv)
     except SystemExit as e:  # argparse exits 2 on a usage error; spp's usage errors exit 1 (README "Exit codes")

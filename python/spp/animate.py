@@ -6,7 +6,12 @@ The picture follows the system's structure, read from M, K and w (no extra metad
   - "plane": w on exactly two dofs (the rod with slip of §5.3: x2, y2 of its contact node): the contact point in
     that plane, the oblique obstacle line w_i x_i + w_j x_j + g0 = 0, its path, and the force along the normal;
     beside it, every dof as a bar;
-  - "dofs": anything else: every dof's position as a stem plot.
+  - "dofs": anything else: every dof's position as a stem plot;
+  - "fe": given a finite-element layout (fe_layout=, a file of `spp generate bar` or `spp reduce --layout`, or one
+    written for any model: docs/files.md): the model itself, its nodes moved by the SPP's displacements (of a reduced
+    model: expanded to the full model's dofs by the reduction basis in the file); 1-D coordinates: the displacement
+    along the model against the position; 2-D (or the first two of 3-D): the deformed nodes over the undeformed ones,
+    displacements scaled to a tenth of the model's size; the obstacle where the contact dof is among the dofs drawn.
 Below each picture, gap (left axis) and contact force (right axis, its own scale) with a cursor. The curves are
 those of spp.plot.spp_figure: the SPP's own equations (spp.trajectory, exact flows), so that an inadmissible SPP is
 shown as the potential orbit it is (contact 2 t2, then flight 2 t1 through the obstacle), its violations shaded and
@@ -24,7 +29,7 @@ from matplotlib import animation
 from ._files import atomic_path
 from . import plot as _plot
 
-LAYOUTS = ("auto", "chain", "plane", "dofs")
+LAYOUTS = ("auto", "chain", "plane", "dofs", "fe")
 FIGSIZE_IN = (6.4, 4.8)  # every frame
 MAX_DPI = 600  # 3840 x 2880 pixels a frame; beyond, matplotlib's renderer fails (dpi 100000: an IndexError)
 MAX_FRAMES = 10000  # frames x periods: 400 s at 25 fps, each frame drawn by matplotlib (~20 ms)
@@ -203,7 +208,158 @@ class _Dofs:
         return [self.stems, self.tops]
 
 
-def _figure(system, spp, frames, periods, kind, fig=None):
+class FeLayout:
+    """A finite-element layout (io/layout_file.hpp, docs/files.md): dofs (0-based, of the full model), coordinates and
+    directions (one row per dof, 1 to 3 columns), basis (one row per dof, the reduced model's dofs columns) or None.
+    read(source, n): from a path or the file's dict, checked against a system of n dofs; ValueError naming what is
+    wrong."""
+
+    def __init__(self, dofs, coordinates, directions, basis):
+        self.dofs, self.coordinates, self.directions, self.basis = dofs, coordinates, directions, basis
+
+    @classmethod
+    def read(cls, source, n):
+        import json
+        where = "fe_layout"
+        if isinstance(source, (str, os.PathLike)):
+            where = os.fspath(source)
+            try:
+                with open(source, encoding="utf-8") as f:
+                    source = json.load(f)
+            except (OSError, ValueError) as e:
+                raise ValueError(f"{where}: cannot read a layout file: {e}") from None
+        if not isinstance(source, dict):
+            raise ValueError(f"{where}: expected a layout (a path or a dict with dofs, coordinates, directions), got "
+                             f"{type(source).__name__}")
+        unknown = sorted(set(source) - {"dofs", "coordinates", "directions", "basis"})
+        if unknown:
+            raise ValueError(f"{where}: unknown field(s) {', '.join(unknown)}: expected dofs, coordinates, directions "
+                             f"and optionally basis")
+
+        def array(key, ndim):
+            if key not in source:
+                raise ValueError(f"{where}: missing field {key!r}")
+            try:
+                a = np.asarray(source[key], dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{where}: field {key!r}: expected numbers") from None
+            if a.ndim != ndim or not np.isfinite(a).all() or a.size == 0:
+                raise ValueError(f"{where}: field {key!r}: expected a non-empty {'list' if ndim == 1 else 'list of rows'} "
+                                 f"of finite numbers, got shape {a.shape}")
+            return a
+
+        dofs = array("dofs", 1)
+        coordinates, directions = array("coordinates", 2), array("directions", 2)
+        rows = len(dofs)
+        if coordinates.shape[0] != rows or directions.shape != coordinates.shape or not 1 <= coordinates.shape[1] <= 3:
+            raise ValueError(f"{where}: expected coordinates and directions of one shape, {rows} rows (one per dof) of "
+                             f"1 to 3 numbers, got {coordinates.shape} and {directions.shape}")
+        if (np.linalg.norm(directions, axis=1) == 0).any():
+            raise ValueError(f"{where}: field 'directions': expected no zero direction")
+        basis = None
+        if "basis" in source:
+            basis = array("basis", 2)
+            if basis.shape != (rows, n):
+                raise ValueError(f"{where}: field 'basis': expected {rows} rows of {n} numbers (the system's dofs), got "
+                                 f"{basis.shape}: the layout of another reduced model?")
+        full = n if basis is None else np.inf
+        if (dofs != np.floor(dofs)).any() or (dofs < 0).any() or (dofs >= full).any():
+            raise ValueError(f"{where}: field 'dofs': expected 0-based dofs of the system (0 to {n - 1}), got "
+                             f"{dofs.min():g} to {dofs.max():g}")
+        return cls(dofs.astype(int), coordinates, directions, basis)
+
+    def displacements(self, x):
+        """The listed dofs' displacements (samples x rows) from the system's positions x (samples x n)."""
+        return x @ self.basis.T if self.basis is not None else x[:, self.dofs]
+
+    def contact_row(self, system):
+        """The row of the contact dof and the displacement at which the gap closes there (None, None when w is on
+        several dofs or the contact dof is not listed): a row whose expansion is the unit vector of w's one dof."""
+        support = np.flatnonzero(np.abs(system.w) > 1e-12)
+        if len(support) != 1:
+            return None, None
+        c = support[0]
+        rows = np.eye(system.n)[self.dofs] if self.basis is None else self.basis
+        unit = np.zeros(system.n)
+        unit[c] = 1.0
+        hits = np.flatnonzero(np.abs(rows - unit).max(axis=1) <= 1e-12)
+        if not len(hits):
+            return None, None
+        return int(hits[0]), -system.g0 / system.w[c]
+
+
+class _Fe:
+    """The model from its layout (FeLayout): 1-D, the displacement along the model against the position; 2-D (or
+    3-D: the first two coordinates), the deformed nodes over the undeformed ones."""
+
+    def __init__(self, ax, system, x, layout):
+        self.layout = layout
+        d = layout.displacements(x)  # samples x rows
+        self.row, at = layout.contact_row(system)
+        self.dim = layout.coordinates.shape[1]
+        if self.dim == 1:
+            self.order = np.argsort(layout.coordinates[:, 0], kind="stable")
+            xs = layout.coordinates[self.order, 0]
+            sign = np.sign(layout.directions[self.order, 0])
+            self.sign = sign
+            lim = 1.15 * max(np.abs(d).max(), abs(at) if at is not None else 0.0, 1e-300)
+            ax.axhline(0.0, color="0.7", lw=0.8)
+            self.line = ax.plot(xs, np.zeros_like(xs), "-", color="C0", lw=1.5, gid="fe_displacement")[0]
+            if self.row is not None:
+                xc = layout.coordinates[self.row, 0]
+                level = at * np.sign(layout.directions[self.row, 0])
+                width = 0.04 * max(np.ptp(xs), 1e-300)
+                ax.plot([xc - width, xc + width], [level, level], color="k", lw=2.5, gid="obstacle")
+                self.dot = ax.plot([], [], "o", color="C3", ms=5, zorder=3)[0]
+            ax.set_xlim(xs.min() - 0.02 * np.ptp(xs), xs.max() + 0.02 * np.ptp(xs) + 1e-300)
+            ax.set_ylim(-lim, lim)
+            ax.set_xlabel("position along the model (-)")
+            ax.set_ylabel("displacement (-)")
+            ax.set_title(f"finite-element layout: {len(layout.dofs)} dofs", fontsize=8)
+            return
+        c = layout.coordinates[:, :2]
+        u = layout.directions[:, :2] / np.linalg.norm(layout.directions, axis=1)[:, None]
+        self.nodes, self.node_of = np.unique(c, axis=0, return_inverse=True)
+        self.node_of = self.node_of.ravel()
+        self.u = u
+        extent = max(np.ptp(self.nodes, axis=0).max(), 1e-300)
+        peak = max(np.abs(self._node_displacement(d)).max(), 1e-300)
+        self.scale = 0.1 * extent / peak
+        ax.plot(self.nodes[:, 0], self.nodes[:, 1], ".", color="0.8", ms=3, gid="undeformed")
+        self.cloud = ax.plot([], [], ".", color="C0", ms=4, gid="fe_displacement")[0]
+        if self.row is not None:
+            p = c[self.row] + self.scale * at * u[self.row]
+            t = np.array([-u[self.row, 1], u[self.row, 0]]) * 0.05 * extent
+            ax.plot([p[0] - t[0], p[0] + t[0]], [p[1] - t[1], p[1] + t[1]], color="k", lw=2.5, gid="obstacle")
+        pad = 0.15 * extent
+        ax.set_xlim(self.nodes[:, 0].min() - pad, self.nodes[:, 0].max() + pad)
+        ax.set_ylim(self.nodes[:, 1].min() - pad, self.nodes[:, 1].max() + pad)
+        ax.set_aspect("equal")
+        ax.set_title(f"finite-element layout: {len(self.nodes)} nodes, displacements x {self.scale:.3g}", fontsize=8)
+
+    def _node_displacement(self, d):
+        """Per node (samples x nodes x 2): the sum of its dofs' displacements along their directions."""
+        out = np.zeros((d.shape[0], len(self.nodes), 2))
+        for k in range(2):
+            np.add.at(out[:, :, k], (slice(None), self.node_of), d * self.u[:, k])
+        return out
+
+    def draw(self, x, force):
+        d = self.layout.displacements(x[None, :])
+        if self.dim == 1:
+            values = d[0, self.order] * self.sign
+            self.line.set_ydata(values)
+            if self.row is None:
+                return [self.line]
+            xc = self.layout.coordinates[self.row, 0]
+            self.dot.set_data([xc], [d[0, self.row] * np.sign(self.layout.directions[self.row, 0])])
+            return [self.line, self.dot]
+        p = self.nodes + self.scale * self._node_displacement(d)[0]
+        self.cloud.set_data(p[:, 0], p[:, 1])
+        return [self.cloud]
+
+
+def _figure(system, spp, frames, periods, kind, fig=None, fe_layout=None):
     """The animation's figure, its frame function and frame count: one period of the SPP from spp.plot's
     _one_period (the SPP's own equations), on the static figure's time axis [-2 t1, 2 t2] (flight before contact),
     repeated for `periods`. fig: a matplotlib Figure to draw into (cleared first; its size is kept); default a new
@@ -232,7 +388,10 @@ def _figure(system, spp, frames, periods, kind, fig=None):
         hist = fig.add_subplot(grid[1, :])
     else:
         top = fig.add_subplot(grid[0, 0])
-        scene = _Chain(top, system, x, force) if kind == "chain" else _Dofs(top, x)
+        if kind == "fe":
+            scene = _Fe(top, system, x, fe_layout)
+        else:
+            scene = _Chain(top, system, x, force) if kind == "chain" else _Dofs(top, x)
         hist = fig.add_subplot(grid[1, 0])
     for k in range(periods):
         hist.axvspan(k * T, k * T + 2 * t2, color="0.9", lw=0, label="contact phase" if k == 0 else None)
@@ -276,7 +435,13 @@ def _figure(system, spp, frames, periods, kind, fig=None):
     return fig, update, count
 
 
-def _kind(system, layout):
+def _kind(system, layout, fe_layout=None):
+    if fe_layout is not None and layout not in ("auto", "fe"):
+        raise ValueError(f"fe_layout is drawn with layout 'fe' (or 'auto'), got layout {layout!r}")
+    if layout == "fe" and fe_layout is None:
+        raise ValueError("layout 'fe' needs fe_layout (a layout file of spp generate bar / spp reduce --layout)")
+    if fe_layout is not None:
+        return "fe"
     kind = layout_of(system) if layout == "auto" else layout
     if kind == "chain" and layout_of(system) != "chain":
         raise ValueError("layout 'chain' needs a diagonal M, a tridiagonal K and w on one dof")
@@ -295,15 +460,17 @@ def _whole_figure(fig):
     return fig
 
 
-def animation_of(system, spp, frames=120, periods=1, fps=25, layout="auto", fig=None):
+def animation_of(system, spp, frames=120, periods=1, fps=25, layout="auto", fig=None, fe_layout=None):
     """The animation of the SPP (anything with t1, t2, period, x0, v0) as a matplotlib FuncAnimation, written to no
     file: anim.to_jshtml() (or animation_html) shows it in Jupyter, anim.save(...) writes it. fig: a Figure to draw
     into (cleared; its size and dpi are kept), default a new one of FIGSIZE_IN; anim._fig is it. Raises ValueError
     on bad arguments (those of animate but the path and dpi)."""
     check_options("animation.gif", frames=frames, periods=periods, fps=fps, layout=layout)
     _whole_figure(fig)
-    kind = _kind(system, layout)
-    fig, update, count = _figure(system, spp, frames, periods, kind, fig)
+    if fe_layout is not None and not isinstance(fe_layout, FeLayout):
+        fe_layout = FeLayout.read(fe_layout, system.n)
+    kind = _kind(system, layout, fe_layout)
+    fig, update, count = _figure(system, spp, frames, periods, kind, fig, fe_layout)
     return animation.FuncAnimation(fig, update, frames=count, interval=1000.0 / fps, blit=False)
 
 
@@ -322,7 +489,8 @@ class AnimationHTML(str):
         p.text(repr(self))
 
 
-def animation_html(system, spp, frames=60, periods=1, fps=25, layout="auto", fig=None, embed_limit_mb=None):
+def animation_html(system, spp, frames=60, periods=1, fps=25, layout="auto", fig=None, embed_limit_mb=None,
+                   fe_layout=None):
     """The animation of the SPP as HTML with its frames embedded and play controls (matplotlib's to_jshtml): the
     value of a Jupyter cell shows it inline, whatever the backend. Each frame is a PNG at the figure's dpi (default
     figure: 640 x 480 at dpi 100), about 40-80 kB, so the default 60 frames are a few MB in the notebook.
@@ -331,7 +499,8 @@ def animation_html(system, spp, frames=60, periods=1, fps=25, layout="auto", fig
     also show its last frame. Returns an AnimationHTML (a str with _repr_html_)."""
     import matplotlib
     own = fig is None
-    anim = animation_of(system, spp, frames=frames, periods=periods, fps=fps, layout=layout, fig=fig)
+    anim = animation_of(system, spp, frames=frames, periods=periods, fps=fps, layout=layout, fig=fig,
+                        fe_layout=fe_layout)
     try:
         limit = {} if embed_limit_mb is None else {"animation.embed_limit": float(embed_limit_mb)}
         with matplotlib.rc_context(limit):
@@ -341,7 +510,8 @@ def animation_html(system, spp, frames=60, periods=1, fps=25, layout="auto", fig
             plt.close(anim._fig)
 
 
-def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto", fig=None):
+def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, layout="auto", fig=None,
+            fe_layout=None):
     """Writes an animation of the SPP (anything with t1, t2, period, x0, v0) to path: .gif (Pillow) or .mp4
     (ffmpeg). frames: per period. fig: a Figure to draw into (cleared; its size is kept; not closed), default a new
     one of FIGSIZE_IN (closed when written). Returns the number of frames written. Raises ValueError on bad
@@ -351,7 +521,8 @@ def animate(system, spp, path, frames=120, periods=1, fps=25, dpi=DEFAULT_DPI, l
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()
     own = fig is None
-    anim = animation_of(system, spp, frames=frames, periods=periods, fps=fps, layout=layout, fig=fig)
+    anim = animation_of(system, spp, frames=frames, periods=periods, fps=fps, layout=layout, fig=fig,
+                        fe_layout=fe_layout)
     writer = animation.PillowWriter(fps=fps) if ext == ".gif" else animation.FFMpegWriter(fps=fps)
     try:
         with atomic_path(path) as tmp:

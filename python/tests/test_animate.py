@@ -161,3 +161,61 @@ def test_animation_shows_inline_and_draws_into_a_given_figure(tmp_path):
     with pytest.raises(ValueError, match="frames must be an integer"):
         animate.animation_html(system, sol, frames=1)
     plt.close("all")
+
+
+# Issue 13: a finite-element model was drawn as a stem plot of its dofs (or, reduced, of its modal coordinates).
+# `spp generate bar` writes the model's layout (node coordinates, dof directions), `spp reduce --layout` carries it
+# to the reduced model with the rows of the reduction basis, and layout "fe" draws the model itself.
+def test_fe_layout_draws_the_model_from_the_reduction_basis(tmp_path):
+    import json
+    import subprocess
+    cli = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(spp.__file__)))), "spp")
+    run = lambda *a: subprocess.run([cli, *a], check=True, capture_output=True, text=True, cwd=tmp_path)
+    run("generate", "bar", "--n", "200", "--out", "bar.json")
+    out = run("reduce", "bar.json", "--modes", "3", "--out", "r.json", "--layout", "bar.layout.json").stdout
+    assert "wrote r.layout.json (200 dofs" in out
+    layout = json.loads((tmp_path / "r.layout.json").read_text())
+    assert len(layout["dofs"]) == 200 and np.shape(layout["basis"]) == (200, 4)
+    system = spp.System.from_json(str(tmp_path / "r.json"))
+    # the free end (dof 199) is the contact dof: its basis row is u = q_0 (the reduced model's first coordinate)
+    assert layout["basis"][199] == [1.0, 0.0, 0.0, 0.0]
+    sol = spp.nearest_spp(system, 1.0894, 0.4628).solution  # the bar's first admissible SPP (m = 3)
+    anim = animate.animation_of(system, sol, frames=8, fe_layout=tmp_path / "r.layout.json")
+    fig = anim._fig
+    line = [l for ax in fig.axes for l in ax.lines if l.get_gid() == "fe_displacement"][0]
+    obstacle = [l for ax in fig.axes for l in ax.lines if l.get_gid() == "obstacle"][0]
+    anim._func(3)
+    t = -2 * sol.t1 + 3 * sol.period / 8
+    x = spp.trajectory(system, sol.t1, sol.t2, 4000)  # the reduced state at that instant, expanded by the basis
+    tt = np.where(x["t"] > 2 * sol.t2, x["t"] - sol.period, x["t"])
+    k = np.argmin(np.abs(tt - t))
+    expected = np.asarray(layout["basis"]) @ x["x"][k]
+    assert np.allclose(line.get_ydata(), expected, atol=2e-3 * np.abs(expected).max())
+    assert np.allclose(line.get_xdata(), np.arange(1, 201) / 200)
+    # the obstacle at the free end, where the gap closes: g = g0 - x_tip = 0
+    assert np.allclose(obstacle.get_ydata(), [system.g0 / -system.w[0]] * 2)
+    import matplotlib.pyplot as plt
+    plt.close(fig)
+    # a layout of another model, or the wrong layout kind, is refused naming why
+    with pytest.raises(ValueError, match=r"expected 200 rows of 5 numbers .*got \(200, 4\): the layout of another"):
+        animate.animation_of(spp.chain(5), spp.solve(spp.chain(5), t1_max=12, t2_max=12).solutions[0],
+                             fe_layout=tmp_path / "r.layout.json")
+    with pytest.raises(ValueError, match="layout 'fe' needs fe_layout"):
+        animate.animation_of(system, sol, layout="fe")
+    with pytest.raises(ValueError, match="unknown field"):
+        animate.FeLayout.read({"dofs": [0], "coordinates": [[0]], "directions": [[1]], "nodes": 1}, 4)
+
+
+def test_fe_layout_in_two_dimensions_moves_each_node_by_its_dofs():
+    # a hand-written layout of chain5: dofs 0, 1 move node (0, 0) along x and y; dofs 2..4 three nodes along y
+    system = spp.chain(5)
+    sol = first_admissible(system, 12, 12)
+    layout = {"dofs": [0, 1, 2, 3, 4], "coordinates": [[0, 0], [0, 0], [1, 0], [2, 0], [3, 0]],
+              "directions": [[1, 0], [0, 2], [0, 1], [0, 1], [0, 1]]}
+    anim = animate.animation_of(system, sol, frames=5, fe_layout=layout)
+    anim._func(2)
+    cloud = [l for ax in anim._fig.axes for l in ax.lines if l.get_gid() == "fe_displacement"][0]
+    scene_nodes = np.column_stack(cloud.get_data())
+    assert scene_nodes.shape == (4, 2)  # four nodes: the first carries two dofs
+    import matplotlib.pyplot as plt
+    plt.close(anim._fig)

@@ -100,6 +100,13 @@ void ReductionOptions::validate(int n) const {
     detail::invalid_option(where, "eigen_tolerance", eigen_tolerance, "in (0, 1)");
   if (max_iterations < 1) detail::invalid_option(where, "max_iterations", max_iterations, ">= 1");
   if (dense_interior < 0) detail::invalid_option(where, "dense_interior", dense_interior, ">= 0");
+  if (static_cast<long>(expansion_dofs.size()) > kMaxExpansionDofs)
+    detail::invalid_option(where, "expansion_dofs.size()", static_cast<double>(expansion_dofs.size()),
+                           "at most kMaxExpansionDofs = " + std::to_string(kMaxExpansionDofs));
+  for (size_t k = 0; k < expansion_dofs.size(); ++k)
+    if (expansion_dofs[k] < 0 || (n > 0 && expansion_dofs[k] >= n))
+      detail::invalid_option(where, "expansion_dofs[" + std::to_string(k) + "]", expansion_dofs[k],
+                             "a dof from 0 to n - 1" + (n > 0 ? " = " + std::to_string(n - 1) : std::string()));
 }
 
 const char* to_string(ReductionResult::Status status) {
@@ -125,6 +132,39 @@ std::string ReductionResult::brief_report() const {
   os << "; " << fmt(timings.total_seconds, 3) << " s";
   return os.str();
 }
+
+namespace {
+
+// The rows of x = A T q (the header) for the given full dofs: y_j (j != p) is row (psi_j, Phi_j) of the interior
+// (index j, or j - 1 past p), y_p = u = q_0; x_j = y_j for j != p and x_p = u - sum_{j != p} (w_j / w_p) y_j.
+Eigen::MatrixXd expansion_rows(const std::vector<int>& dofs, const Eigen::VectorXd& w, int p,
+                               const Eigen::VectorXd& psi, const Eigen::Ref<const Eigen::MatrixXd>& Phi) {
+  const Eigen::Index m = Phi.cols();
+  const auto y_row = [&](int j) {
+    Eigen::RowVectorXd r(m + 1);
+    if (j == p) {
+      r.setZero();
+      r(0) = 1.0;
+      return r;
+    }
+    const Eigen::Index i = j < p ? j : j - 1;
+    r(0) = psi(i);
+    r.tail(m) = Phi.row(i);
+    return r;
+  };
+  Eigen::MatrixXd E(static_cast<Eigen::Index>(dofs.size()), m + 1);
+  for (size_t r = 0; r < dofs.size(); ++r) {
+    const int j = dofs[r];
+    Eigen::RowVectorXd row = y_row(j);
+    if (j == p)
+      for (Eigen::Index k = 0; k < w.size(); ++k)
+        if (k != p && w(k) != 0.0) row -= (w(k) / w(p)) * y_row(static_cast<int>(k));
+    E.row(static_cast<Eigen::Index>(r)) = row;
+  }
+  return E;
+}
+
+}  // namespace
 
 std::vector<ReductionResult> reduce(const SparseSystem& system, const std::vector<int>& modes,
                                     const ReductionOptions& options) {
@@ -275,6 +315,7 @@ std::vector<ReductionResult> reduce(const SparseSystem& system, const std::vecto
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> red(res.reduced->K(), res.reduced->M(),
                                                                   Eigen::EigenvaluesOnly);
     res.reduced_frequencies = red.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    res.expansion = expansion_rows(options.expansion_dofs, w, p, psi, Phim);
     res.timings.projection_seconds = seconds_since(t0);
     res.timings.total_seconds = seconds_since(t_start);
     res.status = ReductionResult::Status::Success;

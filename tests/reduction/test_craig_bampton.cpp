@@ -225,3 +225,33 @@ TEST(CraigBampton, DefaultResultSaysNotRun) {
   EXPECT_EQ(r.brief_report(), "not run");
   EXPECT_FALSE(r.reduced.has_value());
 }
+
+// Issue 13: the finite-element picture of a reduced model (spp reduce --layout) needs the displacements of the full
+// model's dofs from q: the rows of the reduction basis A T. With every dof listed they are the basis itself: its
+// projections give the reduced M and K, and the constraint sees u = q_0 only (w^T A T = w_p e_0).
+TEST(CraigBampton, ExpansionRowsAreTheReductionBasis) {
+  const int n = 30;
+  for (const bool general : {false, true}) {
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+    w(17) = -2.0;
+    if (general) w(3) = 0.5, w(29) = 1.0;
+    const SparseSystem s = random_model(n, w, 11);
+    ReductionOptions o;
+    o.modes = 6;
+    for (int j = n - 1; j >= 0; --j) o.expansion_dofs.push_back(j);  // any order
+    const ReductionResult r = reduce(s, o);
+    ASSERT_EQ(r.expansion.rows(), n);
+    ASSERT_EQ(r.expansion.cols(), 7);
+    Eigen::MatrixXd E(n, 7);
+    for (int j = 0; j < n; ++j) E.row(o.expansion_dofs[j]) = r.expansion.row(j);
+    const Eigen::MatrixXd Md(s.M()), Kd(s.K());
+    EXPECT_LT((E.transpose() * Md * E - r.reduced->M()).norm(), 1e-10 * r.reduced->M().norm()) << general;
+    EXPECT_LT((E.transpose() * Kd * E - r.reduced->K()).norm(), 1e-10 * r.reduced->K().norm()) << general;
+    Eigen::RowVectorXd wt = w.transpose() * E, expected = Eigen::RowVectorXd::Zero(7);
+    expected(0) = -2.0;
+    EXPECT_LT((wt - expected).norm(), 1e-12) << general;
+  }
+  ReductionOptions bad;
+  bad.expansion_dofs = {0, 30};
+  EXPECT_THROW(reduce(random_model(n, Eigen::VectorXd::Unit(n, 2), 1), bad), std::invalid_argument);
+}

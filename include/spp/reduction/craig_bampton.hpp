@@ -33,11 +33,18 @@
 
 namespace spp {
 
+/// Enough dofs for a picture of the model; their rows of the basis stay a few MB.
+inline constexpr long kMaxExpansionDofs = 4000;
+
 struct ReductionOptions {
   int modes = 20;                  ///< m: fixed-interface modes kept, 1 <= m <= n - 1 (the interior dofs)
   double eigen_tolerance = 1e-10;  ///< Spectra's relative tolerance on the Ritz values
   int max_iterations = 1000;       ///< Spectra's restarts
   int dense_interior = 400;        ///< interiors up to this size use the dense eigensolver
+  /// Dofs of the full model (0-based) whose rows of the reduction basis A T are kept in ReductionResult::expansion
+  /// (their displacements from q: the finite-element picture of an animation, io/layout_file.hpp). At most
+  /// kMaxExpansionDofs of them.
+  std::vector<int> expansion_dofs{};
   /// Throws std::invalid_argument naming the field, its value and the rule; n = the model's dofs (0: not checked).
   void validate(int n = 0) const;
 };
@@ -66,6 +73,8 @@ struct ReductionResult {
   double static_stiffness = 0;                  ///< K_pp + K_pi psi: the full model's static stiffness at u
   Eigen::VectorXd fixed_interface_frequencies;  ///< sqrt(lambda_k), ascending (rad per unit time)
   Eigen::VectorXd reduced_frequencies;          ///< the reduced model's natural frequencies, ascending
+  /// One row per ReductionOptions::expansion_dofs entry, m + 1 columns: x[dof] = row . q
+  Eigen::MatrixXd expansion;
   int eigen_iterations = 0;                     ///< Spectra's restarts (0 with the dense eigensolver)
   int eigen_operations = 0;                     ///< Spectra's solves with the K_ii factor
   ReductionTimings timings;
