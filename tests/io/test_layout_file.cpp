@@ -1,0 +1,69 @@
+// Layout files (io/layout_file.hpp, issue 13): what `spp reduce --layout` and the animations' "fe" picture read.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "spp/io.hpp"
+
+using namespace spp;
+
+namespace {
+std::string write_temp(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("spp_layout_" + name + ".json");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+void expect_refused(const std::string& text, long n, const std::string& part) {
+  try {
+    read_fe_layout(write_temp("bad", text), n);
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+}  // namespace
+
+TEST(LayoutFile, RoundTripsAndSamplesEvenly) {
+  FeLayout l;
+  l.coordinates.resize(10, 2);
+  l.directions.resize(10, 2);
+  l.basis.resize(10, 3);
+  for (int i = 0; i < 10; ++i) {
+    l.dofs.push_back(9 - i);
+    l.coordinates.row(i) << 0.1 * i, -1.0 / 3.0;
+    l.directions.row(i) << 1.0, i % 2;
+    l.basis.row(i) << i, 1e-300, -2.5;
+  }
+  const FeLayout back = read_fe_layout(write_temp("round", fe_layout_json(l)), 10);
+  EXPECT_EQ(back.dofs, l.dofs);
+  EXPECT_EQ(back.coordinates, l.coordinates);  // bit for bit
+  EXPECT_EQ(back.directions, l.directions);
+  EXPECT_EQ(back.basis, l.basis);
+  const FeLayout s = sample_fe_layout(l, 4);
+  EXPECT_EQ(s.dofs, (std::vector<long>{9, 6, 3, 0}));  // rows 0, 3, 6, 9: first and last kept
+  EXPECT_EQ(s.basis.rows(), 4);
+  EXPECT_EQ(s.basis(3, 0), 9.0);
+  EXPECT_EQ(sample_fe_layout(l, 20).dofs, l.dofs);
+}
+
+TEST(LayoutFile, BadInputIsRefusedNamingTheField) {
+  const std::string ok_tail = R"("coordinates": [[0], [1]], "directions": [[1], [1]]})";
+  expect_refused(R"({"dofs": [0, 5], )" + ok_tail, 5, "\"dofs\"[1]: expected a whole number from 0 to 4");
+  expect_refused(R"({"dofs": [1, 1], )" + ok_tail, 5, "expected each dof once, got dof 1 again");
+  expect_refused(R"({"dofs": [0, 1.5], )" + ok_tail, 5, "\"dofs\"[1]");
+  expect_refused(R"({"dofs": [0], )" + ok_tail, 5, "\"coordinates\": expected one row per entry of \"dofs\" (1)");
+  expect_refused(R"({"dofs": [0, 1], "coordinates": [[0], [1]], "directions": [[1], [0]]})", 5,
+                 "\"directions\"[1]: expected a direction, got zero");
+  expect_refused(R"({"dofs": [0, 1], "coordinates": [[0, 0, 0, 0], [1, 0, 0, 0]], "directions": [[1], [1]]})", 5,
+                 "expected rows of 1 to 3 numbers, got 4");
+  expect_refused(R"({"dofs": [0, 1], "coordinates": [[0, 0], [1, 0]], "directions": [[1], [1]]})", 5,
+                 "\"directions\": expected rows of 2 numbers, got 1");
+  expect_refused(R"({"dofs": [0, 1], "nodes": 3, )" + ok_tail, 5, "\"nodes\"");
+  expect_refused(R"({"dofs": [0, 1], "coordinates": [[0], [1]]})", 5, "missing field \"directions\"");
+  expect_refused("[1, 2]", 5, "expected a JSON object");
+}
