@@ -616,7 +616,7 @@ StepCertificate certify_step(const EquationSet& eq, const StepEnd& a, const Step
       }
     }
     if (cert.verdict != StepVerdict::Uncertified) {
-      cert.safe_length = std::max(cert.safe_length, 2.0 * (b.s - a.s));
+      cert.spectral = true;
       return cert;
     }
   }

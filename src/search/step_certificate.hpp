@@ -72,6 +72,9 @@ struct StepCertificate {
   /// proved). Chained over consecutive steps (cell_trace's monotone run) they prove none or one root over the chain.
   int monotone_dir = 0;
   int sign_a = 0, sign_b = 0;
+  /// Proved by the spectral bounds (safe_length is then the Weyl bounds' alone, often 0: the spectral bounds give no
+  /// length of their own).
+  bool spectral = false;
 };
 
 /// The cell the step lies in (no pole line inside): the true curve points of the step stay in it.
