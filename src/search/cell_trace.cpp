@@ -482,7 +482,11 @@ class CellTracer::Impl {
         const int tries = fallbacks > 0 ? kRetryTries : kCertifyTries;
         if (!(crossing_try && budget < proof_budget / 2) && ++halvings <= tries && step > hmin_) {
           const bool crossing = (cur.g > 0) != (p.g > 0);  // only the curvature bound proves a crossing step
-          h = std::max(hmin_, bounded && crossing ? std::clamp(cert.safe_length, 0.02 * step, 0.5 * step) : 0.5 * step);
+          // A try on which no bound held (no Weyl gap, the spectral bounds' perturbation too large at both ends) is far
+          // too long, mostly the first tries of a piece (from its whole span): shrink by kFarTooLong, not by half.
+          const double shrink = bounded || cert.spectral_valid ? 0.5 : kFarTooLong;
+          h = std::max(hmin_,
+                       bounded && crossing ? std::clamp(cert.safe_length, 0.02 * step, 0.5 * step) : shrink * step);
           // From a start whose null vector its own bounds leave undetermined (next to a pole line, where H's error
           // bound exceeds the gap), only the far end's spectral bounds can prove a step, and halving rarely helps (the
           // 300-dof chain: 13-30 failed halvings down to the minimum step per piece, each a certificate and a 1-D
@@ -778,6 +782,10 @@ class CellTracer::Impl {
   // point and a full decomposition. Chain boxes (`spp solve cN.json --box --threads 1`), evaluations: 59 593 -> 43 516
   // (n = 5), 374 528 -> 276 514 (n = 8), with about as many proved steps; 1.0, 1.1 and 1.15 took more.
   static constexpr double kSpectralGrowth = 1.05;
+  // Shrink factor of a try on which no bound held. Chain boxes (`spp solve cN.json --box --threads 1`), evaluations
+  // with 0.5 (as before) / 0.35 / 0.3 / 0.25 / 0.2: n = 5: 43 516 / 39 547 / - / 38 844 / 40 071; n = 8: 276 514 / - /
+  // 247 494 / 247 498 / 254 530.
+  static constexpr double kFarTooLong = 0.25;
   static constexpr int kCertifyTries = 40;  // failed proofs in a row (each at most halving) before the midpoint check
   // failed proofs in a row from an undetermined start before one try at the minimum step (the 300-dof chain's pieces
   // that were proved from such a start took at most 4; a start next to a contact pole line of chain5 took more than 7)

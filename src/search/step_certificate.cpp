@@ -597,6 +597,7 @@ StepCertificate certify_step(const EquationSet& eq, const StepEnd& a, const Step
         spectral_bounds(bf, *x, a.s - 2.0 * a.pos_err, b.s + 2.0 * b.pos_err, lo1, hi1, lo2, hi2, cache);
     cert.evaluations += sb.evaluations;
     if (!sb.valid) continue;
+    cert.spectral_valid = true;
     // the sign of the true g at x, from the bordered form's own error bound there (tighter next to pole lines)
     if (std::abs(sb.g_x) > sb.g_err) {
       int& sx = x == &a ? sign_a : sign_b;

@@ -75,6 +75,8 @@ struct StepCertificate {
   /// Proved by the spectral bounds (safe_length is then the Weyl bounds' alone, often 0: the spectral bounds give no
   /// length of their own).
   bool spectral = false;
+  /// The spectral bounds held (SpectralBounds::valid) at one end at least, whether they proved the step or not.
+  bool spectral_valid = false;
 };
 
 /// The cell the step lies in (no pole line inside): the true curve points of the step stay in it.
