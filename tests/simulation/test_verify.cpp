@@ -7,6 +7,7 @@
 #include <complex>
 
 #include "paper_examples.hpp"
+#include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/search/solver.hpp"
 #include "spp/simulation/verify.hpp"
@@ -294,6 +295,73 @@ TEST(Verify, SpectralRadiusEditedByOneInTenBillionIsInconsistent) {
     ASSERT_EQ(r.checks.size(), 1u);
     EXPECT_NE(r.checks[0].departure.find("spectral_radius"), std::string::npos) << r.checks[0].departure;
   }
+}
+
+// Found by issue 14's attack: verify's tolerance added the file's own spectral_radius_error, so a radius edited by
+// 1e-10 with its bound edited to 1e-9 passed. The tolerance is the recomputed bound (and a few ulps); the file's bound
+// must not be far below the recomputed one either.
+TEST(Verify, RadiusAndBoundEditedTogetherAreInconsistent) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0), admissible;
+  for (const Solution& c : all)
+    if (c.admissible()) admissible.push_back(c);
+  ASSERT_EQ(admissible.size(), 7u);
+  const Solution spp = admissible[2];
+  ASSERT_TRUE(verify(chain5(), {spp}, VerifyOptions{}).all_consistent());
+  Solution edited = spp, tiny = spp;
+  const double rho = spp.floquet.spectral_radius, edit = 1e-10;
+  for (auto& m : edited.floquet.multipliers)
+    if (std::abs(m) == rho) m *= (rho + edit) / rho;
+  edited.floquet.spectral_radius = rho + edit;
+  edited.floquet.margin = 1.0 - (rho + edit);
+  edited.floquet.spectral_radius_error = 1e-9;                                     // widened with it
+  tiny.floquet.spectral_radius_error = spp.floquet.spectral_radius_error / 100.0;  // a precision not computed
+  for (const Solution& e : {edited, tiny}) {
+    const VerifyResult r = verify(chain5(), {e}, VerifyOptions{});
+    EXPECT_EQ(r.stability_mismatches, 1) << r.brief_report();
+    ASSERT_EQ(r.checks.size(), 1u);
+    EXPECT_NE(r.checks[0].departure.find("spectral_radius"), std::string::npos) << r.checks[0].departure;
+  }
+}
+
+// Found by issue 14's attack: the claimed multipliers were matched to the recomputed ones nearest-neighbour, not one to
+// one, so the leading pair replaced by copies of the next pair passed. They are paired one to one now.
+TEST(Verify, LeadingPairReplacedByCopiesOfTheNextIsInconsistent) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0), admissible;
+  for (const Solution& c : all)
+    if (c.admissible()) admissible.push_back(c);
+  const Solution spp = admissible[2];
+  std::vector<std::complex<double>> mu = spp.floquet.multipliers;  // sorted by modulus: the leading pair last
+  ASSERT_GE(mu.size(), 8u);
+  const size_t k = mu.size();
+  ASSERT_EQ(std::abs(mu[k - 1]), std::abs(mu[k - 2]));  // a complex pair
+  Solution edited = spp;
+  edited.floquet.multipliers[k - 1] = mu[k - 3];
+  edited.floquet.multipliers[k - 2] = mu[k - 4];
+  const VerifyResult r = verify(chain5(), {edited}, VerifyOptions{});
+  EXPECT_EQ(r.stability_mismatches, 1) << r.brief_report();
+  ASSERT_EQ(r.checks.size(), 1u);
+  EXPECT_NE(r.checks[0].departure.find("no recomputed one of its own"), std::string::npos) << r.checks[0].departure;
+}
+
+// Found by issue 14's attack: on `spp generate random --n 6 --seed 2`, the admissible SPP near (1.4617, 0.4468) is
+// stable (rho = 0.99963), and --perturb printed a growth of 1.003 per period beside it: the random perturbation had
+// an energy component, whose multiplier 1 (a Jordan block) drifts linearly and never decays. The perturbation is
+// taken without it now, and the growth measured over 100 periods is below 1, as rho says.
+TEST(Verify, PerturbationOfAStableSppDoesNotGrow) {
+  const System s = random_dense(6, 2);
+  const std::vector<Solution> all = spps_of(s, 1.5, 0.5);
+  std::vector<Solution> stable;
+  for (const Solution& c : all)
+    if (c.stable() && std::abs(c.t1() - 1.4617) < 1e-3) stable.push_back(c);
+  ASSERT_EQ(stable.size(), 1u);
+  ASSERT_LT(stable[0].floquet.spectral_radius, 1.0);
+  VerifyOptions o;
+  o.periods = 100;
+  o.perturbation = 1e-8;
+  const VerifyResult r = verify(s, stable, o);
+  ASSERT_EQ(r.checks.size(), 1u);
+  EXPECT_EQ(r.checks[0].periods_followed, 100);
+  EXPECT_LT(r.checks[0].growth_per_period, 1.0) << r.checks[0].growth_per_period;
 }
 
 // Found by the attack of issue 14: --perturb with --restitution 1 printed a growth of 253.6 per period on a stable

@@ -60,9 +60,11 @@ struct SppCheck {
   double departure_time = 0.0;  ///< first event that does not match the orbit's (none: departure is empty)
   std::string departure;        ///< what happened there
   long impacts = 0, contact_onsets = 0, releases = 0;
-  /// With a perturbation: distance of the perturbed state to the orbit (energy norm, relative to the orbit's),
-  /// at k = 0..periods periods after the perturbation; and the mean growth factor per period over the periods while
-  /// the distance stays below 1e-3 (the linear regime; at least the first period): compare with spectral_radius.
+  /// With a perturbation (a random direction without its first-order energy change: the energy's multiplier 1 is
+  /// neutral and would drift linearly): distance of the perturbed state to the orbit (energy norm, relative to the
+  /// orbit's, minimum over the phase), at k = 0..periods periods after the perturbation; and the mean growth factor
+  /// per period over the periods while the distance stays below 1e-3 (the linear regime; at least the first period):
+  /// compare with spectral_radius.
   std::vector<double> perturbed_distances;
   double growth_per_period = 0.0;
 };
