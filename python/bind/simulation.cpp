@@ -191,7 +191,10 @@ void bind_simulation(py::module_& m) {
       .def_readonly("returned", &spp::VerifyResult::returned)
       .def_readonly("left", &spp::VerifyResult::left)
       .def_readonly("inconsistent", &spp::VerifyResult::inconsistent)
-      .def("all_consistent", &spp::VerifyResult::all_consistent)
+      // a property, as every bool of the binding (admissible, stable, consistent): as a method, bool(v.all_consistent)
+      // was always True (found by issue 14's attack)
+      .def_property_readonly("all_consistent", &spp::VerifyResult::all_consistent,
+                             "True when every SPP checked is consistent (inconsistent == 0)")
       .def_readonly("unchecked", &spp::VerifyResult::unchecked, "SPPs not checked (a stopped run)")
       .def_readonly("admissibility_mismatches", &spp::VerifyResult::admissibility_mismatches,
                     "SPPs whose simulation (returns or leaves) is not the solver's admissibility")

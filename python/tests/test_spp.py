@@ -72,7 +72,7 @@ def test_verify_agrees_with_the_solver():
     s = chain5()
     r = spp.solve(s, t1_max=12, t2_max=12)
     v = spp.verify(s, r)
-    assert v.all_consistent()
+    assert v.all_consistent is True
     assert (v.returned, v.left) == (7, 57)
     # every SPP, admissible or not, comes back along its potential orbit (x0, v0 are the orbit at t1, t2)
     assert max(c.potential_return_error for c in v.checks) < 1e-12
@@ -96,6 +96,13 @@ def test_verify_counts_each_kind_of_inconsistency(tmp_path):
     path.write_text(json.dumps(doc))
     w = spp.verify(s, spp.load_result(str(path)))
     assert (w.inconsistent, w.admissibility_mismatches, w.stability_mismatches, w.state_mismatches) == (1, 0, 1, 0)
+    # all_consistent is a property (it was a method: bool(w.all_consistent) was always True, issue 14's attack)
+    assert not w.all_consistent and bool(w.all_consistent) is False
+    # and the JSON of verify (CLI and Python alike) carries the three counters
+    written = json.loads(w.to_json())
+    assert (written["admissibility_mismatches"], written["stability_mismatches"], written["state_mismatches"]) == (
+        0, 1, 0)
+    assert written["all_consistent"] is False
     q = pickle.loads(pickle.dumps(w))
     assert (q.admissibility_mismatches, q.stability_mismatches, q.state_mismatches) == (0, 1, 0)
 

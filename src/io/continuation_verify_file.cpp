@@ -239,6 +239,10 @@ json verify_to_json(const VerifyResult& r) {
   json out = {{"status", to_string(r.status)},  {"checks", checks},
           {"returned", r.returned},         {"left", r.left},
           {"inconsistent", r.inconsistent}, {"all_consistent", r.all_consistent()}};
+  // the three kinds of inconsistency, as Python's VerifyResult has them (they were missing here: issue 14's attack)
+  out["admissibility_mismatches"] = r.admissibility_mismatches;
+  out["stability_mismatches"] = r.stability_mismatches;
+  out["state_mismatches"] = r.state_mismatches;
   if (!r.warnings.empty()) out["warnings"] = r.warnings;
   return out;
 }

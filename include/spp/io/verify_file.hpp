@@ -1,7 +1,8 @@
 #pragma once
 // Result files of spp verify: {"checks": [{"t1", "t2", "period", "admissible", "verdict", "consistent",
 // "return_errors", "impacts", "contact_onsets", "releases", "periods_followed", "departure"?,
-// "perturbed_distances"?, "growth_per_period"?}], "returned", "left", "inconsistent", "all_consistent"}.
+// "perturbed_distances"?, "growth_per_period"?}], "returned", "left", "inconsistent", "all_consistent",
+// "admissibility_mismatches", "stability_mismatches", "state_mismatches"}.
 // Cost: linear in the checks x periods written.
 
 #include <string>
