@@ -116,19 +116,34 @@ double radius_location_error(const EquationSet& eq, const Orbit& orbit, double r
   const double sigma = svd.singularValues()(m + 1);
   // at least the rounding of evaluating N a and z^T p0 at the SPP and of the SPP's own coordinates: the dimension
   // times eps times |J| (|a| = 1)
-  const double floor = (m + 2.0) * eps * J.norm(), r = std::max(F.norm(), floor);
+  const double floor = (m + 2.0) * eps * J.norm();
+  // The modal form's own error (ModalForm::data_error(), from the conditioning of M): the equations are those of a
+  // system whose omega_k^2 are off by up to frequency_error() relative and u by data_error(). A relative error of a
+  // frequency acts on its mode as one of time, and the times' columns of J are scaled by T0: the equations of the true
+  // system differ by about that relative error times |J| (issue 14's attack: the chain as x = T y, cond T 1e3, had its
+  // SPPs 1e-11 to 4e-10 off in t, and rho off by up to 50 times the bound).
+  const double data_r = (md.frequency_error() + md.data_error()) * J.norm();
+  const double r = std::max(F.norm(), floor) + data_r;
   const double distance = r / sigma;
   if (!(distance < 1.0)) return std::numeric_limits<double>::infinity();  // (sigma 0 or NaN included)
-  const Eigen::VectorXd v = svd.matrixV().col(m + 1);
   const double h = std::max(distance, kLocationStep);
-  double change = 0.0;
-  for (const double sign : {1.0, -1.0}) {
-    const double t1 = orbit.t1 + sign * h * T0 * v(0), t2 = orbit.t2 + sign * h * T0 * v(1);
-    const Eigen::VectorXd ah = a + sign * h * v.tail(m);
-    if (!(t1 > 0.0 && t2 > 0.0) || !gap_can_close(eq, t1, ah)) return std::numeric_limits<double>::infinity();
-    change = std::max(change, std::abs(coupled_radius(md, make_orbit(eq, t1, t2, ah)) - rho));
+  // How fast rho moves: along J's smallest right singular vector v (where a fold puts the error) and along each time
+  // (where the data's error puts it, away from folds), the largest of the difference quotients.
+  // (without a data error, J's smallest direction only: the location error is the equations' rounding, largest there)
+  Eigen::MatrixXd dirs = Eigen::MatrixXd::Zero(m + 2, md.data_error() > 0.0 ? 3 : 1);
+  dirs.col(0) = svd.matrixV().col(m + 1);
+  if (dirs.cols() > 1) dirs(0, 1) = dirs(1, 2) = 1.0;
+  double rate = 0.0;
+  for (Eigen::Index k = 0; k < dirs.cols(); ++k) {
+    const Eigen::VectorXd v = dirs.col(k);
+    for (const double sign : {1.0, -1.0}) {
+      const double t1 = orbit.t1 + sign * h * T0 * v(0), t2 = orbit.t2 + sign * h * T0 * v(1);
+      const Eigen::VectorXd ah = a + sign * h * v.tail(m);
+      if (!(t1 > 0.0 && t2 > 0.0) || !gap_can_close(eq, t1, ah)) return std::numeric_limits<double>::infinity();
+      rate = std::max(rate, std::abs(coupled_radius(md, make_orbit(eq, t1, t2, ah)) - rho) / h);
+    }
   }
-  return std::isnan(change) ? std::numeric_limits<double>::infinity() : change / h * distance;
+  return std::isnan(rate) ? std::numeric_limits<double>::infinity() : rate * distance;
 }
 
 bool by_modulus(const std::complex<double>& a, const std::complex<double>& b) {
@@ -232,8 +247,13 @@ Floquet floquet(const ModalForm& md, const Orbit& given) {
       const double omega_max = std::max(W.maxCoeff(), md.omega_decoupled().size() > 0
                                                           ? md.omega_decoupled().maxCoeff()
                                                           : 0.0);
+      // With an ill-conditioned M the modal form's error is larger (ModalForm::data_error(), found by issue 14's
+      // attack): the stiffness off by data_error omega_max^2 and u by data_error; u enters the contact phase's
+      // S = W^2 - z z^T through z = W u (|dS| <= 2 omega_max^2 |du|) and the projection Pi (|dPi| <= 2 |du| omega_max /
+      // omega_min in these coordinates).
+      const double de = md.data_error(), ratio = omega_max / W.minCoeff();
       const double modal_eta =
-          2.0 * (orbit.t1 + orbit.t2) * dim * eps * omega_max * (omega_max / W.minCoeff());
+          2.0 * (orbit.t1 + orbit.t2) * (dim * eps + 3.0 * de) * omega_max * ratio + 2.0 * de * ratio * forming_norm;
       const double eta =
           std::max(res.structure_residual, dim * eps * forming_norm) + dim * eps * R.norm() + modal_eta;
       // (a NaN residual, from a degenerate orbit with f = 0, bounds nothing: unbounded, hence undecided near 1)

@@ -712,3 +712,74 @@ TEST(Floquet, StabilityEventNearAFoldCarriesABoundThatCoversTheReference) {
     }
   EXPECT_EQ(events, 1);
 }
+
+namespace {
+// The system in the coordinates x = T y with a dense T of condition number `cond`: M' = T^T M T, K' = T^T K T,
+// w' = T^T w (the multipliers are invariant; cond(M') ~ cond^2 cond(M)). T = U diag(logspace(0, log10 cond)) V^T
+// with U, V orthogonal from fixed matrices (as tests/crosscheck/floquet_conditioning.py builds it from a seed).
+System in_dense_coordinates(const System& s, double cond) {
+  const int n = s.n();
+  Eigen::MatrixXd A(n, n), B(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      A(i, j) = std::sin(7.0 * i + 3.0 * j + 1.0);
+      B(i, j) = std::cos(5.0 * i - 2.0 * j + 0.5);
+    }
+  const Eigen::MatrixXd U = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ();
+  const Eigen::MatrixXd V = Eigen::HouseholderQR<Eigen::MatrixXd>(B).householderQ();
+  Eigen::VectorXd d(n);
+  for (int i = 0; i < n; ++i) d(i) = std::pow(cond, i / (n - 1.0));
+  const Eigen::MatrixXd T = U * d.asDiagonal() * V.transpose();
+  const Eigen::MatrixXd M = T.transpose() * s.M() * T, K = T.transpose() * s.K() * T;
+  return System(0.5 * (M + M.transpose()), 0.5 * (K + K.transpose()), T.transpose() * s.w(), s.g0());
+}
+}  // namespace
+
+// Found by issue 14's attack: the chain written as x = T y with a dense T, cond(T) = 1e3 (cond M 1e6), had 56 of its 64
+// SPPs of (0, 12]^2 outside their bound, by up to 50 times (#1: error 2.25e-11, bound 4.45e-13): the modal form's error
+// grows with cond(M) (the eigensolver goes through a Cholesky factor of M) and the bound did not count it. Now
+// ModalForm::data_error() enters it, both at the SPP and through the SPP's location: every SPP within its bound of the
+// long double reference re-solved from the physical flows.
+TEST(Floquet, RadiusBoundCoversTheModalFormErrorOfAnIllConditionedMass) {
+  const System s = in_dense_coordinates(chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0), 1e3);
+  const std::vector<Solution> sols = spps_in(s, 0.0, 12.0, 0.0, 12.0);
+  ASSERT_EQ(sols.size(), 64u);
+  double worst = 0.0, largest = 0.0;
+  for (size_t i = 0; i < sols.size(); ++i) {
+    const Floquet& f = sols[i].floquet;
+    const ReferenceSpp ref = long_double_spp(s, sols[i]);
+    // (in these coordinates the long double Newton, with its difference Jacobian, stops at residuals up to ~4e-11:
+    // its radius is still far closer than the bounds, >= 1e-8, and the 40-digit mpmath check agrees:
+    // tests/crosscheck/floquet_conditioning.py, every error within 2.7e-4 of its bound)
+    EXPECT_LT(ref.residual, 1e-9L) << i;
+    const double err = static_cast<double>(std::abs(static_cast<long double>(f.spectral_radius) - ref.rho));
+    EXPECT_LE(err, f.spectral_radius_error)
+        << i << " at (" << sols[i].t1() << ", " << sols[i].t2() << "): " << f.brief_report();
+    worst = std::max(worst, err / f.spectral_radius_error);
+    largest = std::max(largest, f.spectral_radius_error);
+  }
+  std::printf("64 SPPs, largest error / bound %.3g, largest bound %.3g\n", worst, largest);
+}
+
+// The same coordinates near the chain's stability crossing at k5 = 0.98357796828833 (rho falls through 1 at 1.81 per
+// unit k5): the attack found two of its files labelled stable with a true rho of 1 + 4.06e-12 and 1 + 1.60e-11. Over 21
+// values of k5 1e-12 apart across it, no SPP whose reference radius exceeds 1 is called stable, none below 1 unstable,
+// and every error is within its bound.
+TEST(Floquet, NoVerdictContradictsTheReferenceAcrossACrossingWithAnIllConditionedMass) {
+  int checked = 0, undecided = 0;
+  for (int i = -10; i <= 10; ++i) {
+    const double k5 = 0.98357796828833 + 1e-12 * i;
+    const System s = in_dense_coordinates(chain_k5(k5), 1e3);
+    for (const Solution& sol : spps_in(s, 5.65, 5.75, 2.45, 2.55)) {
+      const Floquet& f = sol.floquet;
+      const ReferenceSpp ref = long_double_spp(s, sol);
+      EXPECT_LE(std::abs(static_cast<long double>(f.spectral_radius) - ref.rho), f.spectral_radius_error) << k5;
+      if (ref.rho > 1.0L) EXPECT_NE(f.verdict, StabilityVerdict::Stable) << k5 << ": " << f.brief_report();
+      if (ref.rho < 1.0L) EXPECT_NE(f.verdict, StabilityVerdict::Unstable) << k5 << ": " << f.brief_report();
+      undecided += f.verdict == StabilityVerdict::Undecided;
+      ++checked;
+    }
+  }
+  std::printf("%d SPPs, %d undecided\n", checked, undecided);
+  EXPECT_EQ(checked, 21);
+}

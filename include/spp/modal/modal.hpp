@@ -61,6 +61,17 @@ class ModalForm {
   double g0() const { return g0_; }
   /// Number of repeated-frequency groups that were rotated (diagnostic).
   int repeated_groups() const { return repeated_groups_; }
+  /// The modal form's backward error from the conditioning of M (dimensionless; 0 when the equilibrated mass matrix
+  /// M~ = D^-1/2 M D^-1/2, D = diag M, has a condition number of at most 1e2, where the stability bound's own terms
+  /// cover the eigensolvers' error). Else measured in long double (modal.cpp, modal_data_error): omega and u are exact
+  /// for the system written in its M-orthonormal modal coordinates with the stiffness off by data_error()
+  /// omega_max^2 (Frobenius norm) and u off by data_error(). The eigensolver goes through a Cholesky factor of M and
+  /// its error grows with cond(M): found by issue 14's attack (the chain written as x = T y with a dense T of cond 1e3,
+  /// cond M 1e6, had Floquet radii off by up to 50 times their bound). Used by the stability bound (floquet.cpp).
+  double data_error() const { return data_error_; }
+  /// With data_error(): the largest relative error of an omega_k^2 that the stiffness error can cause, each mode's
+  /// row of it over its own omega_k^2 (measured likewise; 0 with data_error() 0).
+  double frequency_error() const { return frequency_error_; }
 
   /// Matrix functions of the contact phase, G f(D) G^T, for the flows: m x m, O(m^3) each.
   Eigen::MatrixXd contact_cos(double t) const;   ///< cos(S^{1/2} t)
@@ -82,7 +93,7 @@ class ModalForm {
   int n_ = 0;
   Eigen::VectorXd omega_, u_, z_, d_, omega_dec_;
   Eigen::MatrixXd G_, Phi_, Phi_dec_;
-  double beta_ = 0.0, g0_ = 0.0;
+  double beta_ = 0.0, g0_ = 0.0, data_error_ = 0.0, frequency_error_ = 0.0;
   int repeated_groups_ = 0;
 };
 
