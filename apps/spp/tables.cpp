@@ -65,13 +65,12 @@ std::string verify_table(const VerifyResult& r) {
       else
         os << std::setprecision(6) << std::setw(12) << c.growth_per_period;
     }
-    const bool departs = c.verdict == Verdict::Leaves || c.periods_followed < periods;
     // An inconsistency's reason is printed whatever the orbit did: verify stores it in departure, also for an orbit
     // that returns and is followed (a claimed stability or x0, v0 that are not the system's), where the note read
     // "INCONSISTENT with the solver: " and nothing more (found by issue 14's attack).
     // A departure stored for an orbit that returns and is followed to the end (an impact of the perturbed run, ...) is
     // shown too: the JSON had it and the table not (--restitution 0.5, chain SPP #1; issue 14's attack).
-    std::string note = departs ? (c.verdict == Verdict::Returns ? "later: " : "") + c.departure : c.departure;
+    std::string note = c.departure.empty() ? "" : (c.verdict == Verdict::Returns ? "later: " : "") + c.departure;
     if (!c.consistent)
       note = "INCONSISTENT with the solver: " +
              (!c.departure.empty() ? c.departure

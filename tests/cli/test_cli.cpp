@@ -339,6 +339,28 @@ TEST(Cli, VerifyAgreesWithTheSolverOnThePaperChain) {
   }
 }
 
+// Found by issue 14's attack: a departure in the JSON of an SPP that returns and is followed to the end (chain SPPs 5
+// and 6 over 100 periods with --restitution 0.5: a missing onset while the state stays within 1e-6) was not in the
+// table's note; and the JSON lacked the three mismatch counters that Python has.
+TEST(Cli, VerifyTableShowsEveryDepartureOfTheJson) {
+  const fs::path res = dir() / "res_verify_departures.json", out = dir() / "verify_departures.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 12 --t2-max 12 --admissible-only --quiet --json " + res.string()).code,
+            0);
+  const CliRun r = run("verify " + res.string() + " --periods 100 --restitution 0.5 --json " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(out));
+  int followed_with_departure = 0;
+  for (const auto& c : j["checks"]) {
+    if (!c.contains("departure")) continue;
+    const std::string what = c["departure"]["what"].get<std::string>();
+    EXPECT_NE(r.out.find(what), std::string::npos) << what << "\n" << r.out;
+    followed_with_departure += c["periods_followed"].get<int>() == 100;
+  }
+  EXPECT_GE(followed_with_departure, 1);
+  for (const char* key : {"admissibility_mismatches", "stability_mismatches", "state_mismatches"})
+    EXPECT_EQ(j.at(key).get<int>(), 0) << key;
+}
+
 // Found by issue 14's attack: an SPP that returns and is followed, with an edited stability claim, printed the note
 // "INCONSISTENT with the solver: " and no reason (verify keeps the reason where a departure goes, and the table printed
 // departures only for orbits that leave).
