@@ -17,6 +17,7 @@ const char* to_string(KippSymmetry s) {
     case KippSymmetry::FlightFlight: return "flight-flight";
     case KippSymmetry::FlightImpact: return "flight-impact";
     case KippSymmetry::ImpactImpact: return "impact-impact";
+    case KippSymmetry::None: return "none";
   }
   return "?";
 }
@@ -33,6 +34,7 @@ int interior_impacts(int k, KippSymmetry s) {
     case KippSymmetry::FlightFlight: return k / 2;
     case KippSymmetry::FlightImpact: return (k - 1) / 2;
     case KippSymmetry::ImpactImpact: return (k - 2) / 2;
+    case KippSymmetry::None: return k - 1;
   }
   return 0;
 }
@@ -116,6 +118,9 @@ void start_state(const KippModel& model, const KippShape& shape, const Eigen::Ve
     const Eigen::VectorXd bh = model.b().normalized();
     p = y(n) * bh;
     Dp.col(n) = bh;
+  } else if (shape.symmetry == KippSymmetry::None) {
+    p = y.segment(n, n);
+    Dp.middleCols(n, n).setIdentity();
   } else {
     p = Eigen::VectorXd::Zero(n);
   }
@@ -135,7 +140,7 @@ void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::
   Eigen::MatrixXd Dq, Dp;
   start_state(model, shape, y, q, p, Dq, Dp);
   int row = 0;
-  if (shape.symmetry == KippSymmetry::ImpactImpact) {  // A is on the obstacle
+  if (shape.symmetry == KippSymmetry::ImpactImpact || shape.symmetry == KippSymmetry::None) {  // A on the obstacle
     F(row) = b.dot(q) + g0;
     J.row(row++) = b.transpose() * Dq;
   }
@@ -150,7 +155,19 @@ void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::
       reflect(b, p, &Dp);
     }
   }
-  if (shape.symmetry == KippSymmetry::FlightFlight) {  // B a turning point: p = 0
+  if (shape.symmetry == KippSymmetry::None) {  // the k-th impact, then the state back (class comment)
+    F(row) = b.dot(q) + g0;
+    J.row(row++) = b.transpose() * Dq;
+    reflect(b, p, &Dp);
+    Dq.leftCols(n) -= Eigen::MatrixXd::Identity(n, n);
+    Dp.middleCols(n, n) -= Eigen::MatrixXd::Identity(n, n);
+    F.segment(row, n - 1) = model.tangential(q - y.head(n));
+    J.middleRows(row, n - 1) = model.tangential(Dq);
+    row += n - 1;
+    F.segment(row, n - 1) = model.tangential(p - y.segment(n, n));
+    J.middleRows(row, n - 1) = model.tangential(Dp);
+    row += n - 1;
+  } else if (shape.symmetry == KippSymmetry::FlightFlight) {  // B a turning point: p = 0
     F.segment(row, n) = p;
     J.middleRows(row, n) = Dp;
     row += n;
@@ -174,7 +191,107 @@ struct ImpactRecord {
 
 }  // namespace
 
+namespace {
+
+// The least period: the smallest shift d (k % d == 0) that maps the impact sequence onto itself; multiplicity k / d.
+int multiplicity_of(const std::vector<ImpactRecord>& all, double period, double energy, double omega_max) {
+  const int k = static_cast<int>(all.size());
+  const double scale = std::sqrt(2.0 * std::max(energy, 1e-300));
+  for (int d = 1; d < k; ++d) {
+    if (k % d != 0) continue;
+    bool same = true;
+    for (int i = 0; i < k && same; ++i) {
+      const ImpactRecord& a = all[i];
+      const ImpactRecord& c = all[(i + d) % k];
+      const double dt = std::fmod(c.t - a.t + period, period);
+      same = std::abs(dt - period * d / k) <= 1e-8 * period &&
+             (a.q - c.q).norm() * omega_max <= 1e-7 * scale && (a.p_after - c.p_after).norm() <= 1e-7 * scale;
+    }
+    if (same) return k / d;
+  }
+  return 1;
+}
+
+// The admissibility of one flight from (q, p) over tau (docs/modes.md §4): v_out, v_in its end speeds (> 0 towards
+// leaving / arriving; only checked at impact ends), min_gap and certified updated.
+struct FlightCheck {
+  double min_gap = std::numeric_limits<double>::infinity();
+  bool certified = true, ends_positive = true;
+  int flight = -1;
+  double time = 0.0;
+  void check(int j, const detail::CosineSum& g, double tau, bool left_impact, double v_out, bool right_impact,
+             double v_in, double tol) {
+    const double M2 = std::max(g.bound(2), std::numeric_limits<double>::min());
+    if ((left_impact && !(v_out > 0)) || (right_impact && !(v_in > 0))) {
+      ends_positive = false;
+      return;
+    }
+    const double lo = left_impact ? 0.5 * v_out / M2 : 0.0;
+    const double hi = right_impact ? tau - 0.5 * v_in / M2 : tau;
+    if (lo < hi) {
+      const detail::CosineMinimum mn = detail::minimize(g, lo, hi, tol);
+      if (mn.value < min_gap) {
+        flight = j;
+        time = mn.t;
+      }
+      min_gap = std::min(min_gap, mn.value);
+      certified = certified && mn.certified;
+    } else {
+      min_gap = std::min(min_gap, g.value(0.5 * (lo + hi)));
+    }
+  }
+};
+
+// kipp_orbit for KippSymmetry::None: the k flights of the whole period from the impact at y.
+KippOrbit general_orbit(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, double rel_tol) {
+  const int n = shape.n, k = shape.k, t0 = shape.first_tau();
+  const Eigen::VectorXd& b = model.b();
+  const Eigen::VectorXd& omega = model.omega();
+  const double g0 = model.g0();
+  KippOrbit out;
+  Eigen::VectorXd q = y.head(n), p = y.segment(n, n);
+  out.energy = 0.5 * (p.squaredNorm() + (omega.array().square() * q.array().square()).sum());
+  out.x0 = model.Phi() * q;
+  out.v0 = model.Phi() * p;
+  std::vector<ImpactRecord> all;
+  FlightCheck fc;
+  double t = 0.0, min_speed = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < k; ++j) {
+    const double tau = y(t0 + j);
+    const detail::CosineSum g = detail::CosineSum::from_cos_sin(
+        g0, (b.array() * q.array()).matrix(), (b.array() * p.array() / omega.array()).matrix(), omega);
+    Eigen::VectorXd qe = q, pe = p;
+    flow(omega, tau, qe, pe, nullptr, nullptr);
+    const double v_out = b.dot(p), v_in = -b.dot(pe);
+    min_speed = std::min({min_speed, v_out, v_in});
+    fc.check(j, g, tau, true, v_out, true, v_in, rel_tol * g0);
+    all.push_back({t, q, Eigen::VectorXd(), p, false});
+    t += tau;
+    q = qe;
+    p = pe;
+    out.impact_speeds.push_back(v_in);  // the incoming speed of impact j + 1 (j + 1 = k: the first, at t = 0 again)
+    reflect(b, p, nullptr);
+  }
+  out.period = t;
+  // impact i's incoming velocity is the end of flight i - 1 (of flight k - 1 for i = 0)
+  std::rotate(out.impact_speeds.rbegin(), out.impact_speeds.rbegin() + 1, out.impact_speeds.rend());
+  for (const ImpactRecord& r : all) out.impact_times.push_back(r.t);
+  out.gap_certified = fc.certified && fc.ends_positive;
+  out.min_flight_gap = fc.ends_positive ? fc.min_gap : 0.0;
+  out.min_gap_flight = fc.flight;
+  out.min_gap_time = fc.time;
+  const double speed_margin = min_speed / (g0 * omega.maxCoeff());
+  const double gap_margin = fc.ends_positive ? fc.min_gap / g0 : 0.0;
+  out.speed_limited = speed_margin <= gap_margin;
+  out.margin = std::min(speed_margin, gap_margin);
+  out.multiplicity = multiplicity_of(all, out.period, out.energy, omega.maxCoeff());
+  return out;
+}
+
+}  // namespace
+
 KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, double rel_tol) {
+  if (shape.symmetry == KippSymmetry::None) return general_orbit(model, shape, y, rel_tol);
   const int n = shape.n, m = shape.m(), t0 = shape.first_tau();
   const Eigen::VectorXd& b = model.b();
   const Eigen::VectorXd& omega = model.omega();
@@ -262,23 +379,7 @@ KippOrbit kipp_orbit(const KippModel& model, const KippShape& shape, const Eigen
   out.x0 = model.Phi() * all.front().q;
   out.v0 = model.Phi() * all.front().p_after;
 
-  // Least period: the smallest shift d (k % d == 0) that maps the impact sequence onto itself.
-  const double scale = std::sqrt(2.0 * std::max(out.energy, 1e-300));
-  for (int d = 1; d < shape.k; ++d) {
-    if (shape.k % d != 0) continue;
-    bool same = true;
-    for (int i = 0; i < shape.k && same; ++i) {
-      const ImpactRecord& a = all[i];
-      const ImpactRecord& c = all[(i + d) % shape.k];
-      const double dt = std::fmod(c.t - a.t + out.period, out.period);
-      same = std::abs(dt - out.period * d / shape.k) <= 1e-8 * out.period &&
-             (a.q - c.q).norm() * omega.maxCoeff() <= 1e-7 * scale && (a.p_after - c.p_after).norm() <= 1e-7 * scale;
-    }
-    if (same) {
-      out.multiplicity = shape.k / d;
-      break;
-    }
-  }
+  out.multiplicity = multiplicity_of(all, out.period, out.energy, omega.maxCoeff());
   return out;
 }
 
@@ -287,6 +388,8 @@ Eigen::VectorXd grazing_start(const KippModel& model, const KippShape& shape, in
   if (n != model.coupled_modes()) detail::invalid("grazing_start: expected a shape of the model's coupled modes");
   if (coupled < 0 || coupled >= n)
     detail::invalid_option("grazing_start", "coupled", coupled, "in [0, " + std::to_string(n) + ")");
+  if (shape.symmetry == KippSymmetry::None)
+    detail::invalid("grazing_start: expected a symmetric shape (symmetries_for), got symmetry none");
   const int mode = coupled;
   const double bj = model.b()(mode);
   const double T = 2.0 * std::acos(-1.0) / model.omega()(mode);

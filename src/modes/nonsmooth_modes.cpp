@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "continuation/corrector.hpp"
+#include "spp/detail/cosine_sum.hpp"
 #include "spp/detail/invalid.hpp"
 
 namespace spp::modes {
@@ -113,6 +115,8 @@ struct Tracer {
   };
   std::vector<Stretch> stretches;
   bool stopped = false;         // options.progress returned false: nothing more is traced
+  int general_index = 0;       // general families listed (for their labels)
+  bool quiet = false;           // a repetition traced for its branch points only: no inadmissible stretches
   int regained = 0;             // families started by follow_stretch (for their labels)
   static constexpr long kMaxStretches = 10000;  // a bound on the work of through_inadmissible
 
@@ -127,6 +131,7 @@ struct Tracer {
     Eigen::VectorXd d(shape.unknowns());
     d.head(shape.n).setConstant(g0 / bn);
     if (shape.symmetry == KippSymmetry::ImpactImpact) d(shape.n) = g0 * wmax / bn;
+    if (shape.symmetry == KippSymmetry::None) d.segment(shape.n, shape.n).setConstant(g0 * wmax / bn);
     d.tail(shape.m() + 1).setConstant(2.0 * std::acos(-1.0) / wmin);
     return d;
   }
@@ -178,7 +183,8 @@ struct Tracer {
   // (ModesOptions::through_inadmissible; follow_stretch).
   void follow_later(const KippShape& shape, const Eigen::VectorXd& z, const Eigen::VectorXd& tau, double h,
                     const ModeFamily& f) {
-    if (!options.through_inadmissible) return;
+    // the general families (KippSymmetry::None) are followed from branch points only (general_search)
+    if (!options.through_inadmissible || quiet || shape.symmetry == KippSymmetry::None) return;
     std::ostringstream from;
     from << "k" << shape.k << " " << to_string(shape.symmetry) << " mode " << f.mode;
     const Eigen::VectorXd y = (D.array() * z.array()).matrix();
@@ -414,6 +420,7 @@ struct Tracer {
     Eigen::VectorXd g = Eigen::VectorXd::Zero(shape.unknowns());
     g.head(shape.n) = (model.omega().array().square() * y.head(shape.n).array()).matrix();
     if (shape.symmetry == KippSymmetry::ImpactImpact) g(shape.n) = y(shape.n);
+    if (shape.symmetry == KippSymmetry::None) g.segment(shape.n, shape.n) = y.segment(shape.n, shape.n);
     return (g.array() * D.array()).matrix();  // dE/dz
   }
 
@@ -455,6 +462,7 @@ struct Tracer {
   // The family with k + 2 impacts that continues family `index` past its flight_grazing end.
   void follow_grazing(size_t index) {
     const ModeFamily src = result.families[index];  // a copy: result.families grows below
+    if (src.symmetry == KippSymmetry::None) return;  // its flights have no mirror: not split in pairs
     const KippShape shape{src.k, src.symmetry, model.coupled_modes()};
     const Eigen::VectorXd& y = src.points.back().y;
     const KippOrbit o = kipp_orbit(model, shape, y);
@@ -595,6 +603,235 @@ struct Tracer {
       }
     }
   }
+  // ---- General (non-symmetric) k-IPPs: branch points of repetitions and symmetry breaking (docs/modes.md §3) ----
+
+  // The flight durations of a point (k, from its impact times and period).
+  static std::vector<double> flights(const ModePoint& p) {
+    std::vector<double> d;
+    for (size_t i = 0; i < p.impact_times.size(); ++i)
+      d.push_back((i + 1 < p.impact_times.size() ? p.impact_times[i + 1] : p.period) - p.impact_times[i]);
+    return d;
+  }
+
+  // The largest difference between flight sequences a and b, minimised over the cyclic shifts of b and its time reverse.
+  static double pattern_distance(const std::vector<double>& a, const std::vector<double>& b) {
+    const size_t k = a.size();
+    double best = std::numeric_limits<double>::infinity();
+    if (b.size() != k) return best;
+    for (int reverse = 0; reverse < 2; ++reverse)
+      for (size_t shift = 0; shift < k; ++shift) {
+        double d = 0.0;
+        for (size_t i = 0; i < k; ++i) {
+          const size_t j = reverse ? (2 * k - 1 - i - shift) % k : (i + shift) % k;
+          d = std::max(d, std::abs(a[i] - b[j]));
+        }
+        best = std::min(best, d);
+      }
+    return best;
+  }
+
+  // Whether orbit p (k impacts) lies on a family already listed with k impacts: some segment of its points crosses
+  // p's energy with p's period (1e-4 relative) and flights (1e-3 T, up to cyclic shift and time reversal).
+  bool on_listed_family(const ModePoint& p, int k) const {
+    const std::vector<double> fp = flights(p);
+    for (const ModeFamily& f : result.families) {
+      if (f.k != k) continue;
+      for (size_t i = 0; i + 1 < f.points.size(); ++i) {
+        const ModePoint &a = f.points[i], &c = f.points[i + 1];
+        if ((a.energy - p.energy) * (c.energy - p.energy) > 0) continue;
+        const double s = c.energy == a.energy ? 0.5 : (p.energy - a.energy) / (c.energy - a.energy);
+        if (std::abs(a.period + s * (c.period - a.period) - p.period) > 1e-4 * p.period) continue;
+        std::vector<double> fa = flights(a), fc = flights(c);
+        if (fa.size() != fp.size() || fc.size() != fp.size()) continue;
+        for (size_t j = 0; j < fa.size(); ++j) fa[j] += s * (fc[j] - fa[j]);
+        if (pattern_distance(fp, fa) <= 1e-3 * p.period) return true;
+      }
+    }
+    return false;
+  }
+
+  // Point p of a family (its orbit has p.impact_times.size() / multiplicity impacts) repeated to k impacts, as the
+  // unknowns of the general equations (KippSymmetry::None). Empty when k is no multiple of its impacts.
+  Eigen::VectorXd general_unknowns(const ModePoint& p, int k) const {
+    const int kp = static_cast<int>(p.impact_times.size()) / std::max(1, p.multiplicity);
+    if (kp < 1 || k % kp != 0) return {};
+    const int n = model.coupled_modes();
+    const Eigen::MatrixXd PtM = model.Phi().transpose() * model.system().M();
+    const std::vector<double> d = flights(p);
+    Eigen::VectorXd y(2 * n + k);
+    y.head(n) = PtM * p.x0;
+    y.segment(n, n) = PtM * p.v0;
+    for (int i = 0; i < k; ++i) y(2 * n + i) = d[static_cast<size_t>(i % kp)];
+    return y;
+  }
+
+
+  // From each branch point (zb, the other branch's direction) of family f, both directions of the other branch, each
+  // a family of genuine k-IPPs with no symmetry assumed where its first step is admissible, unless it lies on a
+  // family listed already (a symmetric family, or the same general family reached from another branch point).
+  void branch_families(const KippShape& shape, const ModeFamily& f,
+                       const std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>& branches) {
+    const int k = shape.k;
+    for (const auto& [zb, bdir] : branches) {
+      for (double sign : {1.0, -1.0}) {
+        if (!keep_going()) return;
+        D = scales(shape);
+        const Eigen::VectorXd tau1 = sign * bdir;
+        if (!admissible_side(shape, zb, tau1)) continue;
+        ModeFamily g;
+        g.k = k;
+        g.symmetry = shape.symmetry;
+        g.mode = f.mode;
+        const ModePoint pb = point(shape, zb);
+        g.points.push_back(pb);
+        add_event(g, ModeEventKind::BranchStart, pb, "branch point on " + f.label + " (no symmetry assumed)");
+        const long stalled = result.stalled_families;
+        trace(g, shape, zb, tau1, nullptr);
+        bool genuine = g.points.size() >= 3;  // multiplicity 1 past the start
+        for (size_t i = 1; i < g.points.size(); ++i) genuine = genuine && g.points[i].multiplicity == 1;
+        if (!genuine || on_listed_family(g.points[g.points.size() / 3], k) ||
+            on_listed_family(g.points[2 * g.points.size() / 3], k)) {
+          result.stalled_families = stalled;  // not listed: its stall (if any) is no listed family's
+          continue;
+        }
+        g.multiplicity = 1;
+        std::ostringstream label;
+        label << "k" << k << " none branch " << ++general_index << (sign > 0 ? "+" : "-") << " of " << f.label;
+        g.label = label.str();
+        result.families.push_back(g);
+      }
+    }
+  }
+
+  // The general families with k + 1 impacts that leave a family's flight_grazing end where the gap touches 0 at one
+  // time of the period only (a tangency at a symmetric point of a symmetric orbit, which the k + 2 grazing
+  // continuation does not follow, or any tangency of a general orbit): the tangency is counted as an impact of zero
+  // speed and the family is followed from there on its admissible side, with its branch points (the symmetric
+  // families that cross it: on the 2-dof, the k = 2 family of constant period 7.990517 leaves the 1-IPP "mode 2 x2
+  // period" family at its grazing end and the (F, F) families of T 7.53..8.06 cross it).
+  void general_from_tangencies(int k, const std::vector<ModeFamily>& extra_sources) {
+    const KippShape shape{k, KippSymmetry::None, model.coupled_modes()};
+    const int n = model.coupled_modes();
+    const Eigen::MatrixXd PtM = model.Phi().transpose() * model.system().M();
+    const Eigen::VectorXd& b = model.b();
+    const Eigen::VectorXd& omega = model.omega();
+    const double g0 = model.g0();
+    const size_t count = result.families.size();
+    for (size_t fi = 0; fi < count + extra_sources.size(); ++fi) {
+      // a copy: result.families grows below
+      const ModeFamily src = fi < count ? result.families[fi] : extra_sources[fi - count];
+      if (src.k + 1 != k || src.events.empty() || src.events.back().kind != ModeEventKind::FlightGrazing) continue;
+      if (!keep_going()) return;
+      const ModePoint& p = src.points.back();
+      const std::vector<double> d = flights(p);
+      // the interior minima of the gap over the period, sampled and refined (golden section)
+      std::vector<std::pair<int, double>> touches;  // (flight, time from its start)
+      Eigen::VectorXd q = PtM * p.x0, v = PtM * p.v0;
+      for (size_t j = 0; j < d.size(); ++j) {
+        const detail::CosineSum g = detail::CosineSum::from_cos_sin(
+            g0, (b.array() * q.array()).matrix(), (b.array() * v.array() / omega.array()).matrix(), omega);
+        constexpr int kSamples = 2000;
+        std::vector<double> gs(kSamples + 1);
+        for (int i = 0; i <= kSamples; ++i) gs[static_cast<size_t>(i)] = g.value(d[j] * i / kSamples);
+        for (int i = 1; i < kSamples; ++i) {
+          if (!(gs[static_cast<size_t>(i)] <= gs[static_cast<size_t>(i - 1)] &&
+                gs[static_cast<size_t>(i)] <= gs[static_cast<size_t>(i + 1)]))
+            continue;
+          double lo = d[j] * (i - 1) / kSamples, hi = d[j] * (i + 1) / kSamples;
+          for (int it = 0; it < 100; ++it) {
+            const double a = lo + 0.382 * (hi - lo), c = lo + 0.618 * (hi - lo);
+            if (g.value(a) < g.value(c)) hi = c; else lo = a;
+          }
+          const double t = 0.5 * (lo + hi);
+          if (std::abs(g.value(t)) <= 1e-5 * g0) touches.push_back({static_cast<int>(j), t});
+        }
+        // the exact flight to the next impact, then the reflection
+        const Eigen::ArrayXd c = (omega.array() * d[j]).cos(), sn = (omega.array() * d[j]).sin();
+        const Eigen::VectorXd q1 = (c * q.array() + sn / omega.array() * v.array()).matrix();
+        v = (-omega.array() * sn * q.array() + c * v.array()).matrix();
+        q = q1;
+        v -= (2.0 * b.dot(v) / b.squaredNorm()) * b;
+      }
+      if (touches.empty() || touches.size() > 2) continue;
+      for (const auto& [tj, tt] : touches) {
+      Eigen::VectorXd y(2 * n + k);
+      y.head(n) = PtM * p.x0;
+      y.segment(n, n) = PtM * p.v0;
+      for (int j = 0, c = 0; j < static_cast<int>(d.size()); ++j) {
+        if (j == tj) {
+          y(2 * n + c++) = tt;
+          y(2 * n + c++) = d[static_cast<size_t>(j)] - tt;
+        } else {
+          y(2 * n + c++) = d[static_cast<size_t>(j)];
+        }
+      }
+      D = scales(shape);
+      Eigen::VectorXd z0 = (y.array() / D.array()).matrix(), z0c;
+      const Eigen::VectorXd t0 = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+      if (!t0.allFinite() || !correct(shape, z0, t0, z0c)) continue;
+      z0 = z0c;
+      const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+      for (double sign : {1.0, -1.0}) {
+        if (!admissible_side(shape, z0, sign * dir)) continue;
+        ModeFamily g;
+        g.k = k;
+        g.symmetry = shape.symmetry;
+        g.mode = src.mode;
+        const ModePoint p0 = tangency(point(shape, z0));
+        g.points.push_back(p0);
+        add_event(g, ModeEventKind::GrazingContinuation, p0, "flight_grazing end of " + src.label + " (one tangency)");
+        std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
+        const long stalled = result.stalled_families;
+        trace(g, shape, z0, sign * dir, &branches);
+        if (g.points.size() < 3 || on_listed_family(g.points[g.points.size() / 2], k)) {
+          result.stalled_families = stalled;  // not listed
+          continue;
+        }
+        g.multiplicity = 1;
+        std::ostringstream label;
+        label << "k" << k << " none past grazing " << ++general_index << " of " << src.label;
+        g.label = label.str();
+        result.families.push_back(g);
+        branch_families(shape, g, branches);
+      }
+      }
+    }
+  }
+
+  // Every family listed so far whose orbits repeat to k impacts (k / its impacts times, once included: the symmetric
+  // genuine k-IPPs, for their symmetry-breaking branch points) is traced in the general equations from its middle
+  // point both ways (not listed again: quiet) and its branch points collected; from each, both directions of the
+  // other branch are followed as families of genuine k-IPPs with no symmetry assumed, unless they lie on a family
+  // already listed (a symmetric family, or the same general family reached from another branch point).
+  void general_search(int k, const std::vector<ModeFamily>& extra_sources) {
+    const KippShape shape{k, KippSymmetry::None, model.coupled_modes()};
+    std::vector<ModeFamily> sources = extra_sources;
+    for (const ModeFamily& f : result.families)
+      if (f.symmetry != KippSymmetry::None || f.k < k) sources.push_back(f);
+    for (const ModeFamily& f : sources) {
+      if (!keep_going()) return;
+      if (f.points.size() < 3) continue;
+      const ModePoint& mid = f.points[f.points.size() / 2];
+      if (!mid.admissible) continue;
+      const Eigen::VectorXd y = general_unknowns(mid, k);
+      if (y.size() == 0) continue;
+      D = scales(shape);
+      Eigen::VectorXd z0 = (y.array() / D.array()).matrix();
+      const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+      if (!dir.allFinite()) continue;
+      std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
+      const long stalled = result.stalled_families;
+      quiet = true;
+      for (double sign : {1.0, -1.0}) {
+        ModeFamily rep;
+        rep.points.push_back(point(shape, z0));
+        trace(rep, shape, z0, sign * dir, &branches);
+      }
+      quiet = false;
+      result.stalled_families = stalled;  // the source was listed (and its own ends counted) already
+      branch_families(shape, f, branches);
+    }
+  }
 };
 
 }  // namespace
@@ -626,6 +863,23 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
     } else {
       break;
     }
+  }
+  // k-IPPs with no symmetry assumed, from the branch points of the repetitions and of the symmetric families: the
+  // 1-IPP families are their sources also when k = 1 is not requested (computed here, not listed)
+  if (options.branch_points && ks.back() >= 2 && !tracer.stopped) {
+    std::vector<ModeFamily> ones;
+    if (!tracer.wanted.count(1)) {
+      ModesOptions o1 = options;
+      o1.k_values = {1};
+      ModesResult r1 = nonsmooth_modes(system, o1);
+      result.corrector_solves += r1.corrector_solves;
+      ones = std::move(r1.families);
+    }
+    for (int k : ks)
+      if (k >= 2) {
+        tracer.general_from_tangencies(k, ones);
+        tracer.general_search(k, ones);
+      }
   }
   result.interrupted = tracer.stopped;
   result.status = result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;

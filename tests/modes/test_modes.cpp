@@ -149,6 +149,58 @@ TEST(Modes, JacobianMatchesCentralDifferences) {
     }
 }
 
+// The general equations (no symmetry assumed: y = (q, q', tau_1..tau_k)) likewise.
+TEST(Modes, GeneralJacobianMatchesCentralDifferences) {
+  const KippModel model(chain5());
+  for (int k : {1, 2, 3, 5}) {
+    const KippShape shape{k, KippSymmetry::None, model.coupled_modes()};
+    ASSERT_EQ(shape.unknowns(), 2 * model.coupled_modes() + k);
+    Eigen::VectorXd y = 0.3 * Eigen::VectorXd::LinSpaced(shape.unknowns(), -1.0, 1.2);
+    y.tail(k).setConstant(1.7);
+    Eigen::VectorXd F, Fp, Fm;
+    Eigen::MatrixXd J, Jd;
+    kipp_residual(model, shape, y, F, J);
+    ASSERT_EQ(J.rows(), shape.equations());
+    Eigen::MatrixXd Jfd(J.rows(), J.cols());
+    for (int i = 0; i < y.size(); ++i) {
+      const double h = 1e-6;
+      Eigen::VectorXd yp = y, ym = y;
+      yp(i) += h;
+      ym(i) -= h;
+      kipp_residual(model, shape, yp, Fp, Jd);
+      kipp_residual(model, shape, ym, Fm, Jd);
+      Jfd.col(i) = (Fp - Fm) / (2 * h);
+    }
+    EXPECT_LT((J - Jfd).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + J.cwiseAbs().maxCoeff())) << k;
+  }
+}
+
+// Issue 15: an independent search (tests/crosscheck/modes_k_ipp_scan.py, no symmetry assumed) found admissible
+// genuine 2-IPPs of the 2-dof that spp did not list: a non-reversible family of constant period 7.990517 (flights
+// 1.522837 and 6.467680, unequal impact speeds) and an (I, I) family of constant period 11.570212 (two flights of
+// 5.785106) where the symmetric (I, I) m = 0 equations are singular. Both are families with no symmetry assumed now
+// (from the tangency ending the 1-IPP family of mode 1, and from a branch point of the doubled "mode 2 x2 period").
+TEST(Modes, TwoDofNonReversibleAndImpactImpactTwoIppsAreListed) {
+  ModesOptions o;
+  o.k_values = {2};
+  o.energy_max = 20.0;
+  o.period_multiples = 6;
+  const ModesResult r = nonsmooth_modes(paper_two_dof(), o);
+  const auto has = [&](double T, double f1, double f2) {
+    for (const ModeFamily& f : r.families)
+      for (const ModePoint& p : f.points) {
+        if (f.symmetry != KippSymmetry::None || !p.admissible || std::abs(p.period - T) > 1e-5) continue;
+        const double a = p.impact_times[1], c = p.period - a;
+        if (std::abs(std::min(a, c) - std::min(f1, f2)) < 1e-5 && std::abs(std::max(a, c) - std::max(f1, f2)) < 1e-5)
+          return true;
+      }
+    return false;
+  };
+  EXPECT_TRUE(has(7.990517, 1.522837, 6.467680));
+  EXPECT_TRUE(has(11.570212, 5.785106, 5.785106));
+  EXPECT_EQ(r.status, ModesStatus::Traced);
+}
+
 // The 1-IPP of half period tau in closed form (docs/modes.md §2), from an eigensolve of its own.
 Eigen::VectorXd one_ipp_closed_form(const System& s, double tau) {
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.K(), s.M());
@@ -261,6 +313,29 @@ TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsTwoDof) {
   const ModesResult r = run(s, {1, 2, 3}, 6.0);
   const ReturnCheck c = check_returns(s, r, 8);
   EXPECT_GE(c.points, 30);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+  EXPECT_LT(c.max_time_error, 1e-9);
+  EXPECT_LT(c.max_return_error_near_grazing, 1e-5);
+  std::printf("points %d, return error %.3g (%.3g near grazing), impact time error %.3g of T\n", c.points,
+              c.max_return_error, c.max_return_error_near_grazing, c.max_time_error);
+}
+
+// The families with no symmetry assumed (non-reversible, (I, I) m = 0, past one tangency) likewise.
+TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsTwoDofNoSymmetry) {
+  const System s = paper_two_dof();
+  ModesOptions o;
+  o.k_values = {2, 3};
+  o.energy_max = 20.0;
+  o.period_multiples = 6;
+  ModesResult r = nonsmooth_modes(s, o);
+  std::vector<ModeFamily> general;
+  for (const ModeFamily& f : r.families)
+    if (f.symmetry == KippSymmetry::None) general.push_back(f);
+  EXPECT_GE(general.size(), 6u);
+  r.families = general;
+  const ReturnCheck c = check_returns(s, r, 8);
+  EXPECT_GE(c.points, 40);
   EXPECT_EQ(c.impact_mismatches, 0);
   EXPECT_LT(c.max_return_error, 1e-8);
   EXPECT_LT(c.max_time_error, 1e-9);
@@ -428,8 +503,10 @@ TEST(Modes, GrazingContinuationStartsWhereItsFamilyGrazes) {
     // the start is the source's grazing end corrected onto the k + 2 family: it moves by the end's location
     // tolerance (its new impact had a gap of ~1e-6 g0), and then is a tangency (margin 0, admissible)
     double moved = 1e300;
+    // k + 2 for a symmetric tangency pair; k + 1 for one tangency taken as an impact (no symmetry assumed)
+    const int dk = g.symmetry == KippSymmetry::None ? 1 : 2;
     for (const ModeFamily& f : r.families)
-      if (f.k == g.k - 2 && f.events.back().kind == ModeEventKind::FlightGrazing)
+      if (f.k == g.k - dk && f.events.back().kind == ModeEventKind::FlightGrazing)
         moved = std::min(moved, std::max(std::abs(f.points.back().energy - p0.energy) / p0.energy,
                                          std::abs(f.points.back().period - p0.period) / p0.period));
     EXPECT_LE(moved, 1e-5) << g.label;

@@ -21,13 +21,16 @@ namespace spp::modes {
 
 /// The two symmetric points of the half orbit: F a turning point in flight, I an impact with normal velocity.
 /// k = 2m (FlightFlight), 2m + 1 (FlightImpact), 2m + 2 (ImpactImpact), m the impacts strictly inside the half orbit.
-enum class KippSymmetry { FlightFlight, FlightImpact, ImpactImpact };
-const char* to_string(KippSymmetry s);  ///< "flight-flight", "flight-impact", "impact-impact"
+/// None: no symmetry assumed (docs/modes.md §2, "The general equations"): the whole period, k flights from an impact;
+/// it also holds the non-reversible k-IPPs and the (I, I) m = 0 2-IPPs that are no 1-IPP traversed twice.
+enum class KippSymmetry { FlightFlight, FlightImpact, ImpactImpact, None };
+const char* to_string(KippSymmetry s);  ///< "flight-flight", "flight-impact", "impact-impact", "none"
 
 /// The symmetric point types that give k impacts per period (k >= 1): k odd, FlightImpact; k even, FlightFlight
 /// and ImpactImpact (k = 2: ImpactImpact with m = 0 is the 1-IPP traversed twice, docs/modes.md §2: not listed).
 std::vector<KippSymmetry> symmetries_for(int k);
-/// m, the impacts strictly inside the half orbit, for k and s (k must suit s: symmetries_for).
+/// m, the impacts strictly inside the half orbit, for k and s (k must suit s: symmetries_for); None: k - 1 (the
+/// impacts after the first one of the period, the flights numbering k).
 int interior_impacts(int k, KippSymmetry s);
 
 /// The free flow of the system in its modal coordinates, computed once (model/workspace split). Cost O(n^3).
@@ -64,19 +67,24 @@ class KippModel {
 
 /// The unknowns y of a symmetric half orbit: y = (q_A (n), [s,] tau_0..tau_m), with s only for ImpactImpact
 /// (post-impact modal velocity s b / |b| at A). size = n + m + 1 (+1 for ImpactImpact); the equations number
-/// size - 1: a one-parameter family (the energy).
+/// size - 1: a one-parameter family (the energy). None: y = (q (n), q' (n), tau_1..tau_k), the state just after an
+/// impact and the k flights of the period; size 2n + k.
 struct KippShape {
   int k = 1;
   KippSymmetry symmetry = KippSymmetry::FlightImpact;
   int n = 0;  ///< modal coordinates: the model's coupled modes (KippModel::coupled_modes())
   int m() const { return interior_impacts(k, symmetry); }
-  int unknowns() const { return n + m() + 1 + (symmetry == KippSymmetry::ImpactImpact ? 1 : 0); }
+  int unknowns() const { return first_tau() + m() + 1; }
   int equations() const { return unknowns() - 1; }
-  int first_tau() const { return n + (symmetry == KippSymmetry::ImpactImpact ? 1 : 0); }
+  int first_tau() const {
+    return symmetry == KippSymmetry::None ? 2 * n : n + (symmetry == KippSymmetry::ImpactImpact ? 1 : 0);
+  }
 };
 
 /// F(y) (equations) and its Jacobian J (equations x unknowns), analytic (forward mode through the flows and
-/// reflections). Units: q in the units of x times sqrt(mass); tau in time. Cost O(n (m + 1) unknowns).
+/// reflections). None: the start on the obstacle, the gap 0 after each flight, and after the k-th impact the state
+/// back: its position (n) and its tangential velocity (n - 1); the normal velocity back follows from the energy
+/// (conserved) and is not an equation (it would make J rank deficient). Units: q in the units of x times sqrt(mass); tau in time. Cost O(n (m + 1) unknowns).
 void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, Eigen::VectorXd& F,
                    Eigen::MatrixXd& J);
 
