@@ -684,7 +684,9 @@ struct Tracer {
         g.mode = f.mode;
         const ModePoint pb = point(shape, zb);
         g.points.push_back(pb);
-        add_event(g, ModeEventKind::BranchStart, pb, "branch point on " + f.label + " (no symmetry assumed)");
+        add_event(g, ModeEventKind::BranchStart, pb,
+                  "branch point on " + f.label +
+                      (shape.symmetry == KippSymmetry::None ? " (no symmetry assumed)" : " repeated"));
         const long stalled = result.stalled_families;
         trace(g, shape, zb, tau1, nullptr);
         bool genuine = g.points.size() >= 3;  // multiplicity 1 past the start
@@ -696,7 +698,8 @@ struct Tracer {
         }
         g.multiplicity = 1;
         std::ostringstream label;
-        label << "k" << k << " none branch " << ++general_index << (sign > 0 ? "+" : "-") << " of " << f.label;
+        label << "k" << k << " " << to_string(shape.symmetry) << " branch " << ++general_index << (sign > 0 ? "+" : "-")
+              << " of " << f.label;
         g.label = label.str();
         result.families.push_back(g);
       }
@@ -798,22 +801,55 @@ struct Tracer {
     }
   }
 
+  // A 1-IPP (flight-impact: y = (q_A, tau)) repeated k times, as the unknowns of symmetric type shape.symmetry
+  // (docs/modes.md §3): F at A, the impacts every 2 tau; I at the 1-IPP's impact B (normal velocity).
+  Eigen::VectorXd symmetric_repetition(const ModePoint& p, const KippShape& shape) const {
+    const int n = model.coupled_modes(), m = shape.m(), t0 = shape.first_tau();
+    if (p.y.size() != n + 1 || p.multiplicity != 1) return {};
+    const double tau = p.y(n);
+    Eigen::VectorXd y(shape.unknowns());
+    if (shape.symmetry == KippSymmetry::ImpactImpact) {
+      const Eigen::ArrayXd w = model.omega().array();
+      const Eigen::VectorXd qA = p.y.head(n);
+      y.head(n) = ((w * tau).cos() * qA.array()).matrix();                        // at B
+      const Eigen::VectorXd pB = (-w * (w * tau).sin() * qA.array()).matrix();    // arriving, normal
+      y(n) = -pB.dot(model.b().normalized());                                     // after the impact: reversed
+      for (int j = 0; j <= m; ++j) y(t0 + j) = 2.0 * tau;
+    } else {
+      y.head(n) = p.y.head(n);
+      y(t0) = tau;
+      for (int j = 1; j <= m; ++j) y(t0 + j) = 2.0 * tau;
+      if (shape.symmetry == KippSymmetry::FlightFlight) y(t0 + m) = tau;
+    }
+    return y;
+  }
+
   // Every family listed so far whose orbits repeat to k impacts (k / its impacts times, once included: the symmetric
   // genuine k-IPPs, for their symmetry-breaking branch points) is traced in the general equations from its middle
   // point both ways (not listed again: quiet) and its branch points collected; from each, both directions of the
   // other branch are followed as families of genuine k-IPPs with no symmetry assumed, unless they lie on a family
   // already listed (a symmetric family, or the same general family reached from another branch point).
-  void general_search(int k, const std::vector<ModeFamily>& extra_sources) {
-    const KippShape shape{k, KippSymmetry::None, model.coupled_modes()};
-    std::vector<ModeFamily> sources = extra_sources;
+  // symmetry None: as above. A symmetric type: the 1-IPP families listed (or computed as sources) repeated k times,
+  // each in the symmetric equations of that type (the grazing starts give these repetitions for the families of the
+  // linear modes only: not for those from period multiples or regained after inadmissible orbits), and the
+  // symmetric families that branch off them.
+  void repetition_search(const KippShape& shape, const std::vector<ModeFamily>& extra_sources) {
+    const int k = shape.k;
+    std::vector<ModeFamily> sources;
+    for (const ModeFamily& f : extra_sources)
+      if (shape.symmetry == KippSymmetry::None || (f.k == 1 && f.symmetry == KippSymmetry::FlightImpact))
+        sources.push_back(f);
     for (const ModeFamily& f : result.families)
-      if (f.symmetry != KippSymmetry::None || f.k < k) sources.push_back(f);
+      if (shape.symmetry == KippSymmetry::None ? f.symmetry != KippSymmetry::None || f.k < k
+                                               : f.k == 1 && f.symmetry == KippSymmetry::FlightImpact)
+        sources.push_back(f);
     for (const ModeFamily& f : sources) {
       if (!keep_going()) return;
       if (f.points.size() < 3) continue;
       const ModePoint& mid = f.points[f.points.size() / 2];
       if (!mid.admissible) continue;
-      const Eigen::VectorXd y = general_unknowns(mid, k);
+      const Eigen::VectorXd y =
+          shape.symmetry == KippSymmetry::None ? general_unknowns(mid, k) : symmetric_repetition(mid, shape);
       if (y.size() == 0) continue;
       D = scales(shape);
       Eigen::VectorXd z0 = (y.array() / D.array()).matrix();
@@ -877,8 +913,9 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
     }
     for (int k : ks)
       if (k >= 2) {
+        for (KippSymmetry s : symmetries_for(k)) tracer.repetition_search(KippShape{k, s, model.coupled_modes()}, ones);
         tracer.general_from_tangencies(k, ones);
-        tracer.general_search(k, ones);
+        tracer.repetition_search(KippShape{k, KippSymmetry::None, model.coupled_modes()}, ones);
       }
   }
   result.interrupted = tracer.stopped;

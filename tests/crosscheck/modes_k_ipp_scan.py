@@ -202,7 +202,8 @@ def listed(orbit, families):
     return None
 
 
-def main():
+def main(argv=None):
+    """Runs the scan (and the comparison); returns {k: (listed, found)} (listed None without --spp / --modes)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("system")
     ap.add_argument("--k", type=int, nargs="+", default=[2, 3])
@@ -214,7 +215,7 @@ def main():
     ap.add_argument("--spp-args", default="", help="extra `spp modes` options (one string)")
     ap.add_argument("--modes", help="a `spp modes --json` file to compare with (instead of --spp)")
     ap.add_argument("--json", help="write the orbits found (and whether listed) here")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     sysm = Modal(args.system)
     rng = np.random.default_rng(args.seed)
@@ -246,8 +247,10 @@ def main():
         s = summary.setdefault(o["k"], [0, 0])
         s[0] += o["listed"] is not None
         s[1] += 1
+    counts = {}
     for k in args.k:
         s = summary.get(k, [0, 0])
+        counts[k] = (s[0] if families is not None else None, s[1])
         if families is not None:
             print(f"k {k}: listed {s[0]} of {s[1]} orbits")
         else:
@@ -255,7 +258,8 @@ def main():
     if args.json:
         with open(args.json, "w") as f:
             json.dump([{key: v for key, v in o.items()} for o in orbits], f)
+    return counts
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -201,6 +201,28 @@ TEST(Modes, TwoDofNonReversibleAndImpactImpactTwoIppsAreListed) {
   EXPECT_EQ(r.status, ModesStatus::Traced);
 }
 
+// The same search found symmetric (flight, impact) 3-IPPs of the 2-dof with T 19.21..19.39 (E 2..8; at E = 5:
+// T 19.224110, flights 5.8754, 6.6743, 6.6743): they branch off the 1-IPP family "mode 2 x2 period" repeated three
+// times, which no grazing start gives (its own start is a grazing orbit at twice mode 2's period).
+TEST(Modes, TwoDofThreeIppsBranchingOffAPeriodMultipleFamilyAreListed) {
+  ModesOptions o;
+  o.k_values = {3};
+  o.energy_max = 20.0;
+  o.period_multiples = 6;
+  const ModesResult r = nonsmooth_modes(paper_two_dof(), o);
+  bool found = false;
+  for (const ModeFamily& f : r.families) {
+    if (f.k != 3 || f.symmetry != KippSymmetry::FlightImpact) continue;
+    for (size_t i = 0; i + 1 < f.points.size(); ++i) {
+      const ModePoint &a = f.points[i], &c = f.points[i + 1];
+      if ((a.energy - 5.0) * (c.energy - 5.0) > 0 || !a.admissible || !c.admissible) continue;
+      const double s = (5.0 - a.energy) / (c.energy - a.energy);
+      found = found || std::abs(a.period + s * (c.period - a.period) - 19.224110) < 1e-3;
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
 // The 1-IPP of half period tau in closed form (docs/modes.md §2), from an eigensolve of its own.
 Eigen::VectorXd one_ipp_closed_form(const System& s, double tau) {
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s.K(), s.M());
