@@ -204,8 +204,8 @@ int multiplicity_of(const std::vector<ImpactRecord>& all, double period, double 
       const ImpactRecord& a = all[i];
       const ImpactRecord& c = all[(i + d) % k];
       const double dt = std::fmod(c.t - a.t + period, period);
-      same = std::abs(dt - period * d / k) <= 1e-8 * period &&
-             (a.q - c.q).norm() * omega_max <= 1e-7 * scale && (a.p_after - c.p_after).norm() <= 1e-7 * scale;
+      same = std::abs(dt - period * d / k) <= 1e-8 * period && (a.q - c.q).norm() * omega_max <= 1e-7 * scale &&
+             (a.p_after - c.p_after).norm() <= 1e-7 * scale;
     }
     if (same) return k / d;
   }

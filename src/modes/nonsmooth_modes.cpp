@@ -115,7 +115,7 @@ struct Tracer {
   };
   std::vector<Stretch> stretches;
   bool stopped = false;         // options.progress returned false: nothing more is traced
-  int general_index = 0;       // general families listed (for their labels)
+  int general_index = 0;        // general families listed (for their labels)
   bool quiet = false;           // a repetition traced for its branch points only: no inadmissible stretches
   int regained = 0;             // families started by follow_stretch (for their labels)
   static constexpr long kMaxStretches = 10000;  // a bound on the work of through_inadmissible
@@ -613,7 +613,8 @@ struct Tracer {
     return d;
   }
 
-  // The largest difference between flight sequences a and b, minimised over the cyclic shifts of b and its time reverse.
+  // The largest difference between flight sequences a and b, minimised over the cyclic shifts of b and its time
+  // reverse.
   static double pattern_distance(const std::vector<double>& a, const std::vector<double>& b) {
     const size_t k = a.size();
     double best = std::numeric_limits<double>::infinity();
@@ -664,7 +665,6 @@ struct Tracer {
     for (int i = 0; i < k; ++i) y(2 * n + i) = d[static_cast<size_t>(i % kp)];
     return y;
   }
-
 
   // From each branch point (zb, the other branch's direction) of family f, both directions of the other branch, each
   // a family of genuine k-IPPs with no symmetry assumed where its first step is admissible, unless it lies on a
@@ -743,7 +743,10 @@ struct Tracer {
           double lo = d[j] * (i - 1) / kSamples, hi = d[j] * (i + 1) / kSamples;
           for (int it = 0; it < 100; ++it) {
             const double a = lo + 0.382 * (hi - lo), c = lo + 0.618 * (hi - lo);
-            if (g.value(a) < g.value(c)) hi = c; else lo = a;
+            if (g.value(a) < g.value(c))
+              hi = c;
+            else
+              lo = a;
           }
           const double t = 0.5 * (lo + hi);
           if (std::abs(g.value(t)) <= 1e-5 * g0) touches.push_back({static_cast<int>(j), t});
@@ -757,46 +760,47 @@ struct Tracer {
       }
       if (touches.empty() || touches.size() > 2) continue;
       for (const auto& [tj, tt] : touches) {
-      Eigen::VectorXd y(2 * n + k);
-      y.head(n) = PtM * p.x0;
-      y.segment(n, n) = PtM * p.v0;
-      for (int j = 0, c = 0; j < static_cast<int>(d.size()); ++j) {
-        if (j == tj) {
-          y(2 * n + c++) = tt;
-          y(2 * n + c++) = d[static_cast<size_t>(j)] - tt;
-        } else {
-          y(2 * n + c++) = d[static_cast<size_t>(j)];
+        Eigen::VectorXd y(2 * n + k);
+        y.head(n) = PtM * p.x0;
+        y.segment(n, n) = PtM * p.v0;
+        for (int j = 0, c = 0; j < static_cast<int>(d.size()); ++j) {
+          if (j == tj) {
+            y(2 * n + c++) = tt;
+            y(2 * n + c++) = d[static_cast<size_t>(j)] - tt;
+          } else {
+            y(2 * n + c++) = d[static_cast<size_t>(j)];
+          }
         }
-      }
-      D = scales(shape);
-      Eigen::VectorXd z0 = (y.array() / D.array()).matrix(), z0c;
-      const Eigen::VectorXd t0 = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
-      if (!t0.allFinite() || !correct(shape, z0, t0, z0c)) continue;
-      z0 = z0c;
-      const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
-      for (double sign : {1.0, -1.0}) {
-        if (!admissible_side(shape, z0, sign * dir)) continue;
-        ModeFamily g;
-        g.k = k;
-        g.symmetry = shape.symmetry;
-        g.mode = src.mode;
-        const ModePoint p0 = tangency(point(shape, z0));
-        g.points.push_back(p0);
-        add_event(g, ModeEventKind::GrazingContinuation, p0, "flight_grazing end of " + src.label + " (one tangency)");
-        std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
-        const long stalled = result.stalled_families;
-        trace(g, shape, z0, sign * dir, &branches);
-        if (g.points.size() < 3 || on_listed_family(g.points[g.points.size() / 2], k)) {
-          result.stalled_families = stalled;  // not listed
-          continue;
+        D = scales(shape);
+        Eigen::VectorXd z0 = (y.array() / D.array()).matrix(), z0c;
+        const Eigen::VectorXd t0 = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+        if (!t0.allFinite() || !correct(shape, z0, t0, z0c)) continue;
+        z0 = z0c;
+        const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z0), energy_gradient(shape, z0));
+        for (double sign : {1.0, -1.0}) {
+          if (!admissible_side(shape, z0, sign * dir)) continue;
+          ModeFamily g;
+          g.k = k;
+          g.symmetry = shape.symmetry;
+          g.mode = src.mode;
+          const ModePoint p0 = tangency(point(shape, z0));
+          g.points.push_back(p0);
+          add_event(g, ModeEventKind::GrazingContinuation, p0,
+                    "flight_grazing end of " + src.label + " (one tangency)");
+          std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
+          const long stalled = result.stalled_families;
+          trace(g, shape, z0, sign * dir, &branches);
+          if (g.points.size() < 3 || on_listed_family(g.points[g.points.size() / 2], k)) {
+            result.stalled_families = stalled;  // not listed
+            continue;
+          }
+          g.multiplicity = 1;
+          std::ostringstream label;
+          label << "k" << k << " none past grazing " << ++general_index << " of " << src.label;
+          g.label = label.str();
+          result.families.push_back(g);
+          branch_families(shape, g, branches);
         }
-        g.multiplicity = 1;
-        std::ostringstream label;
-        label << "k" << k << " none past grazing " << ++general_index << " of " << src.label;
-        g.label = label.str();
-        result.families.push_back(g);
-        branch_families(shape, g, branches);
-      }
       }
     }
   }
@@ -811,9 +815,9 @@ struct Tracer {
     if (shape.symmetry == KippSymmetry::ImpactImpact) {
       const Eigen::ArrayXd w = model.omega().array();
       const Eigen::VectorXd qA = p.y.head(n);
-      y.head(n) = ((w * tau).cos() * qA.array()).matrix();                        // at B
-      const Eigen::VectorXd pB = (-w * (w * tau).sin() * qA.array()).matrix();    // arriving, normal
-      y(n) = -pB.dot(model.b().normalized());                                     // after the impact: reversed
+      y.head(n) = ((w * tau).cos() * qA.array()).matrix();                      // at B
+      const Eigen::VectorXd pB = (-w * (w * tau).sin() * qA.array()).matrix();  // arriving, normal
+      y(n) = -pB.dot(model.b().normalized());                                   // after the impact: reversed
       for (int j = 0; j <= m; ++j) y(t0 + j) = 2.0 * tau;
     } else {
       y.head(n) = p.y.head(n);
@@ -909,6 +913,7 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
       o1.k_values = {1};
       ModesResult r1 = nonsmooth_modes(system, o1);
       result.corrector_solves += r1.corrector_solves;
+      tracer.stopped = tracer.stopped || r1.interrupted;
       ones = std::move(r1.families);
     }
     for (int k : ks)

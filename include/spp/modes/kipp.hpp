@@ -84,7 +84,8 @@ struct KippShape {
 /// F(y) (equations) and its Jacobian J (equations x unknowns), analytic (forward mode through the flows and
 /// reflections). None: the start on the obstacle, the gap 0 after each flight, and after the k-th impact the state
 /// back: its position (n) and its tangential velocity (n - 1); the normal velocity back follows from the energy
-/// (conserved) and is not an equation (it would make J rank deficient). Units: q in the units of x times sqrt(mass); tau in time. Cost O(n (m + 1) unknowns).
+/// (conserved) and is not an equation (it would make J rank deficient). Units: q in the units of x times sqrt(mass);
+/// tau in time. Cost O(n (m + 1) unknowns).
 void kipp_residual(const KippModel& model, const KippShape& shape, const Eigen::VectorXd& y, Eigen::VectorXd& F,
                    Eigen::MatrixXd& J);
 
