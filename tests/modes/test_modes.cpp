@@ -366,6 +366,29 @@ TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsTwoDofNoSymmetry) {
               c.max_return_error, c.max_return_error_near_grazing, c.max_time_error);
 }
 
+TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsChain5NoSymmetry) {
+  const System s = chain5();
+  ModesOptions o;
+  o.k_values = {2, 3};
+  o.energy_max = 5.25;
+  o.period_multiples = 13;
+  o.through_inadmissible = true;
+  ModesResult r = nonsmooth_modes(s, o);
+  std::vector<ModeFamily> general;
+  for (const ModeFamily& f : r.families)
+    if (f.symmetry == KippSymmetry::None) general.push_back(f);
+  EXPECT_GE(general.size(), 10u);
+  r.families = general;
+  const ReturnCheck c = check_returns(s, r, 4);
+  EXPECT_GE(c.points, 40);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+  EXPECT_LT(c.max_time_error, 1e-9);
+  EXPECT_LT(c.max_return_error_near_grazing, 1e-5);
+  std::printf("%zu families, points %d, return error %.3g (%.3g near grazing), impact time error %.3g of T\n",
+              general.size(), c.points, c.max_return_error, c.max_return_error_near_grazing, c.max_time_error);
+}
+
 TEST(Modes, EveryPointReturnsInTheSimulatorWithKImpactsChain5) {
   const System s = chain5();
   const ModesResult r = run(s, {1, 2, 3}, 6.0);
