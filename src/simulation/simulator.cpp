@@ -167,6 +167,7 @@ Simulator::Simulator(const System& system) : system_(system) {
   contact_ = make_phase(M, K, Q.rightCols(n - 1));
   const Eigen::VectorXd Kinv_w = Kllt.solve(w);
   contact_.x_s = -system_.g0() / w.dot(Kinv_w) * Kinv_w;
+  normal_motion_ = Kinv_w / w.dot(Kinv_w);
   // force from w^T x'' = 0: lambda = w^T M^-1 K x / (w^T M^-1 w)
   force_row_ = (K * Minv_w_).transpose() / w_Minv_w_;
   flight_.offset = system_.g0();  // gap = g0 + w^T Phi q
@@ -187,8 +188,16 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> Simulator::follow_contact_then_fligh
        << " and " << flight_time;
     detail::invalid(os.str());
   }
+  // K normal_motion_ is parallel to w, so (c + s t) normal_motion_ is a motion of the contact flow (no acceleration)
+  // with w^T x = c + s t: the normal position and velocity at the start, carried along; the rest, normal to w, moves
+  // in the contact modes. (The normal velocity was projected away: a point-symmetric SPP, whose obstacle moves, could
+  // not be followed, and verify did not check its x0, v0; issue 11 finding.)
+  const double c = system_.w().dot(x0) + system_.g0(), s = system_.w().dot(v0);
+  const Eigen::VectorXd z0 = x0 - c * normal_motion_, zd0 = v0 - s * normal_motion_;
   Eigen::VectorXd x, v;
-  state_at(contact_, modal_state(contact_, system_.M(), x0, v0), contact_time, x, v);
+  state_at(contact_, modal_state(contact_, system_.M(), z0, zd0), contact_time, x, v);
+  x += (c + s * contact_time) * normal_motion_;
+  v += s * normal_motion_;
   Eigen::VectorXd xf, vf;
   state_at(flight_, modal_state(flight_, system_.M(), x, v), flight_time, xf, vf);
   return {xf, vf};
@@ -218,6 +227,19 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
     os << "simulate: the initial state's energy 1/2 v0^T M v0 + 1/2 x0^T K x0 is " << e0 << ": beyond " << kMaxEnergy
        << ", where the event computations overflow (change the units of x, M or K)";
     detail::invalid(os.str());
+  }
+  // The event search steps through every period of the fastest mode (detail::first_crossing_below_zero; measured
+  // 2.4 us per period on the paper's chain without events, so 1e8 periods take ~4 min): --duration 1e300 without an
+  // event never ended (issue 11 attack). Refused beyond kMaxPeriods of the fastest mode of either phase (README,
+  // spp simulate; verify's --periods 100000 of an SPP stays below it unless its period spans over 1000 of them).
+  constexpr double kMaxPeriods = 1e8;
+  const double omega_max = std::max(flight_.omega.size() ? flight_.omega.maxCoeff() : 0.0,
+                                    contact_.omega.size() ? contact_.omega.maxCoeff() : 0.0);
+  if (const double longest = kMaxPeriods * 2.0 * M_PI / omega_max; omega_max > 0.0 && opt.duration > longest) {
+    std::ostringstream rule;
+    rule << "at most " << longest << " (" << kMaxPeriods << " periods of the fastest mode, omega " << omega_max
+         << ": the event search steps through each)";
+    detail::invalid_option("simulate", "duration", opt.duration, rule.str());
   }
   const Eigen::MatrixXd& M = system_.M();
   const Eigen::VectorXd& w = system_.w();

@@ -191,6 +191,10 @@ std::string VerifyResult::brief_report() const {
        << "recomputed Floquet multipliers contradict";
   if (state_mismatches > 0) os << "; " << state_mismatches << " have x0, v0 that are not the orbit at (t1, t2)";
   if (unchecked > 0) os << "; " << unchecked << " not checked (interrupted)";
+  // what no check of the listed SPPs can see: an SPP deleted with its count (docs/result-files.md); said, never a
+  // silent success (issue 11 attack: every inadmissible SPP and one admissible one deleted read as an admissible-only
+  // solve with 6 of 7)
+  os << "; completeness not checked (whether SPPs were deleted from the list: only spp solve again can tell)";
   return os.str();
 }
 
@@ -277,6 +281,28 @@ std::string stability_mismatch(const Floquet& claimed, const Floquet& recomputed
   }
   return "";
 }
+// Empty when the SPP's onset state is the one its equation set requires: x0 on the obstacle (gap 0), the normal
+// velocity w^T v0 the set's symmetry gives (0 unless eq.moving_obstacle(): then g0 / t2, README §6.2), and the
+// obstacle velocity claimed (point symmetry) equal to w^T v0. Each relative to the state's size, within `tol`. An
+// axial SPP relabelled "point", or a point SPP's obstacle_velocity edited to 5, passed verify before (issue 11).
+std::string onset_mismatch(const System& system, const EquationSet& eq, const Orbit& o, double tol) {
+  const double gap = system.w().dot(o.x0) + system.g0(), vn = system.w().dot(o.v0);
+  const double moving = eq.moving_obstacle() ? system.g0() / o.t2 : 0.0;
+  const double x_scale = o.x0.norm() + std::abs(system.g0()), v_scale = o.v0.norm() + std::abs(moving);
+  if (!(std::abs(gap) <= tol * x_scale))
+    return "x0 is not on the obstacle: gap w^T x0 + g0 = " + fmt(gap) +
+           ", expected 0 (an edited result, or another "
+           "system's)";
+  if (!(std::abs(vn - moving) <= tol * v_scale))
+    return std::string("the normal velocity at onset w^T v0 is ") + fmt(vn) + ", expected " + fmt(moving) + " (" +
+           (eq.moving_obstacle() ? "g0 / t2, the obstacle's velocity of a " : "0 for an ") + to_string(eq.symmetry()) +
+           "-symmetric SPP): an edited result, or another system's";
+  if (!(std::abs(o.obstacle_velocity - (eq.moving_obstacle() ? vn : 0.0)) <= tol * v_scale))
+    return "obstacle_velocity " + fmt(o.obstacle_velocity) + " is not the normal velocity w^T v0 = " + fmt(vn) +
+           " at onset: expected " + fmt(eq.moving_obstacle() ? vn : 0.0);
+  return "";
+}
+
 }  // namespace
 
 VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& opt) {
@@ -298,8 +324,16 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
         "restitution 1 (elastic): the Floquet multipliers and the stability verdict are derived for "
         "e < 1 (docs/stability.md) and do not apply; the growth per period measured here is not "
         "comparable with spectral_radius");
-  std::optional<ModalForm> modal;  // built for the first SPP whose stability is to be checked
-  std::unique_ptr<EquationSet> axial;
+  // The equation set of each SPP's symmetry (what its onset state and its multipliers are checked against), on one
+  // modal form built for the first SPP (O(n^3), once): the one place verify learns what a symmetry requires.
+  std::optional<ModalForm> modal;
+  std::unique_ptr<EquationSet> sets[2];
+  const auto equations = [&](Symmetry sym) -> const EquationSet& {
+    if (!modal) modal.emplace(system);
+    std::unique_ptr<EquationSet>& eq = sets[sym == Symmetry::Axial ? 0 : 1];
+    if (!eq) eq = make_equations(*modal, sym);
+    return *eq;
+  };
   for (size_t i = 0; i < spps.size(); ++i) {
     if (opt.progress && !opt.progress()) return stop(i);
     const Solution& c = spps[i];
@@ -313,6 +347,21 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     const double T = c.period();
     SppCheck chk;
     chk.spp = c;
+    const EquationSet& eq = equations(c.orbit.symmetry);
+    const std::string onset = onset_mismatch(system, eq, c.orbit, opt.potential_return_tol);
+    if (!onset.empty()) {
+      // not the SPP the file claims: counted as a state mismatch, exit 3 (x0 penetrating the obstacle was refused by
+      // the simulator as invalid input, exit 1; issue 11 finding), and not simulated (the simulator refuses a start
+      // inside the obstacle)
+      chk.return_errors.assign(static_cast<size_t>(opt.periods), std::numeric_limits<double>::quiet_NaN());
+      chk.departure = onset;
+      chk.verdict = Verdict::Leaves;
+      ++res.state_mismatches;
+      ++res.left;
+      ++res.inconsistent;
+      res.checks.push_back(std::move(chk));
+      continue;
+    }
     SimulateOptions o;
     o.duration = opt.periods * T;
     o.restitution = opt.restitution;
@@ -334,7 +383,7 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     for (const Sample& s : r.samples)
       if (s.t > 0.0) chk.return_errors.push_back((stack(s.x, s.v) - X0).norm() / X0.norm());
     compare_events(r, c, opt.periods, opt.event_time_tol * T, chk);
-    if (c.orbit.symmetry == Symmetry::Axial) {
+    {  // both symmetries: the contact flow carries the normal velocity (a point-symmetric SPP's moving obstacle)
       const auto [xT, vT] = sim.follow_contact_then_flight(c.x0(), c.v0(), 2.0 * c.t2(), 2.0 * c.t1());
       chk.potential_return_error = (stack(xT, vT) - X0).norm() / X0.norm();
     }
@@ -367,14 +416,10 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
     // The stability the file claims must be the system's: multipliers recomputed from (t1, t2) and the system (found
     // by an attack, issue 14: a chain SPP's leading pair scaled to modulus 1.05 with rho 1.05 and verdict unstable,
     // or its real part flipped, passed verify).
-    if (c.orbit.symmetry == Symmetry::Axial && !c.floquet.multipliers.empty()) {
-      if (!modal) {
-        modal.emplace(system);
-        axial = make_equations(*modal, Symmetry::Axial);
-      }
+    if (!c.floquet.multipliers.empty()) {
       // with the location error, as solve() computes it (its verdict may be undecided where floquet(modal, ...)'s is
-      // not)
-      const std::string why = stability_mismatch(c.floquet, floquet(*axial, c.orbit));
+      // not); floquet() refuses an equation set without multipliers (point symmetry), which the readers refuse too
+      const std::string why = stability_mismatch(c.floquet, floquet(eq, c.orbit));
       if (!why.empty()) {
         chk.consistent = false;
         ++res.stability_mismatches;

@@ -379,3 +379,72 @@ TEST(Verify, PerturbationWithElasticImpactsWarnsThatFloquetDoesNotApply) {
   o.restitution = 0.5;
   EXPECT_TRUE(verify(chain5(), {*it}, o).warnings.empty());
 }
+
+// Found by the attack of issue 11: verify checked the potential orbit and the stability of axial SPPs only, so a
+// point-symmetric result with K, v0, x0, t1 or obstacle_velocity edited (and an axial one relabelled point) passed.
+TEST(Verify, EditedPointSymmetricSppsAreInconsistent) {
+  SolveOptions so;
+  so.t1_max = so.t2_max = 6.0;
+  so.symmetry = Symmetry::Point;
+  const std::vector<Solution> spps = solve(chain5(), so).solutions;
+  ASSERT_EQ(spps.size(), 18u);
+  const VerifyResult clean = verify(chain5(), spps, VerifyOptions{});
+  ASSERT_TRUE(clean.all_consistent()) << clean.brief_report();
+  for (const SppCheck& c : clean.checks) EXPECT_LT(c.potential_return_error, 1e-9);  // checked now (was NaN)
+  auto inconsistent = [&](Solution edited, const System& system = chain5()) {
+    const VerifyResult r = verify(system, {edited}, VerifyOptions{});
+    EXPECT_FALSE(r.all_consistent()) << r.brief_report();
+    EXPECT_EQ(r.state_mismatches, 1) << r.brief_report();
+  };
+  Solution s = spps[0];
+  s.orbit.v0(1) += 0.5;
+  inconsistent(s);
+  s = spps[0];
+  s.orbit.x0(1) += 0.3;
+  inconsistent(s);
+  s = spps[0];
+  s.orbit.t1 += 0.01;
+  inconsistent(s);
+  s = spps[0];
+  s.orbit.obstacle_velocity = 5.0;
+  inconsistent(s);
+  Eigen::MatrixXd K = chain5().K();
+  K(0, 0) *= 1.01;
+  inconsistent(spps[0], System(chain5().M(), K, chain5().w(), chain5().g0()));
+  // an axial SPP relabelled point-symmetric: its normal velocity at onset is 0, not g0 / t2
+  const std::vector<Solution> axial = spps_of(chain5(), 12.0, 12.0);
+  Solution relabelled = axial[0];
+  relabelled.orbit.symmetry = Symmetry::Point;
+  relabelled.floquet = Floquet{};
+  inconsistent(relabelled);
+}
+
+// Found by the attack of issue 11: an edited x0 that penetrates the obstacle made verify throw (invalid input,
+// exit 1) instead of counting a state mismatch (exit 3, README).
+TEST(Verify, AnX0InsideTheObstacleIsAStateMismatch) {
+  std::vector<Solution> spps = spps_of(chain5(), 12.0, 12.0);
+  Solution s = spps[0];
+  s.orbit.x0 -= 0.3 * chain5().w();  // w^T x0 + g0 = -0.3: inside
+  const VerifyResult r = verify(chain5(), {s}, VerifyOptions{});
+  EXPECT_EQ(r.state_mismatches, 1);
+  EXPECT_FALSE(r.all_consistent());
+  EXPECT_NE(r.checks.at(0).departure.find("not on the obstacle"), std::string::npos) << r.checks.at(0).departure;
+}
+
+// The contact flow carries the normal velocity (a moving obstacle): w^T x is affine in time during contact.
+TEST(Verify, ContactFlowCarriesTheNormalVelocity) {
+  const System& s = chain5();
+  const Simulator sim(s);
+  Eigen::VectorXd x0 = -s.g0() * s.w(), v0 = Eigen::VectorXd::Zero(s.n());
+  v0(4) = 0.7;  // (chain5: w = -e5)
+  const double vn = s.w().dot(v0);
+  ASSERT_NE(vn, 0.0);
+  const auto [x, v] = sim.follow_contact_then_flight(x0, v0, 1.3, 0.0);
+  EXPECT_NEAR(s.w().dot(x) + s.g0(), 1.3 * vn, 1e-12);
+  EXPECT_NEAR(s.w().dot(v), vn, 1e-12);
+}
+
+TEST(Verify, BriefReportSaysCompletenessIsNotChecked) {
+  const VerifyResult r = verify(chain5(), {}, VerifyOptions{});
+  EXPECT_NE(r.brief_report().find("completeness not checked"), std::string::npos) << r.brief_report();
+}

@@ -16,7 +16,10 @@
 namespace spp {
 
 struct SimulateOptions {
-  double duration = 0.0;     ///< simulated time T > 0; the last sample is at t = T exactly
+  /// Simulated time T > 0; the last sample is at t = T exactly. At most 1e8 periods of the system's fastest mode
+  /// (run() refuses more, naming the largest: the event search steps through each period; ~2.4 us each on a 5-dof
+  /// chain).
+  double duration = 0.0;
   double restitution = 0.0;  ///< Newton's coefficient e in [0, 1]: normal velocity after = -e * before
   /// Samples at these times (sorted, in [0, duration]) besides t = 0, the state after each event and t = T.
   std::vector<double> sample_times;
@@ -93,9 +96,11 @@ class Simulator {
   /// obstacle.
   SimulationResult run(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const SimulateOptions& options) const;
 
-  /// The state reached from (x0, v0) by the contact flow (obstacle held, x0 projected on it) for `contact_time`, then
-  /// the free flight for `flight_time`, every event ignored: the potential orbit of an SPP (paper §3), which an
-  /// inadmissible SPP follows although the simulator cannot. Both durations >= 0. Cost O(n^2).
+  /// The state reached from (x0, v0) by the contact flow M x'' + K~ x = 0 (w^T x'' = 0: the normal position
+  /// w^T x + g0 and velocity w^T v0 at the start are carried along, affine in time, i.e. the obstacle moves with the
+  /// normal velocity w^T v0, as a point-symmetric SPP's does; zero for an axial SPP) for `contact_time`, then the free
+  /// flight for `flight_time`, every event ignored: the potential orbit of an SPP (paper §3), which an inadmissible
+  /// SPP follows although the simulator cannot. Both durations >= 0. Cost O(n^2).
   std::pair<Eigen::VectorXd, Eigen::VectorXd> follow_contact_then_flight(const Eigen::VectorXd& x0,
                                                                         const Eigen::VectorXd& v0,
                                                                         double contact_time,
@@ -118,6 +123,7 @@ class Simulator {
   System system_;
   Eigen::LLT<Eigen::MatrixXd> M_llt_;
   Eigen::VectorXd Minv_w_;  ///< M^-1 w
+  Eigen::VectorXd normal_motion_;  ///< K^-1 w / (w^T K^-1 w): x_s + s normal_motion_ is a contact motion with w^T x = s
   double w_Minv_w_ = 0.0;
   Eigen::RowVectorXd force_row_;  ///< w^T M^-1 K / (w^T M^-1 w): contact force = force_row_ * x
   Phase flight_, contact_;

@@ -23,9 +23,9 @@ struct VerifyOptions {
   double restitution = 0.0;   ///< Newton's e for the simulations (matters only once the orbit is left)
   double return_tol = 1e-9;   ///< an admissible SPP must come back to this relative error after one period
   double follow_tol = 1e-6;   ///< later periods count as followed while the return error stays below this
-  /// Every axial SPP, admissible or not, must come back to this relative error along its potential orbit (contact
-  /// flow for 2 t2, then free flight for 2 t1, events ignored): looser than return_tol since a potential SPP may be
-  /// strongly unstable and amplify the rounding of x0 (measured: at most 4e-14 on the chain5 and rod4 windows
+  /// Every SPP (either symmetry), admissible or not, must come back to this relative error along its potential orbit
+  /// (contact flow for 2 t2, then free flight for 2 t1, events ignored): looser than return_tol since a potential SPP
+  /// may be strongly unstable and amplify the rounding of x0 (measured: at most 4e-14 on the chain5 and rod4 windows
   /// (0, 12]^2 and (0, 20]^2); an x0 edited by 1e-3 of its size is seen (1e-7 is not).
   double potential_return_tol = 1e-6;
   double event_time_tol = 1e-6;  ///< relative to the period: events within it of the expected times match
@@ -52,7 +52,8 @@ struct SppCheck {
   /// |X(T) - X(0)| / |X(0)| along the potential orbit (Simulator::follow_contact_then_flight for 2 t2 and 2 t1,
   /// events ignored): whether x0, v0 are the periodic orbit the solver claims at (t1, t2), admissible or not. Above
   /// VerifyOptions::potential_return_tol the check is inconsistent whatever the simulation says (an edited result,
-  /// or another system's). NaN for a point-symmetric orbit (its obstacle moves during contact: not checked).
+  /// or another system's). Point symmetry too: the contact flow carries the normal velocity at onset (the moving
+  /// obstacle). NaN when not computed (the onset state was already refused: see departure).
   double potential_return_error = std::numeric_limits<double>::quiet_NaN();
   /// Leading periods followed: expected events and return error <= return_tol for the first, return error
   /// <= follow_tol for the next ones.
@@ -88,13 +89,18 @@ struct VerifyResult {
   /// Floquet multipliers, derived for e < 1, do not apply).
   std::vector<std::string> warnings;
   bool all_consistent() const { return inconsistent == 0; }
+  /// One line; it always ends by saying that the completeness of the list (no SPP deleted from a result file with
+  /// its count) is not checked: only a re-solve checks it (docs/result-files.md).
   std::string brief_report() const;
 };
 
-/// Re-simulates each SPP from its state at contact onset (x0, v0, both (n)) for `periods` periods: one Simulator
-/// (O(n^3)), then O(n^2) per event, a few events per period; with a perturbation, the orbit sampled at 512 points and
-/// one golden-section search of the nearest point per period. Throws std::invalid_argument on sizes that do not match
-/// the system.
+/// Each SPP's onset state is first checked against its symmetry's equation set (make_equations; the first SPP builds
+/// the modal form, O(n^3)): x0 on the obstacle, the normal velocity w^T v0 the symmetry requires (0 axial, g0 / t2
+/// point) and the obstacle_velocity claimed, each to potential_return_tol of the state; one that fails is a state
+/// mismatch (not simulated). Then re-simulates each SPP from its state at contact onset (x0, v0, both (n)) for
+/// `periods` periods: one Simulator (O(n^3)), then O(n^2) per event, a few events per period; with a perturbation, the
+/// orbit sampled at 512 points and one golden-section search of the nearest point per period. Throws
+/// std::invalid_argument on sizes that do not match the system.
 VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& options);
 
 }  // namespace spp
