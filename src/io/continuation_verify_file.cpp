@@ -1,7 +1,10 @@
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "io/json.hpp"
 #include "spp/io/continuation_file.hpp"
@@ -47,6 +50,55 @@ BranchPoint point_from_json(const Reader& o, const std::string& parameter) {
   p.spectral_radius_error = o.o.contains("spectral_radius_error") ? o.number("spectral_radius_error")
                                                                   : std::numeric_limits<double>::quiet_NaN();
   return p;
+}
+
+// What a branch point claims that its system at the parameter value refutes in O(n^2): x0, v0 of the system's n
+// dofs, x0 on the obstacle w(mu)^T x0 + g0 = 0 and the energy 1/2 v0^T M(mu) v0 + 1/2 x0^T K(mu) x0, each to
+// kStateAgreement of its scale (the continuation writes them to rounding). Empty when it agrees. Shared by the writer
+// (another system's result, Python's to_json(system=other), is refused as SolveResult's is) and the reader (an edited
+// embedded system or point). A point whose orbit is undefined (x0 not finite) is checked for its size only.
+std::string point_mismatch(const ParametricSystem& s, const BranchPoint& p) {
+  constexpr double kStateAgreement = 1e-8;
+  if (p.x0.size() != s.n() || p.v0.size() != s.n())
+    return "expected x0 and v0 of the system's " + std::to_string(s.n()) + " dofs, got " + std::to_string(p.x0.size()) +
+           " and " + std::to_string(p.v0.size());
+  if (!p.x0.allFinite() || !p.v0.allFinite()) return "";
+  // (an empty part does not depend on the parameter)
+  const Eigen::VectorXd w = s.w_mu().size() ? Eigen::VectorXd(s.w_constant() + p.mu * s.w_mu()) : s.w_constant();
+  const Eigen::MatrixXd M = s.M_mu().size() ? Eigen::MatrixXd(s.M_constant() + p.mu * s.M_mu()) : s.M_constant();
+  const Eigen::MatrixXd K = s.K_mu().size() ? Eigen::MatrixXd(s.K_constant() + p.mu * s.K_mu()) : s.K_constant();
+  const double gap = w.dot(p.x0) + s.g0();
+  if (!(std::abs(gap) <= kStateAgreement * (w.norm() * p.x0.norm() + std::abs(s.g0()))))
+    return "x0 is not on the obstacle of the system at " + s.parameter().name + " = " + num(p.mu) + " (gap " +
+           num(gap) + ", expected 0)";
+  const double e = 0.5 * p.v0.dot(M * p.v0) + 0.5 * p.x0.dot(K * p.x0);
+  if (!(std::abs(p.energy - e) <= kStateAgreement * e))
+    return "field \"energy\" is " + num(p.energy) + " but 1/2 v0^T M v0 + 1/2 x0^T K x0 of the system at " +
+           s.parameter().name + " = " + num(p.mu) + " is " + num(e) + ": expected " + num(e) + ", got " + num(p.energy);
+  return "";
+}
+
+// A point's own values: the parameter in its range (to rounding), t1, t2 > 0 and finite, period 2 (t1 + t2), energy
+// finite >= 0, spectral radius >= 0 or null; then point_mismatch. Each read silently before (t1 -3, t1 null, k2
+// beyond its range, x0 of length 1, a negative energy: issue 11 attack).
+void check_point(const Reader& o, const ParametricSystem& s, const BranchPoint& p) {
+  const Parameter& par = s.parameter();
+  const double slack = kSameToRounding * std::max({1.0, std::abs(par.min), std::abs(par.max)});
+  if (!(p.mu >= par.min - slack && p.mu <= par.max + slack))
+    invalid(o.where + ": field \"" + par.name + "\": expected a value in the parameter's range [" + num(par.min) +
+            ", " + num(par.max) + "], got " + num(p.mu));
+  if (!(p.t1 > 0.0 && p.t2 > 0.0 && std::isfinite(p.t1) && std::isfinite(p.t2)))
+    invalid(o.where + ": fields \"t1\" and \"t2\": expected positive finite numbers, got " + num(p.t1) + " and " +
+            num(p.t2));
+  if (!(std::abs(p.period - 2.0 * (p.t1 + p.t2)) <= kSameToRounding * 2.0 * (p.t1 + p.t2)))
+    invalid(o.where + ": field \"period\": expected 2 (t1 + t2) = " + num(2.0 * (p.t1 + p.t2)) + ", got " +
+            num(p.period));
+  if (!(p.energy >= 0.0 && std::isfinite(p.energy)))
+    invalid(o.where + ": field \"energy\": expected a finite number >= 0, got " + num(p.energy));
+  if (!(std::isnan(p.spectral_radius) || (p.spectral_radius >= 0.0 && std::isfinite(p.spectral_radius))))
+    invalid(o.where + ": field \"spectral_radius\": expected a finite number >= 0 or null, got " +
+            num(p.spectral_radius));
+  if (const std::string why = point_mismatch(s, p); !why.empty()) invalid(o.where + ": " + why);
 }
 
 template <class E, size_t N>
@@ -95,6 +147,17 @@ void crossing_from_json(const Reader& o, BranchEvent& e) {
 }  // namespace
 
 json continuation_to_json(const ParametricSystem& s, const ContinuationResult& r) {
+  // the result must be this system's (as result_to_json: Python's to_json(system=other) wrote another system's
+  // file; issue 11 attack)
+  for (size_t b = 0; b < r.branches.size(); ++b) {
+    std::vector<const BranchPoint*> points;
+    for (const BranchPoint& q : r.branches[b].points) points.push_back(&q);
+    for (const BranchEvent& e : r.branches[b].events) points.push_back(&e.at);
+    for (size_t i = 0; i < points.size(); ++i)
+      if (const std::string why = point_mismatch(s, *points[i]); !why.empty())
+        invalid("continuation_to_json: branch " + std::to_string(b) + ", point " + std::to_string(i) +
+                " (its points, then its events): " + why + ": the result is another system's");
+  }
   json j;
   j["system"] = parametric_system_to_json(s);
   j["symmetry"] = to_string(r.symmetry);
@@ -145,6 +208,18 @@ ContinuationResult continuation_from_json(const json& j, const std::string& wher
   ContinuationResult res;
   res.parameter = s.parameter();
   const std::string& par = res.parameter.name;
+  // what continuation_to_json writes and nothing else, as the solve-result reader (an unknown field was dropped)
+  check_fields(j, {"system", "symmetry", "window", "warnings", "status", "stats", "branches"}, where);
+  if (!r.at("window").is_object())
+    invalid(where + ": field \"window\" must be an object with t1_min, t1_max, t2_min, t2_max, got " +
+            describe(r.at("window")));
+  check_fields(r.at("window"), {"t1_min", "t1_max", "t2_min", "t2_max"}, where + ": field \"window\"");
+  if (!r.at("stats").is_object())
+    invalid(where + ": field \"stats\" must be an object of counts, got " + describe(r.at("stats")));
+  check_fields(r.at("stats"),
+               {"seed_spps", "incomplete_seed_solves", "stalled_branches", "unlisted_crossings", "seed_crossings",
+                "corrector_solves", "seconds"},
+               where + ": field \"stats\"");
   res.symmetry = named(r, "symmetry", std::array{Symmetry::Axial, Symmetry::Point});
   res.status = named(r, "status", std::array{ContinuationStatus::Success, ContinuationStatus::Incomplete});
   const Reader win{r.at("window"), where + ": field \"window\""};
@@ -161,6 +236,22 @@ ContinuationResult continuation_from_json(const json& j, const std::string& wher
   res.seed_crossings = st.count("seed_crossings");
   res.corrector_solves = st.count("corrector_solves");
   res.seconds = st.number("seconds");
+  for (const auto& [lo_key, hi_key] : {std::make_pair("t1_min", "t1_max"), std::make_pair("t2_min", "t2_max")}) {
+    const double lo = win.number(lo_key), hi = win.number(hi_key);
+    if (!(lo >= 0.0 && lo < hi && std::isfinite(hi)))
+      invalid(where + ": field \"window\": expected 0 <= " + lo_key + " < " + hi_key + " < inf, got " + lo_key + " = " +
+              num(lo) + " and " + hi_key + " = " + num(hi));
+  }
+  if (!(res.seconds >= 0.0))
+    invalid(where + ": field \"stats\": field \"seconds\" must be >= 0, got " + num(res.seconds));
+  // continue_branches' status: "success" exactly when no seed solve was incomplete, no branch stalled and every seed
+  // crossing was listed (and then it writes no warning); "success" beside stalled_branches 3 or a warning was read
+  if (res.status == ContinuationStatus::Success && (res.incomplete_seed_solves != 0 || res.stalled_branches != 0 ||
+                                                    res.unlisted_crossings != 0 || !res.warnings.empty()))
+    invalid(where + ": field \"status\" is \"success\" but the file has " + std::to_string(res.incomplete_seed_solves) +
+            " incomplete seed solves, " + std::to_string(res.stalled_branches) + " stalled branches, " +
+            std::to_string(res.unlisted_crossings) + " unlisted crossings and " + std::to_string(res.warnings.size()) +
+            " warnings: expected none of them, or status \"incomplete\"");
   const json& bs = r.at("branches");
   if (!bs.is_array()) invalid(where + ": field \"branches\" must be a list, got " + describe(bs));
   const auto kinds = std::array{BranchEventKind::LeavesWindow,        BranchEventKind::RangeEnd,
@@ -178,20 +269,47 @@ ContinuationResult continuation_from_json(const json& j, const std::string& wher
       for (size_t i = 0; i < a.size(); ++i) {
         const Reader o{a[i], bw + ": field \"" + list + "\"[" + std::to_string(i) + "]"};
         if (!a[i].is_object()) invalid(o.where + " must be an object, got " + describe(a[i]));
+        // clang-format off
+        check_fields(a[i], {par.c_str(), "t1", "t2", "period", "closure", "energy", "x0", "v0", "margin",
+                            "admissible", "spectral_radius", "spectral_radius_error"}, o.where,
+                     {"event", "detail", "crossing", "crossing_multipliers", "crossing_angle"});
+        // clang-format on
         if (list[0] == 'p') {
+          if (a[i].contains("event")) invalid(o.where + ": field \"event\" belongs to \"events\", got it on a point");
           br.points.push_back(point_from_json(o, par));
+          check_point(o, s, br.points.back());
           continue;
         }
         BranchEvent e;
         e.at = point_from_json(o, par);
+        check_point(o, s, e.at);
         e.kind = named(o, "event", kinds);
         e.detail = o.text("detail");
         crossing_from_json(o, e);
         br.events.push_back(std::move(e));
       }
     }
+    check_fields(bs[b], {"points", "events"}, bw);
+    // one branch listed twice (continue_branches traces each once: a seed crossing on a traced branch is matched,
+    // not traced again); a duplicated branch was read as two (issue 11 attack)
+    for (size_t k = 0; k < res.branches.size(); ++k) {
+      const std::vector<BranchPoint>& q = res.branches[k].points;
+      const auto same = [](const BranchPoint& x, const BranchPoint& y) {
+        return x.mu == y.mu && x.t1 == y.t1 && x.t2 == y.t2;
+      };
+      if (!q.empty() && q.size() == br.points.size() && same(q.front(), br.points.front()) &&
+          same(q.back(), br.points.back()))
+        invalid(bw + ": expected each branch once, got the points of \"branches\"[" + std::to_string(k) + "] again");
+    }
     res.branches.push_back(std::move(br));
   }
+  long stalled_events = 0;
+  for (const Branch& b : res.branches)
+    for (const BranchEvent& e : b.events) stalled_events += e.kind == BranchEventKind::Stalled;
+  if (stalled_events != res.stalled_branches)
+    invalid(where + ": field \"stats\": field \"stalled_branches\" counts the \"stalled\" events of the branches, " +
+            std::to_string(stalled_events) + ": expected " + std::to_string(stalled_events) + ", got " +
+            std::to_string(res.stalled_branches));
   return res;
 }
 

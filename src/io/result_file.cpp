@@ -119,6 +119,14 @@ void check_solution_values(const json& o, const std::string& at) {
   for (const char* k : {"min_gap", "min_force", "energy", "residual", "mid_flight_gap", "mid_contact_force"})
     if (o.contains(k) && !(o.at(k).is_number() && std::isfinite(o.at(k).get<double>())))
       invalid(at + ": field \"" + k + "\": expected a finite number, got " + describe(o.at(k)));
+  // -1: not computed (SolveOptions::compute_return_error off); otherwise a relative error, finite and >= 0. A
+  // return_error of -5 or null was read as written (issue 11 attack).
+  if (o.contains("return_error") &&
+      !(o.at("return_error").is_number() &&
+        (o.at("return_error").get<double>() == -1.0 ||
+         (o.at("return_error").get<double>() >= 0.0 && std::isfinite(o.at("return_error").get<double>())))))
+    invalid(at + ": field \"return_error\": expected a finite number >= 0, or -1 (not computed), got " +
+            describe(o.at("return_error")));
   for (const char* k : {"energy", "residual"})  // (a sum of squares, a norm)
     if (o.contains(k) && o.at(k).is_number() && o.at(k).get<double>() < 0.0)
       invalid(at + ": field \"" + k + "\": expected a number >= 0, got " + describe(o.at(k)));
@@ -318,6 +326,26 @@ void check_consistency(const json& r, const std::string& where) {
     return !(t >= lo - slack && t <= hi + slack);
   };
   double last_period = 0.0;  // solve() lists its SPPs by period
+  // solve() keeps one SPP per root: two within search::kSameRoot of the window's size (its own deduplication,
+  // solver.cpp polish_candidates) are one SPP listed twice. A duplicated SPP, with roots + 1, was read as two (issue 11
+  // attack). Sorted by period, a copy sits among the SPPs of the same period: O(SPPs) for distinct periods.
+  const double same_root = search::kSameRoot * (win.number("t1_max") + win.number("t2_max"));
+  auto time_of = [](const json& o, const char* k) {
+    return o.is_object() && o.contains(k) && o.at(k).is_number() ? o.at(k).get<double>()
+                                                                 : std::numeric_limits<double>::quiet_NaN();
+  };
+  for (size_t i = 0; i < sols.size(); ++i)
+    for (size_t j = i; j-- > 0;) {
+      const double d1 = time_of(sols[i], "t1") - time_of(sols[j], "t1"),
+                   d2 = time_of(sols[i], "t2") - time_of(sols[j], "t2");
+      // periods apart (sorted; |d1 + d2| <= sqrt(2) same_root for a copy): no earlier one is as close
+      if (!(std::abs(d1 + d2) <= 2.0 * same_root)) break;
+      if (std::hypot(d1, d2) <= same_root)
+        invalid(where + ": field \"solutions\"[" + std::to_string(i) + "] is at (t1, t2) = (" +
+                num(time_of(sols[i], "t1")) + ", " + num(time_of(sols[i], "t2")) + "), the place of \"solutions\"[" +
+                std::to_string(j) + "] (within " + num(same_root) +
+                ", where spp solve keeps one root): expected each SPP listed once, got one twice");
+    }
   for (size_t i = 0; i < sols.size(); ++i) {
     const json& o = sols[i];
     if (o.is_object() && o.contains("period") && o.at("period").is_number()) {
@@ -602,7 +630,20 @@ SolveResult result_from_json(const json& r, const std::string& where) {
       b.closure_ratio = std::numeric_limits<double>::quiet_NaN();
       b.energy = o.number("energy");
     }
-    if (res.symmetry == Symmetry::Point) b.obstacle_velocity = o.number("obstacle_velocity");
+    // What the symmetry's equation set gives each SPP (solve() writes it so): a point-symmetric SPP has an obstacle
+    // velocity, the flag "point_symmetric" and no multipliers (floquet() is axial only); an axial one none of them.
+    // An axial result relabelled "point" read as 7 admissible point-symmetric SPPs (issue 11 attack).
+    const bool point = res.symmetry == Symmetry::Point;
+    const bool flagged = std::find(x.flags.begin(), x.flags.end(), "point_symmetric") != x.flags.end();
+    if (point != flagged || point != o.o.contains("obstacle_velocity") ||
+        (point && o.o.contains("floquet_multipliers")))
+      invalid(o.where + ": field \"symmetry\" is \"" + sym + "\": expected " +
+              (point ? "the flag \"point_symmetric\", a field \"obstacle_velocity\" and no \"floquet_multipliers\""
+                     : "neither the flag \"point_symmetric\" nor a field \"obstacle_velocity\"") +
+              " (what spp solve writes for that symmetry), got " + (flagged ? "the flag, " : "no flag, ") +
+              (o.o.contains("obstacle_velocity") ? "obstacle_velocity" : "no obstacle_velocity") +
+              (o.o.contains("floquet_multipliers") ? " and multipliers" : " and no multipliers"));
+    if (point) b.obstacle_velocity = o.number("obstacle_velocity");
     if (!o.o.contains("floquet_multipliers")) {  // files written before stability was computed have none of it
       // (a file with its multipliers deleted but "stable": true passed spp verify, which checks the multipliers given)
       for (const char* key : {"spectral_radius", "stability_margin", "stable", "floquet_structure_residual",
@@ -659,22 +700,43 @@ std::string result_json(const System& system, const SolveResult& result, int ind
   return io::result_to_json(system, result).dump(indent) + "\n";
 }
 
+namespace {
+// What the file's SPPs claim that its own system refutes in O(n^2) each: an energy other than
+// 1/2 v0^T M v0 + 1/2 x0^T K x0 (a doubled energy was read as written; issue 11 attack). The modal energy solve()
+// writes agrees with it to rounding (~1e-15 relative); kEnergyAgreement leaves room for ill-conditioned M, K.
+void check_against_system(const System& s, const SolveResult& r, const std::string& where) {
+  constexpr double kEnergyAgreement = 1e-8;
+  for (size_t i = 0; i < r.solutions.size(); ++i) {
+    const Orbit& o = r.solutions[i].orbit;
+    const double e = 0.5 * o.v0.dot(s.M() * o.v0) + 0.5 * o.x0.dot(s.K() * o.x0);
+    if (!(std::abs(o.energy - e) <= kEnergyAgreement * e))
+      io::invalid(where + ": field \"solutions\"[" + std::to_string(i) + "]: field \"energy\" is " + io::num(o.energy) +
+                  " but 1/2 v0^T M v0 + 1/2 x0^T K x0 with the file's system is " + io::num(e) + ": expected " +
+                  io::num(e) + ", got " + io::num(o.energy));
+  }
+}
+
+ResultFile read_result_file(const io::json& j, const std::string& where) {
+  ResultFile f{io::result_system(j, where), io::result_from_json(j, where)};
+  check_against_system(f.system, f.result, where);
+  return f;
+}
+}  // namespace
+
 ResultFile load_result_file(const std::string& path) {
-  const io::json j = io::read_json_file(path);
-  return {io::result_system(j, path), io::result_from_json(j, path)};
+  return read_result_file(io::read_json_file(path), path);
 }
 
 ResultFile parse_result_file(const std::string& text, const std::string& where) {
-  const io::json j = io::parse_json_text(text, where);
-  return {io::result_system(j, where), io::result_from_json(j, where)};
+  return read_result_file(io::parse_json_text(text, where), where);
 }
 
 SolveResult load_result(const std::string& path) {
-  return io::result_from_json(io::read_json_file(path), path);
+  return load_result_file(path).result;
 }
 
 SolveResult parse_result(const std::string& text, const std::string& where) {
-  return io::result_from_json(io::parse_json_text(text, where), where);
+  return parse_result_file(text, where).result;
 }
 
 System load_result_system(const std::string& path) {

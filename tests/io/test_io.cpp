@@ -1173,3 +1173,148 @@ TEST(Io, NameOrDescriptionBeyondItsLimitIsRefusedNamingTheField) {
         << e.what();
   }
 }
+
+// Found by the attack of issue 11: a result file with an SPP listed twice (roots + 1), a return_error of -5 or null,
+// or an energy that is not the state's (doubled) read as written.
+TEST(Io, ResultWithADuplicatedSppABadReturnErrorOrAnotherEnergyIsRefused) {
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  const io::json good = io::result_to_json(s, solve(s, o));
+  auto refusal = [](const io::json& j) -> std::string {
+    try {
+      parse_result_file(j.dump(), "r.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  ASSERT_EQ(refusal(good), "(accepted)");
+  ASSERT_GE(good["solutions"].size(), 2u);
+  io::json j = good;
+  j["solutions"].insert(j["solutions"].begin() + 1, j["solutions"][1]);
+  j["stats"]["roots"] = j["stats"]["roots"].get<long>() + 1;
+  EXPECT_NE(refusal(j).find("r.json: field \"solutions\"[2] is at (t1, t2)"), std::string::npos) << refusal(j);
+  EXPECT_NE(refusal(j).find("expected each SPP listed once, got one twice"), std::string::npos) << refusal(j);
+  for (const io::json& bad : {io::json(-5.0), io::json(nullptr), io::json(-0.5)}) {
+    j = good;
+    j["solutions"][0]["return_error"] = bad;
+    EXPECT_NE(refusal(j).find("r.json: field \"solutions\"[0]: field \"return_error\": expected a finite number >= 0, "
+                              "or -1 (not computed)"),
+              std::string::npos)
+        << refusal(j);
+  }
+  j = good;
+  j["solutions"][0]["return_error"] = -1.0;  // not computed
+  EXPECT_EQ(refusal(j), "(accepted)");
+  j = good;
+  const double e = j["solutions"][0]["energy"];
+  j["solutions"][0]["energy"] = 2.0 * e;
+  j["solutions"][0]["orbit"]["energy"] = 2.0 * e;
+  EXPECT_NE(refusal(j).find("r.json: field \"solutions\"[0]: field \"energy\" is "), std::string::npos) << refusal(j);
+  EXPECT_NE(refusal(j).find("but 1/2 v0^T M v0 + 1/2 x0^T K x0 with the file's system is"), std::string::npos)
+      << refusal(j);
+}
+
+// Found by the attack of issue 11: an axial result relabelled point-symmetric read as point-symmetric SPPs.
+TEST(Io, ResultRelabelledToAnotherSymmetryIsRefused) {
+  const System s = chain(3, {1.0}, {1.0}, 2, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  o.t1_max = o.t2_max = 6.0;
+  io::json j = io::result_to_json(s, solve(s, o));
+  j["symmetry"] = "point";
+  std::string what = "(accepted)";
+  try {
+    parse_result_file(j.dump(), "r.json");
+  } catch (const std::invalid_argument& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("r.json: field \"solutions\"[0]: field \"symmetry\" is \"point\": expected the flag "
+                      "\"point_symmetric\""),
+            std::string::npos)
+      << what;
+}
+
+// Found by the attack of issue 11: the continuation reader took unknown fields, "success" beside stalled branches or
+// warnings, t1 -3 or null, a parameter beyond its range, x0 of length 1, a negative energy, an empty window, a
+// duplicated branch and an edited embedded system; to_json wrote a result beside another system.
+TEST(Io, ContinuationFileThatContradictsItselfOrItsSystemIsRefused) {
+  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
+  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
+  K1(3, 3) = K1(4, 4) = 1;
+  K1(3, 4) = K1(4, 3) = -1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  const SolutionAt seed = solution_at(ps.at(0.98), 5.703374, 2.514785);
+  ASSERT_TRUE(seed.found) << seed.brief_report();
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  const ContinuationResult r = continue_branch(ps, 0.98, seed.solution, o);
+  ASSERT_EQ(r.status, ContinuationStatus::Success) << r.brief_report();
+  const io::json good = io::json::parse(continuation_json(ps, r));
+  auto refusal = [](const io::json& x) -> std::string {
+    try {
+      parse_continuation_file(x.dump(), "c.json");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  ASSERT_EQ(refusal(good), "(accepted)");
+  auto expect = [&](const io::json& x, const std::string& part) {
+    EXPECT_NE(refusal(x).find(part), std::string::npos) << refusal(x);
+  };
+  io::json j = good;
+  j["extra"] = 1;
+  expect(j, "c.json: unknown field \"extra\"");
+  j = good;
+  j["branches"][0]["points"][0]["colour"] = 1;
+  expect(j, "unknown field \"colour\"");
+  j = good;
+  j["stats"]["stalled_branches"] = 3;
+  expect(j, "c.json: field \"status\" is \"success\" but the file has 0 incomplete seed solves, 3 stalled branches");
+  j = good;
+  j["warnings"].push_back("something");
+  expect(j, "1 warnings: expected none of them, or status \"incomplete\"");
+  const std::string p0 = "c.json: field \"branches\"[0]: field \"points\"[0]: ";
+  j = good;
+  j["branches"][0]["points"][0]["t1"] = -3.0;
+  expect(j, p0 + "fields \"t1\" and \"t2\": expected positive finite numbers, got -3");
+  j = good;
+  j["branches"][0]["points"][0]["t1"] = nullptr;
+  expect(j, p0 + "fields \"t1\" and \"t2\": expected positive finite numbers, got nan");
+  j = good;
+  j["branches"][0]["points"][0]["k5"] = 7.0;
+  expect(j, p0 + "field \"k5\": expected a value in the parameter's range [0.90000000000000002, 1], got 7");
+  j = good;
+  j["branches"][0]["points"][0]["x0"] = {1.0};
+  expect(j, p0 + "expected x0 and v0 of the system's 5 dofs, got 1 and 5");
+  j = good;
+  j["branches"][0]["points"][0]["energy"] = -1.0;
+  expect(j, p0 + "field \"energy\": expected a finite number >= 0, got -1");
+  j = good;
+  j["window"]["t1_min"] = 9.0;
+  expect(j, "c.json: field \"window\": expected 0 <= t1_min < t1_max < inf, got t1_min = 9 and t1_max = 8");
+  j = good;
+  j["branches"].push_back(j["branches"][0]);
+  expect(j, "c.json: field \"branches\"[1]: expected each branch once, got the points of \"branches\"[0] again");
+  j = good;
+  j["system"]["K"]["constant"][0][0] = 2.5;  // the embedded system edited: its points are not its SPPs
+  expect(j, p0 + "field \"energy\" is ");
+  // to_json beside another system (as SolveResult's): refused, naming the point
+  Eigen::MatrixXd K0b = K0;
+  K0b(0, 0) = 2.5;
+  const ParametricSystem other(Eigen::MatrixXd::Identity(5, 5), {}, K0b, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  std::string what = "(accepted)";
+  try {
+    continuation_json(other, r);
+  } catch (const std::invalid_argument& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("continuation_to_json: branch 0, point 0 (its points, then its events): field \"energy\" is "),
+            std::string::npos)
+      << what;
+  EXPECT_NE(what.find("the result is another system's"), std::string::npos) << what;
+}
