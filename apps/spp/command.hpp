@@ -63,6 +63,8 @@ decltype(auto) naming_system_file(const std::string& path, F&& f) {
     const std::string m = e.what();
     if (m.rfind("system: ", 0) == 0) detail::invalid(path + ": " + m.substr(8));
     if (m.rfind("KippModel: ", 0) == 0) detail::invalid(path + ": " + m.substr(11));  // (spp modes)
+    // the system at one parameter value (spp continue: "parametric system at k2 = 0.5: ..." named no file; issue 11)
+    if (m.rfind("parametric system", 0) == 0) detail::invalid(path + ": " + m);
     throw;
   }
 }

@@ -21,7 +21,7 @@ int run(ContinueArgs& a) {
   check_output(a.json, "--json", system_file_inputs(a.system));  // the system file and its Matrix Market files
   const ParametricSystem ps = load_parametric_system(a.system);
   a.options.symmetry = *symmetry_named(a.symmetry);  // CLI11 checked the name
-  const ContinuationResult cr = continue_branches(ps, a.options);
+  const ContinuationResult cr = naming_system_file(a.system, [&] { return continue_branches(ps, a.options); });
   const std::string json_text = a.json.empty() ? "" : continuation_json(ps, cr);
   if (!a.quiet) std::cout << continuation_table(cr);
   std::cout << cr.brief_report() << "\n";

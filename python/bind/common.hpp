@@ -38,6 +38,17 @@ constexpr double kMaxSampleValues = 1e8;
 inline void require_existing_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) {
+    // a JSON text given for its path (SolveResult.from_json(text)) was echoed whole, 77 KB, in the error (issue 11
+    // attack): a path longer than any file system takes (PATH_MAX), or one with a line break, is named by its start
+    constexpr size_t kLongestPath = 4096, kQuoted = 60;
+    if (path.size() >= kLongestPath || path.find('\n') != std::string::npos)
+      detail::invalid(
+          "expected the path of an existing file, got a text of " + std::to_string(path.size()) +
+          " characters starting " +
+          py::repr(py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(
+                       path.data(), static_cast<Py_ssize_t>(std::min(path.size(), kQuoted)), "backslashreplace")))
+              .cast<std::string>() +
+          " (for a JSON text: write it to a file first)");
     PyErr_SetObject(PyExc_FileNotFoundError, py::make_tuple(2, "No such file or directory", path).ptr());  // ENOENT
     throw py::error_already_set();
   }
@@ -351,7 +362,27 @@ class OptionsBinding {
  public:
   OptionsBinding(py::module_& m, const char* name, const char* doc)
       : cls_(m, name, doc), name_(std::string("spp.") + name) {
-    cls_.def(py::init<>());
+    // Keyword constructor naming its fields, spp.SolveOptions(t1_max=3, t2_max=3) (it took none: "unknown argument
+    // t1_max (its arguments: )", issue 11 attack): each set through the field's own setter, an unknown keyword a
+    // TypeError naming it and listing the fields.
+    const std::string ctor = name_;
+    cls_.def(
+        py::init([ctor](const py::kwargs& fields) {
+          py::object o = py::cast(C{});
+          const std::vector<std::string> known = option_field_names(o);
+          for (const auto& [key, value] : fields) {
+            const std::string n = py::str(key);
+            if (std::find(known.begin(), known.end(), n) == known.end()) {
+              std::string list;
+              for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+              throw py::type_error(ctor + "(): unexpected keyword argument \"" + n +
+                                   "\": expected one of its fields (" + list + ")");
+            }
+            py::setattr(o, key, value);
+          }
+          return o.cast<C>();
+        }),
+        (name_ + "(**fields): the defaults, with the given fields set (each checked as an attribute set is)").c_str());
     // Pickled as {field: value} of every bound field (multiprocessing and joblib pass options to their workers; they
     // could not be pickled), read back through the fields' own setters, so a hand-made or foreign state is checked
     // as an attribute set is. A Symmetry is kept as its name (the setter takes it).

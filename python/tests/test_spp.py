@@ -1338,3 +1338,44 @@ def test_pickle_protocols_0_and_1_are_a_type_error_not_an_abort():
             with pytest.raises(TypeError, match="pickles with protocol 2 or higher"):
                 pickle.dumps(x, protocol)
         assert type(pickle.loads(pickle.dumps(x, 2))) is type(x)
+
+
+def test_options_classes_take_their_fields_as_keywords():
+    # found by the attack of issue 11: spp.SolveOptions(t1_max=3) was "unknown argument t1_max (its arguments: )"
+    o = spp.SolveOptions(t1_max=3, t2_max=4)
+    assert (o.t1_max, o.t2_max) == (3, 4)
+    assert spp.VerifyOptions(periods=5).periods == 5
+    assert spp.SimulateOptions(duration=2.5).duration == 2.5
+    assert spp.RootMapOptions().__class__ is spp.RootMapOptions
+    assert spp.ContinueOptions(t1_max=2).t1_max == 2
+    for cls in (spp.SolveOptions, spp.VerifyOptions, spp.SimulateOptions, spp.RootMapOptions, spp.ContinueOptions):
+        with pytest.raises(TypeError, match=r"unexpected keyword argument \"t9\": expected one of its fields \(.*\)"):
+            cls(t9=1)
+    with pytest.raises(TypeError, match="t1_max"):
+        spp.SolveOptions(t1_max="3")
+    with pytest.raises(ValueError):
+        spp.VerifyOptions(periods=0).validate()
+
+
+def test_result_text_given_for_a_path_is_not_echoed_whole():
+    # found by the attack of issue 11: SolveResult.from_json(<77 KB of text>) echoed the whole text in its error
+    s = spp.rod_with_slip()
+    text = spp.solve(s, t1_max=8, t2_max=3).to_json(s)
+    with pytest.raises(ValueError) as e:
+        spp.SolveResult.from_json(text)
+    assert len(str(e.value)) < 300 and f"a text of {len(text)} characters" in str(e.value)
+
+
+def test_continuation_to_json_refuses_another_system(tmp_path):
+    # found by the attack of issue 11: ContinuationResult.to_json(system=other) wrote another system's file
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    r = spp.continue_branches(ps, t1_max=3, t2_max=1)
+    assert r.branches
+    path = tmp_path / "c.json"
+    path.write_text(r.to_json(ps))
+    assert len(spp.ContinuationResult.from_json(str(path)).branches) == len(r.branches)
+    other = spp.ParametricSystem(np.diag([1.0, 2.0]), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                                 np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 0.0, "k2", 1.0,
+                                 10.0)
+    with pytest.raises(ValueError, match="the result is another system's"):
+        r.to_json(other)

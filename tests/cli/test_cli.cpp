@@ -1973,3 +1973,57 @@ TEST(Cli, DryRunStatesTheRangeReadmeMeasured) {
   EXPECT_EQ(std::stod(range[1]), *std::min_element(ratios.begin(), ratios.end())) << paragraph;
   EXPECT_EQ(std::stod(range[2]), *std::max_element(ratios.begin(), ratios.end())) << paragraph;
 }
+
+// Found by the attack of issue 11: spp verify on a point-symmetric result with an edited v0 (energy kept consistent)
+// said success; an x0 edited into the obstacle was exit 1 (invalid input), not 3 (README: x0, v0 not the orbit).
+TEST(Cli, VerifyChecksPointSymmetricSppsAndCallsAnX0InsideTheObstacleInconsistent) {
+  const fs::path res = dir() / "res_point.json", edited = dir() / "res_point_edited.json";
+  ASSERT_EQ(run("solve " + kChain + " --t1-max 6 --t2-max 6 --symmetry point --quiet --json " + res.string()).code, 0);
+  EXPECT_EQ(run("verify " + res.string()).code, 0);
+  const nlohmann::json good = nlohmann::json::parse(std::ifstream(res));
+  nlohmann::json r = good;
+  r["solutions"][0]["obstacle_velocity"] = 5.0;
+  std::ofstream(edited) << r.dump();
+  CliRun v = run("verify " + edited.string());
+  EXPECT_EQ(v.code, 3) << v.out;
+  EXPECT_NE(v.out.find("obstacle_velocity 5 is not the normal velocity w^T v0"), std::string::npos) << v.out;
+  // x0 moved into the obstacle along w (chain5: w = -e5, g0 = 1), its energy updated so that the file is consistent
+  r = good;
+  nlohmann::json& s = r["solutions"][0];
+  s["x0"][4] = s["x0"][4].get<double>() + 0.3;
+  const nlohmann::json& K = r["system"]["K"];
+  const nlohmann::json& M = r["system"]["M"];
+  double e = 0.0;
+  for (size_t i = 0; i < 5; ++i)
+    for (size_t j = 0; j < 5; ++j)
+      e += 0.5 * (s["x0"][i].get<double>() * K[i][j].get<double>() * s["x0"][j].get<double>() +
+                  s["v0"][i].get<double>() * M[i][j].get<double>() * s["v0"][j].get<double>());
+  s["energy"] = e;
+  s["orbit"]["energy"] = e;
+  std::ofstream(edited) << r.dump();
+  v = run("verify " + edited.string());
+  EXPECT_EQ(v.code, 3) << v.out;
+  EXPECT_NE(v.out.find("x0 is not on the obstacle"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("completeness not checked"), std::string::npos) << v.out;
+}
+
+// Found by the attack of issue 11: --duration 1e300 without an event never ended.
+TEST(Cli, SimulateRefusesADurationBeyondItsLimit) {
+  const fs::path csv = dir() / "long_sim.csv";
+  const CliRun r = run("simulate " + kChain +
+                       " --x0 0,0,0,0,0 --v0 0,0,0,0,0 --duration 1e300 --samples-per-unit 0 --csv " + csv.string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("simulate: duration must be at most "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("periods of the fastest mode"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(csv));
+}
+
+// Found by the attack of issue 11: an error at one parameter value of spp continue did not name the file.
+TEST(Cli, ContinueNamesTheFileOfASystemRefusedAtAParameterValue) {
+  // w = (0, -1) + k2 (0, 1) vanishes at k2 = 1, the middle seed of the range [0, 2] (valid at both ends)
+  const std::string sys = write("w_vanishes.json", R"({"parameter": {"name": "k2", "min": 0, "max": 2},
+    "M": [[1, 0], [0, 1]], "K": [[2, -1], [-1, 1]], "w": {"constant": [0, -1], "k2": [0, 1]}, "g0": 1})");
+  const CliRun r = run("continue " + sys + " --t1-max 3 --t2-max 1 --seeds 3 --quiet");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find(sys + ": parametric system at k2 = "), std::string::npos) << r.out;
+}
