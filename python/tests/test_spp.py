@@ -1374,7 +1374,7 @@ def test_continuation_to_json_refuses_another_system(tmp_path):
     path = tmp_path / "c.json"
     path.write_text(r.to_json(ps))
     assert len(spp.ContinuationResult.from_json(str(path)).branches) == len(r.branches)
-    other = spp.ParametricSystem(np.diag([1.0, 2.0]), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+    other = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[2.0, 0], [0, 0]]),
                                  np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 0.0, "k2", 1.0,
                                  10.0)
     with pytest.raises(ValueError, match="the result is another system's"):

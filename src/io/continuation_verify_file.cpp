@@ -53,7 +53,7 @@ BranchPoint point_from_json(const Reader& o, const std::string& parameter) {
 }
 
 // What a branch point claims that its system at the parameter value refutes in O(n^2): x0, v0 of the system's n
-// dofs, x0 on the obstacle w(mu)^T x0 + g0 = 0 and the energy 1/2 v0^T M(mu) v0 + 1/2 x0^T K(mu) x0, each to
+// dofs, x0 on the obstacle w(mu)^T x0 + g0 = 0 (g0 != 0) and the energy 1/2 v0^T M(mu) v0 + 1/2 x0^T K(mu) x0, each to
 // kStateAgreement of its scale (the continuation writes them to rounding). Empty when it agrees. Shared by the writer
 // (another system's result, Python's to_json(system=other), is refused as SolveResult's is) and the reader (an edited
 // embedded system or point). A point whose orbit is undefined (x0 not finite) is checked for its size only.
@@ -67,8 +67,9 @@ std::string point_mismatch(const ParametricSystem& s, const BranchPoint& p) {
   const Eigen::VectorXd w = s.w_mu().size() ? Eigen::VectorXd(s.w_constant() + p.mu * s.w_mu()) : s.w_constant();
   const Eigen::MatrixXd M = s.M_mu().size() ? Eigen::MatrixXd(s.M_constant() + p.mu * s.M_mu()) : s.M_constant();
   const Eigen::MatrixXd K = s.K_mu().size() ? Eigen::MatrixXd(s.K_constant() + p.mu * s.K_mu()) : s.K_constant();
+  // (g0 = 0: eq. 5.2 leaves the scale free and the orbit reaches the obstacle only at a gap closure, closure 0)
   const double gap = w.dot(p.x0) + s.g0();
-  if (!(std::abs(gap) <= kStateAgreement * (w.norm() * p.x0.norm() + std::abs(s.g0()))))
+  if (s.g0() != 0.0 && !(std::abs(gap) <= kStateAgreement * (w.norm() * p.x0.norm() + std::abs(s.g0()))))
     return "x0 is not on the obstacle of the system at " + s.parameter().name + " = " + num(p.mu) + " (gap " +
            num(gap) + ", expected 0)";
   const double e = 0.5 * p.v0.dot(M * p.v0) + 0.5 * p.x0.dot(K * p.x0);
