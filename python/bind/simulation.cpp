@@ -35,7 +35,8 @@ void bind_simulation(py::module_& m) {
                "Event.kind");
   bind_outcome<spp::VerifyStatus>(m, "VerifyStatus",
       "VerifyResult.status: inconsistent when the result disagrees with the simulation or the system (admissibility, "
-      "claimed stability, x0/v0: the three counters)");
+      "claimed stability, x0/v0: the three counters), interrupted when Ctrl-C stopped it before every SPP was "
+      "checked (unchecked counts those left) and none checked disagrees, else success");
   bind_outcome<spp::Verdict>(m, "Verdict", "SppCheck.verdict");
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)

@@ -779,9 +779,15 @@ def test_ctrl_c_stops_verify_and_simulate():
         "with warnings.catch_warnings(record=True) as w:\n"
         "    warnings.simplefilter('always')\n"
         "    v = spp.verify(r.system, r, periods=100000)\n"
+        "import json\n"
+        "j = json.loads(v.to_json())\n"
         "print('RESULT', 'KEPT', v.unchecked > 0 and len(v.checks) + v.unchecked == len(r.solutions),\n"
-        "      'WARNED', any('verify interrupted' in str(x.message) for x in w))\n")
+        "      'WARNED', any('verify interrupted' in str(x.message) for x in w),\n"
+        "      'STATUS', v.status, bool(v.all_consistent), j['status'], j['unchecked'] == v.unchecked,\n"
+        "      j['all_consistent'])\n")
     assert "RESULT" in out and "KEPT True" in out and "WARNED True" in out, out
+    # not a success: the run's JSON said success and all_consistent with 57 of 64 unchecked (found by an attack)
+    assert "STATUS interrupted False interrupted True False" in out, out
     assert secs < 15, secs
     # with a perturbation: the distances of the perturbed run to the orbit (a few short simulations each) did not
     # hear Ctrl-C, 38.8 s on an attack's run (found by an attack)

@@ -362,6 +362,7 @@ json verify_to_json(const VerifyResult& r) {
   out["admissibility_mismatches"] = r.admissibility_mismatches;
   out["stability_mismatches"] = r.stability_mismatches;
   out["state_mismatches"] = r.state_mismatches;
+  out["unchecked"] = r.unchecked;  // a stopped run's SPPs not checked (status interrupted)
   if (!r.warnings.empty()) out["warnings"] = r.warnings;
   return out;
 }

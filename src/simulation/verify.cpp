@@ -176,7 +176,12 @@ const char* to_string(Verdict v) {
 }
 
 const char* to_string(VerifyStatus s) {
-  return s == VerifyStatus::Success ? "success" : "inconsistent";
+  switch (s) {
+    case VerifyStatus::Success: return "success";
+    case VerifyStatus::Inconsistent: return "inconsistent";
+    case VerifyStatus::Interrupted: return "interrupted";
+  }
+  return "?";
 }
 
 std::string VerifyResult::brief_report() const {
@@ -312,7 +317,7 @@ VerifyResult verify(const System& system, const std::vector<Solution>& spps, con
   // a run that progress stopped: this SPP and the later ones are left unchecked
   const auto stop = [&](size_t i) {
     res.unchecked = static_cast<long>(spps.size() - i);
-    res.status = res.inconsistent == 0 ? VerifyStatus::Success : VerifyStatus::Inconsistent;
+    res.status = res.inconsistent == 0 ? VerifyStatus::Interrupted : VerifyStatus::Inconsistent;
     return res;
   };
   // docs/stability.md: the onset's plastic projection needs e < 1; an elastic impact keeps the normal velocity and

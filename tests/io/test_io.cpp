@@ -26,6 +26,43 @@ fs::path tmpdir() {
 void write(const fs::path& p, const std::string& s) {
   std::ofstream(p) << s;
 }
+// The message with which a reader refuses a JSON text (named r.json / c.json in its messages), or "(accepted)": the
+// refusal tests of the result and continuation readers below.
+std::string result_refusal(const io::json& j) {
+  try {
+    parse_result_file(j.dump(), "r.json");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+std::string continuation_refusal(const io::json& j) {
+  try {
+    parse_continuation_file(j.dump(), "c.json");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+// The chain's branch through its SPP near (5.707, 2.510) for k5 in [0.9, 1] (the continuation file tests).
+ParametricSystem chain_k5() {
+  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
+  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
+  K1(3, 3) = K1(4, 4) = 1;
+  K1(3, 4) = K1(4, 3) = -1;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = -1;
+  return ParametricSystem(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+}
+ContinuationResult chain_k5_branch(const ParametricSystem& ps) {
+  const SolutionAt seed = solution_at(ps.at(0.98), 5.703374, 2.514785);
+  EXPECT_TRUE(seed.found) << seed.brief_report();
+  ContinueOptions o;
+  o.t1_max = 8.0;
+  o.t2_max = 3.0;
+  return continue_branch(ps, 0.98, seed.solution, o);
+}
 }  // namespace
 
 TEST(Io, SystemJsonRoundTrip) {
@@ -425,14 +462,7 @@ TEST(Io, ResultWhoseFieldsContradictEachOtherIsRefused) {
   const io::json good = io::result_to_json(s, solve(s, o));
   ASSERT_EQ(good["status"], "success");
   ASSERT_GE(good["solutions"].size(), 2u);
-  auto refusal = [](const io::json& j) -> std::string {
-    try {
-      parse_result_file(j.dump(), "r.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = result_refusal;
   auto expect_refused = [&](const io::json& j, const std::string& what) {
     EXPECT_NE(refusal(j).find("r.json: " + what), std::string::npos) << refusal(j);
   };
@@ -561,14 +591,7 @@ TEST(Io, ResultWithAnSppDeletedOrWhatTheSolverCannotWriteIsRefused) {
   ASSERT_EQ(good["status"], "success");
   const size_t listed = good["solutions"].size();
   ASSERT_EQ(good["stats"]["roots"].get<size_t>(), listed);
-  auto refusal = [](const io::json& j) -> std::string {
-    try {
-      parse_result_file(j.dump(), "r.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = result_refusal;
   EXPECT_EQ(refusal(good), "(accepted)");
   // an SPP deleted, a non-admissible one left: every SPP of the window was listed (admissible_only off)
   size_t inadmissible = listed, admissible = listed;
@@ -906,14 +929,7 @@ TEST(Io, StabilityVerdictReadsOldFilesAndRefusesContradictions) {
   ASSERT_EQ(good["solutions"].size(), 7u);
   ASSERT_EQ(good["solutions"][2]["stability_verdict"], "stable");
   ASSERT_EQ(good["solutions"][1]["stability_verdict"], "unstable");
-  auto refusal = [](const io::json& j) -> std::string {
-    try {
-      parse_result_file(j.dump(), "r.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = result_refusal;
   EXPECT_EQ(refusal(good), "(accepted)");
   io::json old = good;
   for (io::json& x : old["solutions"]) {
@@ -983,19 +999,8 @@ void expect_same_point(const BranchPoint& a, const BranchPoint& b, const std::st
 // [0.9, 1], which loses or gains stability at k5 = 0.983578 (its crossing fields included); an edited crossing that
 // contradicts its multipliers is refused, and a file without the crossing fields (written before them) reads None.
 TEST(Io, ContinuationFileGivesBackTheResultThatWasWritten) {
-  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
-  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
-  K1(3, 3) = K1(4, 4) = 1;
-  K1(3, 4) = K1(4, 3) = -1;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = -1;
-  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
-  const SolutionAt seed = solution_at(ps.at(0.98), 5.703374, 2.514785);
-  ASSERT_TRUE(seed.found) << seed.brief_report();
-  ContinueOptions o;
-  o.t1_max = 8.0;
-  o.t2_max = 3.0;
-  const ContinuationResult r = continue_branch(ps, 0.98, seed.solution, o);
+  const ParametricSystem ps = chain_k5();
+  const ContinuationResult r = chain_k5_branch(ps);
   ASSERT_EQ(r.branches.size(), 1u);
   int stability_events = 0;
   for (const BranchEvent& e : r.branches[0].events) stability_events += e.crossing != MultiplierCrossing::None;
@@ -1032,14 +1037,7 @@ TEST(Io, ContinuationFileGivesBackTheResultThatWasWritten) {
   size_t k = 0;
   while (!j["branches"][0]["events"][k].contains("crossing")) ++k;
   io::json& ev = j["branches"][0]["events"][k];
-  auto refusal = [](const io::json& x) -> std::string {
-    try {
-      parse_continuation_file(x.dump(), "c.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = continuation_refusal;
   const std::string kind = ev["crossing"];
   ev["crossing"] = kind == "complex_pair" ? "plus_one" : "complex_pair";
   EXPECT_NE(refusal(j).find("c.json: field \"branches\"[0]: field \"events\"[" + std::to_string(k) +
@@ -1122,14 +1120,7 @@ TEST(Io, CountBeyondItsRangeInAResultIsRefusedNotReadNegative) {
   SolveOptions o;
   o.t1_max = o.t2_max = 6.0;
   const io::json good = io::result_to_json(s, solve(s, o));
-  auto refusal = [](const io::json& j) -> std::string {
-    try {
-      parse_result_file(j.dump(), "r.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = result_refusal;
   io::json j = good;
   j["stats"]["curve_pieces"] = std::uint64_t{1} << 63;
   EXPECT_NE(refusal(j).find("field \"curve_pieces\" must be a count, a whole number from 0 to 9223372036854775807, "
@@ -1181,14 +1172,7 @@ TEST(Io, ResultWithADuplicatedSppABadReturnErrorOrAnotherEnergyIsRefused) {
   SolveOptions o;
   o.t1_max = o.t2_max = 6.0;
   const io::json good = io::result_to_json(s, solve(s, o));
-  auto refusal = [](const io::json& j) -> std::string {
-    try {
-      parse_result_file(j.dump(), "r.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = result_refusal;
   ASSERT_EQ(refusal(good), "(accepted)");
   ASSERT_GE(good["solutions"].size(), 2u);
   io::json j = good;
@@ -1239,29 +1223,11 @@ TEST(Io, ResultRelabelledToAnotherSymmetryIsRefused) {
 // warnings, t1 -3 or null, a parameter beyond its range, x0 of length 1, a negative energy, an empty window, a
 // duplicated branch and an edited embedded system; to_json wrote a result beside another system.
 TEST(Io, ContinuationFileThatContradictsItselfOrItsSystemIsRefused) {
-  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
-  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
-  K1(3, 3) = K1(4, 4) = 1;
-  K1(3, 4) = K1(4, 3) = -1;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = -1;
-  const ParametricSystem ps(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
-  const SolutionAt seed = solution_at(ps.at(0.98), 5.703374, 2.514785);
-  ASSERT_TRUE(seed.found) << seed.brief_report();
-  ContinueOptions o;
-  o.t1_max = 8.0;
-  o.t2_max = 3.0;
-  const ContinuationResult r = continue_branch(ps, 0.98, seed.solution, o);
+  const ParametricSystem ps = chain_k5();
+  const ContinuationResult r = chain_k5_branch(ps);
   ASSERT_EQ(r.status, ContinuationStatus::Success) << r.brief_report();
   const io::json good = io::json::parse(continuation_json(ps, r));
-  auto refusal = [](const io::json& x) -> std::string {
-    try {
-      parse_continuation_file(x.dump(), "c.json");
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = continuation_refusal;
   ASSERT_EQ(refusal(good), "(accepted)");
   auto expect = [&](const io::json& x, const std::string& part) {
     EXPECT_NE(refusal(x).find(part), std::string::npos) << refusal(x);
@@ -1304,9 +1270,10 @@ TEST(Io, ContinuationFileThatContradictsItselfOrItsSystemIsRefused) {
   j["system"]["K"]["constant"][0][0] = 2.5;  // the embedded system edited: its points are not its SPPs
   expect(j, p0 + "field \"energy\" is ");
   // to_json beside another system (as SolveResult's): refused, naming the point
-  Eigen::MatrixXd K0b = K0;
+  Eigen::MatrixXd K0b = ps.K_constant();
   K0b(0, 0) = 2.5;
-  const ParametricSystem other(Eigen::MatrixXd::Identity(5, 5), {}, K0b, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  const ParametricSystem other(Eigen::MatrixXd::Identity(5, 5), {}, K0b, ps.K_mu(), ps.w_constant(), {}, 1.0,
+                               {"k5", 0.9, 1.0});
   std::string what = "(accepted)";
   try {
     continuation_json(other, r);

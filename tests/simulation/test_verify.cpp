@@ -210,6 +210,10 @@ TEST(Verify, ProgressReturningFalseLeavesTheRestUnchecked) {
   EXPECT_EQ(r.checks.size(), 3u);
   EXPECT_EQ(r.unchecked, static_cast<long>(spps.size()) - 3);
   EXPECT_NE(r.brief_report().find("not checked (interrupted)"), std::string::npos) << r.brief_report();
+  // not a success (it read success and all_consistent with most SPPs unchecked; found by an attack on issue 13)
+  EXPECT_EQ(r.status, VerifyStatus::Interrupted);
+  EXPECT_FALSE(r.all_consistent());
+  EXPECT_NE(verify_json(r).find("\"unchecked\": " + std::to_string(r.unchecked)), std::string::npos);
   o.periods = 100000;  // a long simulation is stopped inside it
   calls = 0;
   o.progress = [&calls] { return ++calls < 3; };
