@@ -124,7 +124,12 @@ class CellTracer::Impl {
       double moves[3][2] = {{lam_err / (l1 + l2), lam_err / (l1 + l2)}, {lam_err / l1, 0.0}, {0.0, lam_err / l2}};
       // Far above rounding (next to a pole line, where H's eigenvalue error grows like 1 / distance): the same
       // distances from the bordered form, whose error stays at its O(1) scale; the smaller estimate is kept.
-      if (p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
+      // A point placed in the bordered form brings that estimate at no cost: it is taken wherever it is smaller, also
+      // when the (1, 1) distance from H stays below kPosErrBordered while the moves along t1 or t2 alone, the only
+      // ones offset_bound accepts next to a pole line, do not (that exit point of the n = 15 chain: 6.8e-8 along t1
+      // from H, 4e-14 from B; with H's, the sign of g there, -1.2e-6, was not proved; issue 12). Both are
+      // bounds of the distance to the same zero set, so the smaller one is still a bound.
+      if (q.bordered.valid || p.pos_err > kPosErrBordered * std::max(q.t1, q.t2)) {
         // (a point placed in the bordered form brings its own estimate: no second eigendecomposition)
         const BorderedOffset bo = q.bordered.valid ? q.bordered : bordered_offset(eq_, q.t1, q.t2, &eigen_cache_);
         if (bo.valid) {
@@ -184,8 +189,12 @@ class CellTracer::Impl {
       }
       if (!bf) e = eigenpair(t1, t2, k);
       auto [l1, l2] = bf ? std::pair{e.bordered.l1, e.bordered.l2} : grads(e.b, e.t1, e.t2);
-      // (H's error bound alone, over the slope: the distance to the curve within which H cannot place the root)
-      if (it == 0 && opt_.certify_steps && e.at->eigen_error() / (l1 + l2) > kPosErrBordered * std::max(t1, t2)) {
+      // (H's error bound alone, over the slope along the segment: the distance in t within which H cannot place the
+      // root on it. Along an edge that only moves t1 the slope is l1, not l1 + l2: an exit point 2.3e-8 below a
+      // contact pole line of the n = 15 chain (H's eigenvalue error 1.2e-6 there, l1 ~ l2 ~ 17) was placed by H, 6.8e-8
+      // in t1 from the curve, while (1, 1) gave 3.4e-8, under the threshold; issue 12.)
+      const double slope = std::abs(dt1 * l1 + dt2 * l2), reach = std::max(std::abs(dt1), std::abs(dt2));
+      if (it == 0 && opt_.certify_steps && e.at->eigen_error() * reach / slope > kPosErrBordered * std::max(t1, t2)) {
         const double s1 = t1a + lo * dt1, s2 = t1a + hi * dt1, u1 = t2a + lo * dt2, u2 = t2a + hi * dt2;
         bf =
             std::make_unique<BorderedForm>(eq_, std::min(s1, s2), std::max(s1, s2), std::min(u1, u2), std::max(u1, u2));

@@ -711,6 +711,23 @@ TEST(CertifiedSearch, ProvesCornerCountsNextToClusteredPoleLinesOfA100DofChain) 
   EXPECT_EQ(solve(s, o).solutions.size(), r.solutions.size());
 }
 
+TEST(CertifiedSearch, ProvesTheSignOfGAtAnExitPointNextToAContactPoleLine) {
+  // The 15-dof chain (spp generate chain --n 15) has an SPP 1e-5 in s past a contact pole line (t1 10.10686, t2
+  // 8.73727): the curve leaves the cell below that line with g ~ -1.2e-6. H placed the exit point on the edge (t2
+  // fixed) with its bordered-form test taking the slope l1 + l2 instead of the edge's l1, and point() kept H's
+  // position error (6.8e-8, from H's eigenvalue error 1.2e-6 next to the pole) although the bordered form's was 4e-14:
+  // g's error bound there (8e-6) exceeded |g|, the last step's monotone run was not closed and the fundamental box
+  // ended incomplete (1 step). This window around that cell reproduces it.
+  const System s = chain(15, {1.0}, {1.0}, 14, ContactSide::Upper, 1.0);
+  SolveOptions o = window(9.8, 10.3, 8.68, 8.75);
+  o.compute_return_error = false;
+  o.threads = 1;
+  const SolveResult r = expect_certified_with_default_roots(s, o);
+  ASSERT_EQ(r.solutions.size(), 1u);
+  EXPECT_NEAR(r.solutions[0].t1(), 10.106858, 1e-6);
+  EXPECT_NEAR(r.solutions[0].t2(), 8.7372681, 1e-6);
+}
+
 TEST(CertifiedSearch, ProvesTheRodWindow) {
   // The paper's rod (§5.3) in (0, 20]^2: 76 SPPs. Certified before the true-point errors, then incomplete (87 steps:
   // the offset of a point next to a pole line entered the Davis-Kahan numerator unweighted), certified again since.
