@@ -64,18 +64,23 @@ py::handle& outcome_class() {
   static py::handle cls;  // owned by the module (m.attr), never freed before it
   return cls;
 }
-// Every value of E is bound, enumerated from 0 until to_string gives the name of no value (that of an out-of-range
-// one): the result enums are contiguous from 0 and to_string names each. (Hand-written lists of the values drifted:
-// ModeEventKind lacked grazing_continuation, so reading such an event's kind raised a ValueError.)
+// Every value of E is bound, enumerated from 0 until to_string gives no new name: an out-of-range value gives the
+// switch's fallback ("?", "unknown", "") or, in a two-way to_string (v == A ? "a" : "b"), a name already seen. The
+// result enums are contiguous from 0 and to_string names each (python/tests/test_modes.py lists every enum's
+// members). (Hand-written lists of the values drifted: ModeEventKind lacked grazing_continuation, so reading such an
+// event's kind raised a ValueError.)
 template <class E>
 void bind_outcome(py::module_& m, const char* name, const char* doc) {
   using U = std::underlying_type_t<E>;
   constexpr U kLimit = 64;  // no result enum has as many values
-  const std::string none = to_string(static_cast<E>(kLimit));  // found by ADL, in spp or spp::modes
+  std::vector<std::string> seen;
   py::list members;
-  for (U i = 0; to_string(static_cast<E>(i)) != none; ++i) {
-    if (i + 1 == kLimit) throw std::logic_error(std::string("bind_outcome: ") + name + " has no end");
-    members.append(py::make_tuple(to_string(static_cast<E>(i)), to_string(static_cast<E>(i))));
+  for (U i = 0;; ++i) {
+    if (i == kLimit) throw std::logic_error(std::string("bind_outcome: ") + name + " has no end");
+    const std::string s = to_string(static_cast<E>(i));  // found by ADL, in spp or spp::modes
+    if (s.empty() || s == "?" || s == "unknown" || std::find(seen.begin(), seen.end(), s) != seen.end()) break;
+    seen.push_back(s);
+    members.append(py::make_tuple(s, s));
   }
   py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
   cls.attr("__doc__") = doc;

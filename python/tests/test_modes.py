@@ -187,6 +187,21 @@ def test_through_inadmissible_reaches_the_stretches_beyond_an_admissibility_even
 # Every C++ value of a result enum is bound (enumerated from C++, no hand-written list: ModeEventKind lacked
 # grazing_continuation before); an interrupted family ends with its own kind `interrupted`, not `stalled`.
 def test_result_enums_have_every_cpp_value():
-    assert [m.value for m in spp.ModeEventKind][-2:] == ["admissibility_regained", "interrupted"]
-    assert [m.value for m in spp.StabilityVerdict] == ["not_computed", "stable", "unstable", "undecided", "neutral"]
-    assert [m.value for m in spp.SimulationStatus] == ["not_run", "success", "event_limit", "stalled", "interrupted"]
+    expected = {
+        "ContinuationStatus": ["success", "incomplete"],
+        "BranchEventKind": ["leaves_window", "range_end", "fold", "admissibility_lost", "admissibility_gained",
+                            "gap_closure", "closed_loop", "stalled", "stability_lost", "stability_gained"],
+        "MultiplierCrossing": ["none", "plus_one", "minus_one", "complex_pair"],
+        "ModeEventKind": ["grazing_start", "branch_start", "grazing_continuation", "branch_point", "impact_grazing",
+                          "flight_grazing", "energy_max", "stalled", "no_admissible_side", "admissibility_regained",
+                          "interrupted"],
+        "ModesStatus": ["not run", "traced", "incomplete"],
+        "SolveStatus": ["not_run", "success", "incomplete"],
+        "SimulationStatus": ["not_run", "success", "event_limit", "stalled", "interrupted"],
+        "EventKind": ["impact", "contact_onset", "release"],
+        "VerifyStatus": ["success", "inconsistent", "interrupted"],
+        "Verdict": ["returns", "leaves"],
+        "StabilityVerdict": ["not_computed", "stable", "unstable", "undecided", "neutral"],
+    }
+    for name, values in expected.items():
+        assert [m.value for m in getattr(spp._spp, name)] == values, name
