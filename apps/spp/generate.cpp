@@ -85,6 +85,7 @@ int run_bar(const GenerateArgs& g) {
                           (g.bar_lumped ? "lumped" : "consistent") + " mass, contact at node " + std::to_string(node));
   // the layout (io/layout_file.hpp): dof i moves node i + 1, at x = (i + 1) / n, along the bar
   FeLayout layout;
+  layout.model_dofs = g.bar_n;
   layout.coordinates.resize(g.bar_n, 1);
   layout.directions = Eigen::MatrixXd::Ones(g.bar_n, 1);
   for (int i = 0; i < g.bar_n; ++i) {

@@ -99,6 +99,7 @@ int run(const ReduceArgs& a) {
       detail::invalid(a.layout + ": a layout with a \"basis\" belongs to a reduced model: expected the full model's "
                       "layout (dofs, coordinates, directions), got a basis");
     layout = sample_fe_layout(layout, kMaxExpansionDofs);
+    layout.model_dofs = model.n();
     for (const long d : layout.dofs) ro.expansion_dofs.push_back(static_cast<int>(d));
   }
   // one factorisation and one eigensolve (for the largest m) serve every m

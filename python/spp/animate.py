@@ -231,7 +231,7 @@ class FeLayout:
         if not isinstance(source, dict):
             raise ValueError(f"{where}: expected a layout (a path or a dict with dofs, coordinates, directions), got "
                              f"{type(source).__name__}")
-        unknown = sorted(set(source) - {"dofs", "coordinates", "directions", "basis"})
+        unknown = sorted(set(source) - {"dofs", "coordinates", "directions", "basis", "model_dofs"})
         if unknown:
             raise ValueError(f"{where}: unknown field(s) {', '.join(unknown)}: expected dofs, coordinates, directions "
                              f"and optionally basis")
@@ -248,13 +248,21 @@ class FeLayout:
                                  f"of finite numbers, got shape {a.shape}")
             return a
 
+        raw = source.get("dofs")
+        if not isinstance(raw, list) or not all(isinstance(d, int) and not isinstance(d, bool) for d in raw):
+            raise ValueError(f"{where}: field 'dofs': expected a list of whole numbers (0-based dofs), got "
+                             f"{type(raw).__name__ if not isinstance(raw, list) else 'other items'}")
+        if len(set(raw)) != len(raw):
+            raise ValueError(f"{where}: field 'dofs': expected each dof once, got a dof twice")
+        if "model_dofs" in source and (not isinstance(source["model_dofs"], int) or source["model_dofs"] < 1):
+            raise ValueError(f"{where}: field 'model_dofs': expected a positive whole number")
         dofs = array("dofs", 1)
         coordinates, directions = array("coordinates", 2), array("directions", 2)
         rows = len(dofs)
         if coordinates.shape[0] != rows or directions.shape != coordinates.shape or not 1 <= coordinates.shape[1] <= 3:
             raise ValueError(f"{where}: expected coordinates and directions of one shape, {rows} rows (one per dof) of "
                              f"1 to 3 numbers, got {coordinates.shape} and {directions.shape}")
-        if (np.linalg.norm(directions, axis=1) == 0).any():
+        if (np.abs(directions).max(axis=1) == 0).any():
             raise ValueError(f"{where}: field 'directions': expected no zero direction")
         basis = None
         if "basis" in source:
@@ -262,7 +270,7 @@ class FeLayout:
             if basis.shape != (rows, n):
                 raise ValueError(f"{where}: field 'basis': expected {rows} rows of {n} numbers (the system's dofs), got "
                                  f"{basis.shape}: the layout of another reduced model?")
-        full = n if basis is None else np.inf
+        full = n if basis is None else source.get("model_dofs", np.inf)
         if (dofs != np.floor(dofs)).any() or (dofs < 0).any() or (dofs >= full).any():
             raise ValueError(f"{where}: field 'dofs': expected 0-based dofs of the system (0 to {n - 1}), got "
                              f"{dofs.min():g} to {dofs.max():g}")
@@ -317,10 +325,21 @@ class _Fe:
             ax.set_ylabel("displacement (-)")
             ax.set_title(f"finite-element layout: {len(layout.dofs)} dofs", fontsize=8)
             return
-        c = layout.coordinates[:, :2]
-        u = layout.directions[:, :2] / np.linalg.norm(layout.directions, axis=1)[:, None]
-        self.nodes, self.node_of = np.unique(c, axis=0, return_inverse=True)
+        # the plane drawn: that of the two axes along which the dofs move most (a plate in x-y moving along z is
+        # seen from the side, x-z: the first two axes showed it motionless; found by an attack), ties broken by the
+        # nodes' spread
+        scaled = layout.directions / np.abs(layout.directions).max(axis=1)[:, None]  # (no underflow of tiny ones)
+        units = scaled / np.linalg.norm(scaled, axis=1)[:, None]
+        axes = [(0, 1)] if self.dim == 2 else [(0, 1), (0, 2), (1, 2)]
+        weight = lambda p: (np.linalg.norm(units[:, p], axis=1).sum(), np.ptp(layout.coordinates[:, p], axis=0).sum())
+        self.plane = list(max(axes, key=weight))
+        # nodes by their full coordinates (a side view must not merge nodes that differ in the hidden one), drawn in
+        # the plane
+        full, self.node_of = np.unique(layout.coordinates, axis=0, return_inverse=True)
         self.node_of = self.node_of.ravel()
+        self.nodes = full[:, self.plane]
+        c = layout.coordinates[:, self.plane]
+        u = units[:, self.plane]
         self.u = u
         extent = max(np.ptp(self.nodes, axis=0).max(), 1e-300)
         peak = max(np.abs(self._node_displacement(d)).max(), 1e-300)
@@ -335,6 +354,9 @@ class _Fe:
         ax.set_xlim(self.nodes[:, 0].min() - pad, self.nodes[:, 0].max() + pad)
         ax.set_ylim(self.nodes[:, 1].min() - pad, self.nodes[:, 1].max() + pad)
         ax.set_aspect("equal")
+        names = "xyz"
+        ax.set_xlabel(f"{names[self.plane[0]]} (-)")
+        ax.set_ylabel(f"{names[self.plane[1]]} (-)")
         ax.set_title(f"finite-element layout: {len(self.nodes)} nodes, displacements x {self.scale:.3g}", fontsize=8)
 
     def _node_displacement(self, d):

@@ -209,7 +209,7 @@ def _two_panels(axes, fig):
     if axes is None:
         return None
     if isinstance(axes, Axes):
-        spec = axes.get_subplotspec()
+        spec = getattr(axes, "get_subplotspec", lambda: None)()  # (add_axes and inset axes have none)
         if spec is None:
             raise ValueError("spp_figure: ax: expected a pair (top, bottom) of Axes or one Axes of a subplot grid "
                              "(add_subplot, subplots), got an Axes placed by add_axes")
@@ -229,6 +229,9 @@ def _two_panels(axes, fig):
                         f"{type(axes).__name__}")
     for a in pair:
         _checked(a, where="spp_figure: axes")
+    if pair[0] is pair[1] or pair[0].figure is not pair[1].figure:
+        raise ValueError("spp_figure: axes: expected two different Axes of one figure (top, bottom), got "
+                         + ("the same Axes twice" if pair[0] is pair[1] else "Axes of two figures"))
     return pair
 
 

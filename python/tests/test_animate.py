@@ -219,3 +219,35 @@ def test_fe_layout_in_two_dimensions_moves_each_node_by_its_dofs():
     assert scene_nodes.shape == (4, 2)  # four nodes: the first carries two dofs
     import matplotlib.pyplot as plt
     plt.close(anim._fig)
+
+
+# Found by an attack on issue 13: a plate in x-y whose dofs move along z was drawn motionless (the first two axes,
+# "displacements x 1e+299"); duplicate or non-integer dofs passed the Python reader; a layout of another full model
+# passed spp reduce; spp_figure(ax=) on an add_axes Axes raised an AttributeError.
+def test_fe_layout_out_of_plane_motion_and_loose_input():
+    system = spp.chain(5)
+    sol = first_admissible(system, 12, 12)
+    layout = {"dofs": [0, 1, 2, 3, 4], "coordinates": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]],
+              "directions": [[0, 0, 1]] * 5}
+    anim = animate.animation_of(system, sol, frames=5, fe_layout=layout)
+    ax = [a for a in anim._fig.axes if a.get_xlabel() == "x (-)"][0]
+    assert ax.get_ylabel() == "z (-)"
+    anim._func(2)
+    cloud = [l for l in ax.lines if l.get_gid() == "fe_displacement"][0]
+    y = np.asarray(cloud.get_ydata())
+    assert len(y) == 5 and np.ptp(y) > 0  # five nodes (two pairs share x: not merged), moving
+    import matplotlib.pyplot as plt
+    plt.close(anim._fig)
+    base = {"coordinates": [[0], [1]], "directions": [[1], [1]]}
+    for dofs, match in (([0, 0], "each dof once"), (["0", 1], "whole numbers"), ([True, 1], "whole numbers")):
+        with pytest.raises(ValueError, match=match):
+            animate.FeLayout.read(dict(base, dofs=dofs), 5)
+    assert animate.FeLayout.read(dict(base, dofs=[0, 1], directions=[[1e-300], [1]]), 5).dofs.tolist() == [0, 1]
+    from spp import plot
+    fig = plt.figure()
+    with pytest.raises(ValueError, match="placed by add_axes"):
+        plot.spp_figure(system, sol, ax=fig.add_axes([0.1, 0.1, 0.8, 0.8]))
+    a = fig.add_subplot(2, 1, 1)
+    with pytest.raises(ValueError, match="the same Axes twice"):
+        plot.spp_figure(system, sol, ax=(a, a))
+    plt.close("all")

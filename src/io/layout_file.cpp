@@ -13,9 +13,15 @@ FeLayout read_fe_layout(const std::string& path, long model_dofs) {
   const io::json j = io::read_json_file(path);
   const std::string where = io::shorten(path, io::kQuotedPathChars);
   if (!j.is_object()) io::invalid(where + ": expected a JSON object (a layout file), got " + io::describe(j));
-  io::check_fields(j, {"dofs", "coordinates", "directions", "basis"}, where);
+  io::check_fields(j, {"dofs", "coordinates", "directions", "basis", "model_dofs"}, where);
   FeLayout l;
   const io::Reader r{j, where};
+  if (j.contains("model_dofs")) {
+    l.model_dofs = r.count("model_dofs");
+    if (l.model_dofs != model_dofs)
+      io::invalid(where + ": field \"model_dofs\": expected the layout of this model of " + std::to_string(model_dofs) +
+                  " dofs, got the layout of a model of " + std::to_string(l.model_dofs));
+  }
   const Eigen::VectorXd dofs = r.vector("dofs");
   if (dofs.size() == 0) io::invalid(where + ": field \"dofs\": expected at least one dof, got none");
   std::set<long> seen;
@@ -55,6 +61,7 @@ std::string fe_layout_json(const FeLayout& layout) {
   j["coordinates"] = io::matrix_json(layout.coordinates);
   j["directions"] = io::matrix_json(layout.directions);
   if (layout.basis.size() > 0) j["basis"] = io::matrix_json(layout.basis);
+  if (layout.model_dofs > 0) j["model_dofs"] = layout.model_dofs;
   return j.dump(-1) + "\n";
 }
 
@@ -64,6 +71,7 @@ FeLayout sample_fe_layout(const FeLayout& layout, long max_rows) {
   std::vector<Eigen::Index> keep;
   for (long k = 0; k < max_rows; ++k) keep.push_back((k * (n - 1)) / (max_rows - 1));
   FeLayout s;
+  s.model_dofs = layout.model_dofs;
   for (const Eigen::Index r : keep) s.dofs.push_back(layout.dofs[static_cast<size_t>(r)]);
   s.coordinates = layout.coordinates(keep, Eigen::all);
   s.directions = layout.directions(keep, Eigen::all);

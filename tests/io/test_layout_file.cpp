@@ -33,6 +33,7 @@ TEST(LayoutFile, RoundTripsAndSamplesEvenly) {
   l.coordinates.resize(10, 2);
   l.directions.resize(10, 2);
   l.basis.resize(10, 3);
+  l.model_dofs = 10;
   for (int i = 0; i < 10; ++i) {
     l.dofs.push_back(9 - i);
     l.coordinates.row(i) << 0.1 * i, -1.0 / 3.0;
@@ -44,6 +45,7 @@ TEST(LayoutFile, RoundTripsAndSamplesEvenly) {
   EXPECT_EQ(back.coordinates, l.coordinates);  // bit for bit
   EXPECT_EQ(back.directions, l.directions);
   EXPECT_EQ(back.basis, l.basis);
+  EXPECT_EQ(back.model_dofs, 10);
   const FeLayout s = sample_fe_layout(l, 4);
   EXPECT_EQ(s.dofs, (std::vector<long>{9, 6, 3, 0}));  // rows 0, 3, 6, 9: first and last kept
   EXPECT_EQ(s.basis.rows(), 4);
@@ -66,4 +68,7 @@ TEST(LayoutFile, BadInputIsRefusedNamingTheField) {
   expect_refused(R"({"dofs": [0, 1], "nodes": 3, )" + ok_tail, 5, "\"nodes\"");
   expect_refused(R"({"dofs": [0, 1], "coordinates": [[0], [1]]})", 5, "missing field \"directions\"");
   expect_refused("[1, 2]", 5, "expected a JSON object");
+  // a layout of another model (an attack: a 1000-dof bar's layout went through spp reduce of a 2000-dof one)
+  expect_refused(R"({"dofs": [0, 1], "model_dofs": 1000, )" + ok_tail, 2000,
+                 "\"model_dofs\": expected the layout of this model of 2000 dofs, got the layout of a model of 1000");
 }
