@@ -1385,3 +1385,20 @@ def test_continuation_to_json_refuses_another_system(tmp_path):
                                  10.0)
     with pytest.raises(ValueError, match="the result is another system's"):
         r.to_json(other)
+
+
+# Found by an attack on issue 11: a continuation through a gap closure at g0 != 0 could not be written (CLI --json
+# and to_json): the closure's point, the normalised direction of a diverging orbit, was checked as a point on the
+# obstacle. Such a result is written and read back.
+def test_continuation_through_a_gap_closure_is_written_and_read_back(tmp_path):
+    import json
+    j = json.load(open(os.path.join(SRC, "examples", "two_dof_zero_gap.json")))
+    j.update(g0=1.0, name="p2dof", parameter={"name": "k2", "min": 1.0, "max": 3.0})
+    (tmp_path / "p.json").write_text(json.dumps(j))
+    ps = spp.ParametricSystem.from_json(str(tmp_path / "p.json"))
+    r = spp.continue_branches(ps, t1_max=5, t2_max=2.5)
+    kinds = [e.kind for b in r.branches for e in b.events]
+    assert "gap_closure" in kinds and r.status == "success"
+    (tmp_path / "c.json").write_text(r.to_json(ps))
+    back = spp.ContinuationResult.from_json(str(tmp_path / "c.json"))
+    assert [e.kind for b in back.branches for e in b.events] == kinds
