@@ -215,7 +215,7 @@ int run(SolveArgs& a) {
               << " ms; estimate: " << e.cells << " cells x ~" << static_cast<long>(e.evaluations_per_cell)
               << " evaluations per cell (benchmarks' mean" << (a.options.certify_steps ? ", certified" : "") << ") / "
               << e.threads << " thread(s) ~ " << e.seconds << " s wall time (" << e.seconds * e.threads
-              << " s CPU time; rough: actual CPU time measured 0.1x to 12x of this, larger systems higher; README)\n";
+              << " s CPU time; rough: actual CPU time measured 0.11x to 12x of this, larger systems higher; README)\n";
     if (e.cells > a.options.max_cells)
       std::cout << "the window exceeds --max-cells " << a.options.max_cells << ": spp solve refuses it (raise "
                 << "--max-cells to run it, or narrow the window)\n";
