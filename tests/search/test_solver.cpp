@@ -34,6 +34,19 @@ void check_paper_equations(const System& s, const SolveResult& r) {
   }
 }
 
+// The 5-dof chain's fundamental box, certified, one thread: success with its 28 SPPs (checked here).
+SolveResult solve_chain5_box() {
+  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
+  SolveOptions o;
+  std::tie(o.t1_max, o.t2_max) = fundamental_box(ModalForm(s));
+  o.threads = 1;
+  o.compute_return_error = false;
+  SolveResult r = solve(s, o);
+  EXPECT_EQ(r.status, SolveStatus::Success);
+  EXPECT_EQ(r.solutions.size(), 28u);
+  return r;
+}
+
 }  // namespace
 
 TEST(PaperChain5, EveryRootSolvesThePapersOwnEquations) {
@@ -168,14 +181,7 @@ TEST(Solver, CertifiedStepsStartTheirRootFromTheCurvesTangentAndBend) {
   // The certified trace's predictor for the next step's diagonal root is second order (the tangent -l2 / (l1 + l2) at
   // the step's start, the bend from the tangents of the last step), not the secant of the last step: the 5-dof chain's
   // fundamental box takes 59 593 evaluations instead of 65 659, for the same 28 SPPs and success.
-  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
-  SolveOptions o;
-  std::tie(o.t1_max, o.t2_max) = fundamental_box(ModalForm(s));
-  o.threads = 1;
-  o.compute_return_error = false;
-  const SolveResult r = solve(s, o);
-  EXPECT_EQ(r.status, SolveStatus::Success);
-  EXPECT_EQ(r.solutions.size(), 28u);
+  const SolveResult r = solve_chain5_box();
   EXPECT_LT(r.stats.evaluations, 62000);
 }
 
@@ -184,14 +190,7 @@ TEST(Solver, CertifiedStepsGrowSlowlyAfterASpectralProofSoFewTriesAreRefused) {
   // about every other time (each refusal a trace point and a full decomposition, no certified step). The 5-dof
   // chain's fundamental box took 59 593 evaluations, 10.1 per certified step; now 43 516, 7.2 per step, for the same
   // 28 SPPs and success.
-  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
-  SolveOptions o;
-  std::tie(o.t1_max, o.t2_max) = fundamental_box(ModalForm(s));
-  o.threads = 1;
-  o.compute_return_error = false;
-  const SolveResult r = solve(s, o);
-  EXPECT_EQ(r.status, SolveStatus::Success);
-  EXPECT_EQ(r.solutions.size(), 28u);
+  const SolveResult r = solve_chain5_box();
   EXPECT_LT(r.stats.evaluations, 50000);
   EXPECT_LT(static_cast<double>(r.stats.evaluations), 8.5 * static_cast<double>(r.stats.certified_steps));
 }
@@ -200,14 +199,7 @@ TEST(Solver, CertifiedTriesOnWhichNoBoundHoldsShrinkFourfold) {
   // A try on which neither the Weyl gap nor the spectral bounds held (mostly the first tries of a piece, from its whole
   // span) is shrunk to a quarter, not halved: the 5-dof chain's fundamental box took 43 516 evaluations; now 38 844,
   // for the same 28 SPPs and success.
-  const System s = chain(5, {1.0}, {1.0}, 4, ContactSide::Upper, 1.0);
-  SolveOptions o;
-  std::tie(o.t1_max, o.t2_max) = fundamental_box(ModalForm(s));
-  o.threads = 1;
-  o.compute_return_error = false;
-  const SolveResult r = solve(s, o);
-  EXPECT_EQ(r.status, SolveStatus::Success);
-  EXPECT_EQ(r.solutions.size(), 28u);
+  const SolveResult r = solve_chain5_box();
   EXPECT_LT(r.stats.evaluations, 41000);
 }
 
