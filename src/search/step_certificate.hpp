@@ -89,6 +89,8 @@ struct StepBox {
 /// bordered modes (which fix Gx), not on the step, so they are kept beside the eigenpairs (`ready` once formed).
 struct SpectralProducts {
   Eigen::MatrixXd Hp, HpG, GHpG;
+  /// Their entrywise absolute values, formed with them (every step from this point reads them).
+  Eigen::MatrixXd aHp, aHpG, aGHpG;
   bool ready = false;
   /// What |Hp E_box|_F needs at O(m^2) per step (structured_box_norm): the squared column norms of Hp and of Hp Gx,
   /// and Gx o (Hp Hp Gx) (entrywise product) with its absolute value. One m^3 product, formed by the first
