@@ -51,6 +51,11 @@ def _checked(ax=None, fig=None, where="ax"):
     from matplotlib.figure import FigureBase
     if ax is not None and not isinstance(ax, Axes):
         raise TypeError(f"{where}: expected matplotlib Axes (e.g. plt.subplots()[1]), got {type(ax).__name__}")
+    # polar and 3-D Axes (and the map projections) are Axes too, and took the curves as angles or on a z = 0 plane:
+    # nonsense drawn silently (issue 13)
+    if ax is not None and ax.name != "rectilinear":
+        raise TypeError(f"{where}: expected rectilinear (x-y) matplotlib Axes (e.g. plt.subplots()[1]), got "
+                        f"{type(ax).__name__} of projection {ax.name!r}")
     if fig is not None and not isinstance(fig, FigureBase):
         raise TypeError(f"fig: expected a matplotlib Figure or SubFigure (plt.figure(), fig.subfigures()), got "
                         f"{type(fig).__name__}")
@@ -209,6 +214,7 @@ def _two_panels(axes, fig):
     if axes is None:
         return None
     if isinstance(axes, Axes):
+        _checked(axes, where="spp_figure: ax")
         spec = getattr(axes, "get_subplotspec", lambda: None)()  # (add_axes and inset axes have none)
         if spec is None:
             raise ValueError("spp_figure: ax: expected a pair (top, bottom) of Axes or one Axes of a subplot grid "
@@ -346,6 +352,7 @@ def root_map_figure(system, solutions, window, points=400, path=None, ax=None, p
     KeyboardInterrupt, no figure drawn). The legend is outside the axes (below), so that it covers nothing.
     computed: a RootMap of this window already computed (spp.root_map(system, ...)), drawn as it is (points and
     progress unused): a notebook redraws without sampling again (a 20-dof box is a minute of evaluations)."""
+    _checked(ax, fig)  # (before the map is sampled)
     if uncertified is None:
         uncertified = getattr(window, "uncertified", None) or []
     w = _window(window)

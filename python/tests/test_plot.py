@@ -415,6 +415,30 @@ def test_every_figure_function_fills_a_subfigure_and_refuses_wrong_kinds(tmp_pat
     plt.close("all")
 
 
+# Issue 13: polar and 3-D Axes are Axes too: every figure function took them and drew nonsense (curves in t taken
+# as angles, or on a z = 0 plane). Refused, naming the argument and the projection, before any work (the root map
+# was sampled first).
+def test_polar_and_3d_axes_are_refused_naming_the_argument(monkeypatch):
+    import matplotlib.pyplot as plt
+    s, r = result()
+    sol = [x for x in r.solutions if x.admissible][0]
+    m = spp.modes(spp.two_dof(), k=1, energy_max=2.0)
+    monkeypatch.setattr(plot, "root_map", lambda *a, **k: pytest.fail("the root map was sampled"))
+    fig = plt.figure()
+    polar, three_d = fig.add_subplot(121, projection="polar"), fig.add_subplot(122, projection="3d")
+    for bad, name in ((polar, "polar"), (three_d, "3d")):
+        for draw, where in ((lambda a: plot.frequency_energy_figure(r.solutions, ax=a), "^ax: "),
+                            (lambda a: plot.multipliers_figure(r.solutions, ax=a), "^ax: "),
+                            (lambda a: plot.modes_figure(m, r.solutions, ax=a), "^ax: "),
+                            (lambda a: plot.root_map_figure(s, r.solutions, r, ax=a), "^ax: "),
+                            (lambda a: plot.spp_figure(s, sol, ax=a), "^spp_figure: ax: "),
+                            (lambda a: plot.spp_figure(s, sol, axes=(a, fig.add_subplot(223))), "^spp_figure: axes: ")):
+            with pytest.raises(TypeError, match=where + rf"expected rectilinear \(x-y\) matplotlib Axes .*got "
+                                                        rf"\w+ of projection '{name}'"):
+                draw(bad)
+    plt.close("all")
+
+
 # Issue 13 (attack): the root map's numbers were placed only on canvases that measure text (Agg); on a Figure()
 # made without pyplot (and svg/pdf canvases) every number stayed up right of its marker and overlapped.
 def test_root_map_numbers_are_placed_on_a_figure_without_an_agg_canvas():
