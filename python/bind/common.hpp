@@ -64,24 +64,34 @@ py::handle& outcome_class() {
   static py::handle cls;  // owned by the module (m.attr), never freed before it
   return cls;
 }
-// Every value of E is bound, enumerated from 0 until to_string gives no new name: an out-of-range value gives the
-// switch's fallback ("?", "unknown", "") or, in a two-way to_string (v == A ? "a" : "b"), a name already seen. The
-// result enums are contiguous from 0 and to_string names each (python/tests/test_modes.py lists every enum's
-// members). (Hand-written lists of the values drifted: ModeEventKind lacked grazing_continuation, so reading such an
-// event's kind raised a ValueError.)
+// Every value of E is bound: 0 .. value_count(E) - 1, the count declared next to E's to_string (found by ADL, in spp
+// or spp::modes). The names must be new and real (not the switch's fallback "?", "unknown", "") and the value past
+// the count must have none of its own: a count not updated with its enum fails the import (std::logic_error naming
+// the enum), never a value silently lost. (It stopped at the first name not new: a heuristic that lost
+// Verdict::Leaves and ContinuationStatus::Incomplete, whose two-way to_string names an out-of-range value; earlier,
+// hand-written lists drifted: ModeEventKind lacked grazing_continuation.)
 template <class E>
 void bind_outcome(py::module_& m, const char* name, const char* doc) {
   using U = std::underlying_type_t<E>;
-  constexpr U kLimit = 64;  // no result enum has as many values
+  constexpr int kCount = value_count(E{});
+  static_assert(kCount > 0, "value_count of a result enum");
+  const auto named = [](U i) { return std::string(to_string(static_cast<E>(i))); };
+  const auto fallback = [](const std::string& s) { return s.empty() || s == "?" || s == "unknown"; };
   std::vector<std::string> seen;
   py::list members;
-  for (U i = 0;; ++i) {
-    if (i == kLimit) throw std::logic_error(std::string("bind_outcome: ") + name + " has no end");
-    const std::string s = to_string(static_cast<E>(i));  // found by ADL, in spp or spp::modes
-    if (s.empty() || s == "?" || s == "unknown" || std::find(seen.begin(), seen.end(), s) != seen.end()) break;
+  for (U i = 0; i < static_cast<U>(kCount); ++i) {
+    const std::string s = named(i);
+    if (fallback(s) || std::find(seen.begin(), seen.end(), s) != seen.end())
+      throw std::logic_error(std::string("bind_outcome: ") + name + ": expected " + std::to_string(kCount) +
+                             " named values (value_count), got value " + std::to_string(i) + " named \"" + s + "\"");
     seen.push_back(s);
     members.append(py::make_tuple(s, s));
   }
+  if (const std::string past = named(static_cast<U>(kCount));
+      !fallback(past) && std::find(seen.begin(), seen.end(), past) == seen.end())
+    throw std::logic_error(std::string("bind_outcome: ") + name + ": expected " + std::to_string(kCount) +
+                           " values (value_count), got a value " + std::to_string(kCount) + " named \"" + past +
+                           "\": update value_count with the enum");
   py::object cls = py::module_::import("spp._outcome").attr("Outcome")(name, members, "module"_a = "spp");
   cls.attr("__doc__") = doc;
   m.attr(name) = cls;

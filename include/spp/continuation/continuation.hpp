@@ -68,6 +68,10 @@ enum class BranchEventKind {
   StabilityGained,      ///< and back (stability/floquet.hpp; axial branches with g0 != 0)
 };
 const char* to_string(BranchEventKind kind);
+/// Its values: 0 .. 9 (StabilityGained last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(BranchEventKind) {
+  return 10;
+}
 
 struct BranchPoint {
   double mu = 0.0, t1 = 0.0, t2 = 0.0, period = 0.0;
@@ -92,6 +96,10 @@ enum class MultiplierCrossing {
   ComplexPair,  ///< a conjugate pair through exp(+-i theta), 0 < theta < pi: Neimark-Sacker
 };
 const char* to_string(MultiplierCrossing c);
+/// Its values: 0 .. 3 (ComplexPair last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(MultiplierCrossing) {
+  return 4;
+}
 
 struct BranchEvent {
   BranchEventKind kind = BranchEventKind::Stalled;
@@ -117,6 +125,10 @@ struct Branch {
 /// fold or admissibility events), and every crossing of a seed value is one of solve()'s SPPs there.
 enum class ContinuationStatus { Success, Incomplete };
 const char* to_string(ContinuationStatus s);
+/// Its values: 0 .. 1 (Incomplete last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(ContinuationStatus) {
+  return 2;
+}
 
 struct ContinuationResult {
   ContinuationStatus status = ContinuationStatus::Success;

@@ -103,6 +103,10 @@ enum class ModeEventKind {
   Interrupted  ///< ModesOptions::progress stopped the tracing here (the family is not followed further)
 };
 const char* to_string(ModeEventKind kind);
+/// Its values: 0 .. 10 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(ModeEventKind) {
+  return 11;
+}
 
 struct ModeEvent {
   ModeEventKind kind = ModeEventKind::Stalled;
@@ -128,6 +132,10 @@ struct ModeFamily {
 /// chain that are not connected to them (they leave grazing orbits at multiples of their period). Hence not "success".
 enum class ModesStatus { NotRun, Traced, Incomplete };
 const char* to_string(ModesStatus s);
+/// Its values: 0 .. 2 (Incomplete last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(ModesStatus) {
+  return 3;
+}
 
 struct ModesResult {
   ModesStatus status = ModesStatus::NotRun;

@@ -92,7 +92,10 @@ enum class SolveStatus {
   Incomplete,  ///< a part of the window could not be certified: SolveResult::uncertified and the counted causes
 };
 const char* to_string(SolveStatus s);
-
+/// Its values: 0 .. 2 (Incomplete last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(SolveStatus) {
+  return 3;
+}
 
 struct SolveStats {
   int flight_pole_lines = 0, contact_pole_lines = 0;

@@ -48,6 +48,10 @@ enum class EventKind {
   Release        ///< the contact force would turn negative: free flight begins
 };
 const char* to_string(EventKind kind);
+/// Its values: 0 .. 2 (Release last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(EventKind) {
+  return 3;
+}
 
 struct Event {
   double t = 0.0;
@@ -72,6 +76,10 @@ enum class SimulationStatus {
   Interrupted  ///< SimulateOptions::progress returned false (samples end there)
 };
 const char* to_string(SimulationStatus status);
+/// Its values: 0 .. 4 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(SimulationStatus) {
+  return 5;
+}
 
 struct SimulationResult {
   SimulationStatus status = SimulationStatus::NotRun;

@@ -42,6 +42,10 @@ enum class Verdict {
   Leaves,   ///< the simulation departs from the orbit within the first period (departure_* say when and how)
 };
 const char* to_string(Verdict v);
+/// Its values: 0 .. 1 (Leaves last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(Verdict) {
+  return 2;
+}
 
 struct SppCheck {
   Solution spp;  ///< the SPP checked (verify's copy of it): its t1(), t2(), x0(), v0() and the solver's admissible()
@@ -76,6 +80,10 @@ struct SppCheck {
 /// 57 of 64 SPPs unchecked; found by an attack on issue 13).
 enum class VerifyStatus { Success, Inconsistent, Interrupted };
 const char* to_string(VerifyStatus s);
+/// Its values: 0 .. 2 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(VerifyStatus) {
+  return 3;
+}
 
 struct VerifyResult {
   VerifyStatus status = VerifyStatus::Success;

@@ -35,6 +35,10 @@ enum class StabilityVerdict {
   Neutral,
 };
 const char* to_string(StabilityVerdict v);
+/// Its values: 0 .. 4 (Neutral last), each bound by python/bind (bind_outcome). Update with the enum.
+constexpr int value_count(StabilityVerdict) {
+  return 5;
+}
 
 struct Floquet {
   /// All 2n multipliers of the monodromy, sorted by modulus (then argument): the two structural ones equal to 1
