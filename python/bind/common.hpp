@@ -6,9 +6,11 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -446,6 +448,18 @@ inline spp::Symmetry symmetry_of(const py::object& v) {
   detail::invalid("symmetry must be Symmetry.axial, Symmetry.point, \"axial\" or \"point\", got \"" + name + "\"");
 }
 
+// spp.Cancel: a flag any thread may set (cancel()) that every long call given it as cancel= checks where it checks
+// Ctrl-C. Ctrl-C reaches only a run on Python's main thread (CPython delivers signals there: PyErr_CheckSignals does
+// nothing on another thread), so a solve in a threading.Thread, a ThreadPoolExecutor, a Jupyter widget's callback
+// or a Dask worker could not be stopped at all (issue 13). Shared (a copy is the same flag): the run holds its own
+// reference, so the token may be dropped by its owner while the run goes on.
+struct Cancel {
+  std::shared_ptr<std::atomic<bool>> flag = std::make_shared<std::atomic<bool>>(false);
+};
+inline constexpr const char* kThreadRule =
+    " From a thread other than the main one Ctrl-C does not reach the run: pass cancel=spp.Cancel() and call its "
+    "cancel() from any thread (the run then stops as with Ctrl-C, keeping what it has done).";
+
 // A progress=... keyword of solve, nearest_spp or root_map (and the Ctrl-C check of continuation, modes, verify,
 // simulate and trajectory, built with py::none()) (None, True/False, a callable), called from the C++ run
 // (which holds no GIL: it is taken here) about every 0.2 s. Ctrl-C (KeyboardInterrupt) stops the run and keeps what was
@@ -454,8 +468,16 @@ inline spp::Symmetry symmetry_of(const py::object& v) {
 struct ProgressHook {
   py::object callable = py::none();
   bool call = false, text = false, interrupted = false, shown = false, late = false;
+  std::shared_ptr<std::atomic<bool>> token;  // cancel=spp.Cancel()'s flag (null: none given)
+  bool cancelled = false;                    // stopped by the token (not by Ctrl-C nor the callable)
 
-  ProgressHook(const py::object& progress, const std::string& where) : callable(progress) {
+  ProgressHook(const py::object& progress, const std::string& where, const py::object& cancel = py::none())
+      : callable(progress) {
+    if (!cancel.is_none()) {
+      if (!py::isinstance<Cancel>(cancel))
+        throw py::type_error(where + ": cancel must be an spp.Cancel or None, got " + typed_repr(cancel));
+      token = cancel.cast<const Cancel&>().flag;
+    }
     call = PyCallable_Check(progress.ptr()) != 0;
     // True/False/None (numpy's bool too) or a callable: anything else was taken for its truth (progress=5)
     if (!call && !progress.is_none() && !py::isinstance<py::bool_>(progress) &&
@@ -498,6 +520,10 @@ struct ProgressHook {
   // Ctrl-C seen (now or before: once stopped, a run stays stopped, whatever the later calls find)?
   bool signals_allow() {
     if (interrupted) return false;
+    if (token && token->load()) {
+      cancelled = interrupted = true;
+      return false;
+    }
     if (PyErr_CheckSignals() != 0) {
       if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
       PyErr_Clear();
@@ -525,22 +551,34 @@ struct ProgressHook {
       interrupted = true;
     }
   }
-  // The RuntimeWarning of an interrupted run (warnings turned into errors raise).
-  void warn(const std::string& message) const {
-    if (interrupted && PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0) throw py::error_already_set();
+  // What stopped the run, for its warning: "Ctrl-C" or "cancelled" (cancel=spp.Cancel()).
+  std::string cause() const { return cancelled ? "cancelled" : "Ctrl-C"; }
+  // The RuntimeWarning of an interrupted run (warnings turned into errors raise); "(Ctrl-C)" in the message names
+  // the cause (cause()).
+  void warn(std::string message) const {
+    if (!interrupted) return;
+    if (const size_t at = message.find("(Ctrl-C)"); cancelled && at != std::string::npos)
+      message.replace(at, 8, "(" + cause() + ")");
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) < 0) throw py::error_already_set();
   }
 };
 
-// progress is not a field of the options (a callable): taken out of the keywords first.
-inline py::object take_progress(const py::kwargs& fields, py::dict& rest) {
-  py::object progress = py::none();
+// progress and cancel are no fields of the options (a callable, a token): taken out of the keywords first.
+struct RunControl {
+  py::object progress = py::none(), cancel = py::none();
+};
+inline RunControl take_run_control(const py::kwargs& fields, py::dict& rest, bool with_progress = true) {
+  RunControl c;
   for (const auto& [key, value] : fields) {
-    if (py::str(key).cast<std::string>() == "progress")
-      progress = py::reinterpret_borrow<py::object>(value);
+    const std::string name = py::str(key);
+    if (with_progress && name == "progress")
+      c.progress = py::reinterpret_borrow<py::object>(value);
+    else if (name == "cancel")
+      c.cancel = py::reinterpret_borrow<py::object>(value);
     else
       rest[key] = value;
   }
-  return progress;
+  return c;
 }
 
 // One function per area (python/bind/<area>.cpp), called in this order by module.cpp: types before the functions

@@ -14,8 +14,9 @@ namespace {
 // The run with Ctrl-C checked at each branch point (and in the seed solves): stopped, it returns the branches traced
 // so far (status incomplete, interrupted) with a RuntimeWarning, as solve does.
 template <class Run>
-spp::ContinuationResult run_interruptible(const std::string& where, spp::ContinueOptions& o, Run run) {
-  ProgressHook hook(py::none(), where);
+spp::ContinuationResult run_interruptible(const std::string& where, const py::object& cancel, spp::ContinueOptions& o,
+                                          Run run) {
+  ProgressHook hook(py::none(), where, cancel);
   o.progress = [&hook] { return hook.keep_going(); };
   spp::ContinuationResult r;
   {
@@ -188,16 +189,22 @@ void bind_continuation(py::module_& m) {
          const py::kwargs& fields) {
         const auto t1_max = optional_argument<double>(t1_arg, "spp.continue_branches: argument t1_max");
         const auto t2_max = optional_argument<double>(t2_arg, "spp.continue_branches: argument t2_max");
-        spp::ContinueOptions o =
-            with_fields<spp::ContinueOptions>(options, fields, "continue_branches", "ContinueOptions");
+        py::dict rest;
+        const RunControl control = take_run_control(fields, rest, false);
+        spp::ContinueOptions o = with_fields<spp::ContinueOptions>(options, py::reinterpret_borrow<py::kwargs>(rest),
+                                                                   "continue_branches", "ContinueOptions");
         if (t1_max) o.t1_max = *t1_max;
         if (t2_max) o.t2_max = *t2_max;
         o.validate();
-        return run_interruptible("continue_branches", o, [&] { return spp::continue_branches(s, o); });
+        return run_interruptible("continue_branches", control.cancel, o, [&] { return spp::continue_branches(s, o); });
       },
       "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
-      "Every SPP of the window followed over the parameter's range: continue_branches(system, t1_max=3, t2_max=1, "
-      "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Raises ValueError.");
+      ("Every SPP of the window followed over the parameter's range: continue_branches(system, t1_max=3, t2_max=1, "
+       "seeds=9, ...), or with a ContinueOptions and any field also as a keyword. Ctrl-C or cancel=spp.Cancel() "
+       "stops it: the branches traced so far are returned (status incomplete, interrupted True) with a "
+       "RuntimeWarning." +
+       std::string(kThreadRule) + " Raises ValueError.")
+          .c_str());
   m.def(
       "continue_branch",
       [](const spp::ParametricSystem& s, const py::object& mu_arg, const spp::Solution& solution,
@@ -205,20 +212,25 @@ void bind_continuation(py::module_& m) {
         const double mu = scalar_argument<double>(mu_arg, "spp.continue_branch: argument mu");
         const auto t1_max = optional_argument<double>(t1_arg, "spp.continue_branch: argument t1_max");
         const auto t2_max = optional_argument<double>(t2_arg, "spp.continue_branch: argument t2_max");
-        spp::ContinueOptions o =
-            with_fields<spp::ContinueOptions>(options, fields, "continue_branch", "ContinueOptions");
+        py::dict rest;
+        const RunControl control = take_run_control(fields, rest, false);
+        spp::ContinueOptions o = with_fields<spp::ContinueOptions>(options, py::reinterpret_borrow<py::kwargs>(rest),
+                                                                   "continue_branch", "ContinueOptions");
         if (t1_max) o.t1_max = *t1_max;
         if (t2_max) o.t2_max = *t2_max;
         // the solution says which equations it solves, unless the caller said (then a mismatch is refused)
         if (options.is_none() && !fields.contains("symmetry")) o.symmetry = solution.orbit.symmetry;
         o.validate();
-        return run_interruptible("continue_branch", o, [&] { return spp::continue_branch(s, mu, solution, o); });
+        return run_interruptible("continue_branch", control.cancel, o,
+                                 [&] { return spp::continue_branch(s, mu, solution, o); });
       },
       "system"_a, "mu"_a, "solution"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
-      "The one branch through `solution`, an SPP of system.at(mu) (e.g. spp.solve(system.at(mu), ...).solutions[i]), "
-      "followed both ways over the parameter's range within the window t1 <= t1_max, t2 <= t2_max: "
-      "continue_branch(system, mu, solution, t1_max=3, t2_max=1). No seed solves: the branch's cost alone. Raises "
-      "ValueError when the solution is no SPP at mu.");
+      ("The one branch through `solution`, an SPP of system.at(mu) (e.g. spp.solve(system.at(mu), ...).solutions[i]), "
+       "followed both ways over the parameter's range within the window t1 <= t1_max, t2 <= t2_max: "
+       "continue_branch(system, mu, solution, t1_max=3, t2_max=1). No seed solves: the branch's cost alone. Ctrl-C "
+       "or cancel=spp.Cancel() stops it as continue_branches." +
+       std::string(kThreadRule) + " Raises ValueError when the solution is no SPP at mu.")
+          .c_str());
 }
 
 }  // namespace spp::python

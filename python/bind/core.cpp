@@ -12,6 +12,27 @@
 namespace spp::python {
 
 void bind_core(py::module_& m) {
+  // (bound here, first: every long call takes it, cancel=)
+  py::class_<Cancel>(m, "Cancel",
+                     (std::string("A cancel token for a long call (solve, nearest_spp, root_map, continue_branches, "
+                                  "continue_branch, verify, modes, trajectory, simulate): c = spp.Cancel(); pass "
+                                  "cancel=c; c.cancel() from any thread stops the run where Ctrl-C would, and it "
+                                  "returns what it has done, as after Ctrl-C, with a RuntimeWarning saying "
+                                  "'(cancelled)'. A cancelled token stops every later run given it at once, until "
+                                  "reset().") +
+                      kThreadRule)
+                         .c_str())
+      .def(py::init<>())
+      .def(
+          "cancel", [](const Cancel& c) { c.flag->store(true); },
+          "Stop the runs given this token (safe from any thread; they stop at their next check, within a second).")
+      .def(
+          "reset", [](const Cancel& c) { c.flag->store(false); }, "Clear the token, for another run.")
+      .def_property_readonly(
+          "cancelled", [](const Cancel& c) { return c.flag->load(); }, "whether cancel() was called (since reset())")
+      .def("__repr__", [](const Cancel& c) {
+        return std::string("<spp.Cancel ") + (c.flag->load() ? "cancelled" : "not cancelled") + ">";
+      });
   py::class_<spp::System>(m, "System", "M x'' + K x = w lambda, g = w^T x + g0 >= 0 (w stored unit-length)")
       .def(py::init([](const py::object& M, const py::object& K, const py::object& w, const py::object& g0,
                        const std::string& name) {

@@ -142,7 +142,8 @@ void bind_modes(py::module_& m) {
   m.def(
       "modes",
       [](const spp::System& s, const py::object& k, const py::object& energy_max, const py::object& max_step,
-         const py::object& branch_points, const py::object& multiples, const py::object& through_inadmissible) {
+         const py::object& branch_points, const py::object& multiples, const py::object& through_inadmissible,
+         const py::object& cancel) {
         md::ModesOptions o;
         o.k_values = k_values(k);
         o.energy_max = scalar_argument<double>(energy_max, "spp.modes: argument energy_max");
@@ -154,7 +155,7 @@ void bind_modes(py::module_& m) {
         o.validate();
         // Ctrl-C checked before each family point: stopped, the families traced so far are returned (status
         // incomplete, interrupted) with a RuntimeWarning, as solve does
-        ProgressHook hook(py::none(), "modes");
+        ProgressHook hook(py::none(), "modes", cancel);
         o.progress = [&hook] { return hook.keep_going(); };
         md::ModesResult r;
         {
@@ -168,15 +169,19 @@ void bind_modes(py::module_& m) {
         return r;
       },
       "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true, "multiples"_a = 1,
-      "through_inadmissible"_a = false,
-      "k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: the "
-      "impacts per period, an int from 1 to 40 or a sequence of them (list, tuple, range(1, 4)); energy_max: a "
-      "number > 0; multiples: J, an int from 1 to 100 (spp modes --multiples J): with k = 1, 1-IPP families also "
-      "from each mode's grazing orbit seen with period j times its own, j = 2..J (1: none; docs/modes.md §3); "
-      "through_inadmissible: follow each family through its inadmissible orbits to where it is admissible again "
-      "(spp modes --through-inadmissible; a new family there, event admissibility_regained). "
-      "Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and ValueError for a "
-      "value out of range.");
+      "through_inadmissible"_a = false, "cancel"_a = py::none(),
+      ("k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: the "
+       "impacts per period, an int from 1 to 40 or a sequence of them (list, tuple, range(1, 4)); energy_max: a "
+       "number > 0; multiples: J, an int from 1 to 100 (spp modes --multiples J): with k = 1, 1-IPP families also "
+       "from each mode's grazing orbit seen with period j times its own, j = 2..J (1: none; docs/modes.md §3); "
+       "through_inadmissible: follow each family through its inadmissible orbits to where it is admissible again "
+       "(spp modes --through-inadmissible; a new family there, event admissibility_regained). "
+       "Ctrl-C or cancel=spp.Cancel() stops it: the families traced so far are returned (status incomplete, "
+       "interrupted True) with a RuntimeWarning." +
+       std::string(kThreadRule) +
+       " Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and ValueError for a "
+       "value out of range.")
+          .c_str());
 }
 
 }  // namespace spp::python

@@ -17,8 +17,10 @@ namespace {
 // Ctrl-C is checked between them: every kSamplesPerCheck samples, or every one for large systems, about every 1e6
 // flops (well under a millisecond; a sample costs ~ m^2 + n m). Cut short when it is pressed: the samples computed
 // (the first rows) are returned, the count in `done`.
-spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int samples, ProgressHook& hook,
-                          int& done) {
+// With `times` (not empty), the samples are at those times instead (from contact onset, any real: the orbit is
+// periodic, each is taken modulo the period), e.g. an animation's frame times, exact between the uniform samples.
+spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int samples, ProgressHook& hook, int& done,
+                          const Eigen::VectorXd& times) {
   constexpr double kFlopsPerCheck = 1e6;
   constexpr double kSamplesPerCheck = 1024;
   const double per_sample = static_cast<double>(md.m()) * static_cast<double>(md.m() + md.n()) + 1.0;
@@ -30,8 +32,9 @@ spp::OrbitSamples sampled(const spp::ModalForm& md, const spp::Orbit& orbit, int
   for (int k = 0; k < samples; ++k) {
     if (k % every == 0 && !hook.keep_going()) break;
     done = k + 1;
-    s.t(k) = T * k / (samples - 1);
-    const spp::OrbitState st = spp::orbit_state(md, orbit, s.t(k));
+    s.t(k) = times.size() > 0 ? times(k) : T * k / (samples - 1);
+    const spp::OrbitState st =
+        spp::orbit_state(md, orbit, times.size() > 0 ? s.t(k) - T * std::floor(s.t(k) / T) : s.t(k));
     s.x.row(k) = st.x.transpose();
     s.v.row(k) = st.v.transpose();
     s.gap(k) = st.gap;
@@ -104,9 +107,20 @@ void bind_orbit(py::module_& m) {
 
   m.def(
       "trajectory",
-      [](const spp::System& s, const py::object& t1_arg, const py::object& t2_arg, const py::object& samples_arg) {
+      [](const spp::System& s, const py::object& t1_arg, const py::object& t2_arg, const py::object& samples_arg,
+         const py::object& cancel, const py::object& times_arg) {
         const double t1 = scalar_argument<double>(t1_arg, "spp.trajectory: argument t1"),
                      t2 = scalar_argument<double>(t2_arg, "spp.trajectory: argument t2");
+        Eigen::VectorXd times;
+        if (!times_arg.is_none()) {
+          times = array_of_numbers(times_arg, "trajectory: times", 1);
+          if (times.size() == 0 || !times.allFinite())
+            detail::invalid("trajectory: times must be a non-empty vector of finite numbers, got " +
+                            std::to_string(times.size()) + " value(s)" + (times.allFinite() ? "" : " not all finite"));
+          if (times.size() > max_samples(s.n()))
+            detail::invalid("trajectory: expected at most " + std::to_string(max_samples(s.n())) +
+                            " times (samples x (2n + 3) at most 1e8 values), got " + std::to_string(times.size()));
+        }
         // taken as any Python integer (an int parameter made samples=10**12 a signature mismatch, "incompatible
         // function arguments"; found by an independent attack): its range is said instead
         if (py::isinstance<py::bool_>(samples_arg))
@@ -127,12 +141,12 @@ void bind_orbit(py::module_& m) {
                           " (samples x (2n + 3) at most 1e8 values, 800 MB, for n = " + std::to_string(s.n()) +
                           "), got " + shown + ": out of range");
         }
-        const int samples = whole.cast<int>();
+        const int samples = times.size() > 0 ? static_cast<int>(times.size()) : whole.cast<int>();
         // Ctrl-C checked while sampling (a million samples of a large system take seconds; it was not checked at
         // all, found by an independent attack) and after each stage. During the sampling, the samples computed so
         // far are returned (interrupted True, a RuntimeWarning), as solve keeps what it found; before it (the modal
         // form, Newton) there is nothing to keep: KeyboardInterrupt.
-        ProgressHook hook(py::none(), "trajectory");
+        ProgressHook hook(py::none(), "trajectory", cancel);
         spp::SolutionAt at;
         spp::OrbitSamples os;
         int done = 0;
@@ -144,7 +158,7 @@ void bind_orbit(py::module_& m) {
           o.compute_return_error = false;
           if (hook.keep_going()) at = spp::solution_at(s, md, t1, t2, o);
           before_sampling = !hook.keep_going();
-          if (at.found && !before_sampling) os = sampled(md, at.solution.orbit, samples, hook, done);
+          if (at.found && !before_sampling) os = sampled(md, at.solution.orbit, samples, hook, done, times);
         }
         if (before_sampling) hook.raise_if_interrupted();
         hook.finish();
@@ -159,13 +173,17 @@ void bind_orbit(py::module_& m) {
                         "force"_a = Eigen::VectorXd(os.force.head(done)), "t1"_a = sol.t1(), "t2"_a = sol.t2(),
                         "period"_a = sol.orbit.period(), "admissible"_a = sol.admissible(), "interrupted"_a = cut);
       },
-      "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001,
-      "One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
-      "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
-      "admissible, and interrupted (Ctrl-C during the sampling: the samples so far, with a RuntimeWarning; before it, "
-      "KeyboardInterrupt). Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 "
-      "somewhere). "
-      "Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.");
+      "system"_a, "t1"_a, "t2"_a, "samples"_a = 1001, "cancel"_a = py::none(), "times"_a = py::none(),
+      ("One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
+       "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
+       "admissible, and interrupted (Ctrl-C during the sampling: the samples so far, with a RuntimeWarning; before it, "
+       "KeyboardInterrupt). Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 "
+       "somewhere). "
+       "times=[...]: the rows at those times instead (from contact onset, any real, taken modulo the period; "
+       "samples is then ignored), exact at any time (an animation's frames). cancel=spp.Cancel() stops it as Ctrl-C "
+       "does." +
+       std::string(kThreadRule) + " Raises ValueError when no SPP is within 1e-3 (t1 + t2) of the point.")
+          .c_str());
 }
 
 }  // namespace spp::python

@@ -178,10 +178,10 @@ void bind_search(py::module_& m) {
       "solve",
       [solve_options](const spp::System& s, const py::object& options, const py::kwargs& fields) {
         py::dict rest;
-        const py::object progress = take_progress(fields, rest);
+        const RunControl control = take_run_control(fields, rest);
         spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "solve");
         o.validate();
-        ProgressHook hook(progress, "solve");
+        ProgressHook hook(control.progress, "solve", control.cancel);
         o.progress = [&hook](const spp::SolveProgress& p) { return hook(p); };
         spp::SolveResult r;
         {
@@ -200,13 +200,15 @@ void bind_search(py::module_& m) {
         return result;
       },
       "system"_a, "options"_a = py::none(),
-      "Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
-      "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
-      "potential SPPs of paper §6.2; certify_steps=False: the faster midpoint check, a heuristic, status incomplete). "
-      "progress=True prints the cells traced on "
-      "stderr; progress=f calls f(SolveProgress) every 0.2 s (returning False stops the search). Ctrl-C stops it "
-      "too: the result then holds what was found (status incomplete, stats['unsearched_cells'] > 0) and a "
-      "RuntimeWarning says so. Raises ValueError.");
+      ("Every SPP with t1 in (t1_min, t1_max], t2 in (t2_min, t2_max]: solve(system, t1_max=12, t2_max=12), or "
+       "solve(system, SolveOptions) with any field also given as a keyword (symmetry=\"point\": the point-symmetric "
+       "potential SPPs of paper §6.2; certify_steps=False: the faster midpoint check, a heuristic, status incomplete). "
+       "progress=True prints the cells traced on "
+       "stderr; progress=f calls f(SolveProgress) every 0.2 s (returning False stops the search). Ctrl-C stops it "
+       "too, and so does cancel=spp.Cancel() once its cancel() is called (from any thread): the result then holds "
+       "what was found (status incomplete, stats['unsearched_cells'] > 0) and a RuntimeWarning says so." +
+       std::string(kThreadRule) + " Raises ValueError.")
+          .c_str());
 
   py::class_<spp::SolutionAt>(m, "SolutionAt",
                               "Result of solution_at: the SPP Newton reached from a point, or where it ended")
@@ -293,9 +295,9 @@ void bind_search(py::module_& m) {
                      t2 = scalar_argument<double>(t2_arg, "spp.nearest_spp: argument t2"),
                      radius = scalar_argument<double>(radius_arg, "spp.nearest_spp: argument radius");
         py::dict rest;
-        const py::object progress = take_progress(fields, rest);
+        const RunControl control = take_run_control(fields, rest);
         spp::SolveOptions o = solve_options(options, py::reinterpret_borrow<py::kwargs>(rest), "nearest_spp");
-        ProgressHook hook(progress, "nearest_spp");
+        ProgressHook hook(control.progress, "nearest_spp", control.cancel);
         o.progress = [&hook](const spp::SolveProgress& p) { return hook(p); };
         spp::NearestSpp r;
         {
@@ -310,11 +312,13 @@ void bind_search(py::module_& m) {
         return r;
       },
       "system"_a, "t1"_a, "t2"_a, "radius"_a = 0.05, "options"_a = py::none(),
-      "The SPP nearest to a guess (t1, t2), e.g. read off the root map: the complete solver on the window "
-      "(t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the nearest root. "
-      "found is False when that window holds none. progress=True|f as for solve (f(SolveProgress) returning False "
-      "stops the search: search_status is then incomplete); Ctrl-C stops it too, keeping what was found, with a "
-      "RuntimeWarning. Raises ValueError.");
+      ("The SPP nearest to a guess (t1, t2), e.g. read off the root map: the complete solver on the window "
+       "(t1 (1 - radius), t1 (1 + radius)] x (t2 (1 - radius), t2 (1 + radius)], then the nearest root. "
+       "found is False when that window holds none. progress=True|f as for solve (f(SolveProgress) returning False "
+       "stops the search: search_status is then incomplete); Ctrl-C or cancel=spp.Cancel() stops it too, keeping "
+       "what was found, with a RuntimeWarning." +
+       std::string(kThreadRule) + " Raises ValueError.")
+          .c_str());
 
   py::class_<spp::RootMapCell>(m, "RootMapCell", "One rectangle between pole lines, sampled on its own grid")
       .def_readonly("t1", &spp::RootMapCell::t1, "(n1,) ascending")
@@ -374,13 +378,13 @@ void bind_search(py::module_& m) {
       [](const spp::System& s, std::optional<double> t1_max, std::optional<double> t2_max, const py::object& options,
          const py::kwargs& fields) {
         py::dict rest;
-        const py::object progress = take_progress(fields, rest);
+        const RunControl control = take_run_control(fields, rest);
         spp::RootMapOptions o = with_fields<spp::RootMapOptions>(options, py::reinterpret_borrow<py::kwargs>(rest),
                                                                  "root_map", "RootMapOptions");
         if (t1_max) o.t1_max = *t1_max;
         if (t2_max) o.t2_max = *t2_max;
         o.validate();
-        ProgressHook hook(progress, "root_map");
+        ProgressHook hook(control.progress, "root_map", control.cancel);
         o.progress = [&hook](const spp::RootMapProgress& p) { return hook(p); };
         spp::RootMap r;
         {
@@ -395,11 +399,13 @@ void bind_search(py::module_& m) {
         return r;
       },
       "system"_a, "t1_max"_a = py::none(), "t2_max"_a = py::none(), "options"_a = py::none(),
-      "Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4): "
-      "root_map(system, t1_max, t2_max, t1_points=400, ...) or root_map(system, options=RootMapOptions) with any "
-      "field also as a keyword. progress=True prints the cells sampled on stderr; progress=f calls f(RootMapProgress) "
-      "every 0.2 s (returning False stops the map: it holds the cells sampled, unsampled_cells counts the others). "
-      "Ctrl-C stops it too, keeping those cells, with a RuntimeWarning. Raises ValueError.");
+      ("Both conditions of the SPP equations sampled cell by cell over the window (root maps, Fig. 4): "
+       "root_map(system, t1_max, t2_max, t1_points=400, ...) or root_map(system, options=RootMapOptions) with any "
+       "field also as a keyword. progress=True prints the cells sampled on stderr; progress=f calls f(RootMapProgress) "
+       "every 0.2 s (returning False stops the map: it holds the cells sampled, unsampled_cells counts the others). "
+       "Ctrl-C or cancel=spp.Cancel() stops it too, keeping those cells, with a RuntimeWarning." +
+       std::string(kThreadRule) + " Raises ValueError.")
+          .c_str());
 }
 
 }  // namespace spp::python

@@ -110,7 +110,10 @@ void bind_simulation(py::module_& m) {
         // (a ragged or 2-D list named with the shape expected, not pybind11's cast failure)
         const Eigen::VectorXd x0 = array_of_numbers(x0_arg, "simulate: x0", 1);
         const Eigen::VectorXd v0 = array_of_numbers(v0_arg, "simulate: v0", 1);
-        spp::SimulateOptions o = with_fields<spp::SimulateOptions>(options, fields, "simulate", "SimulateOptions");
+        py::dict rest;
+        const RunControl control = take_run_control(fields, rest, false);
+        spp::SimulateOptions o = with_fields<spp::SimulateOptions>(options, py::reinterpret_borrow<py::kwargs>(rest),
+                                                                   "simulate", "SimulateOptions");
         if (duration) o.duration = *duration;
         if (restitution) o.restitution = *restitution;
         o.validate();
@@ -132,7 +135,7 @@ void bind_simulation(py::module_& m) {
         // Ctrl-C checked every 256 events or samples: the run stops there and what was simulated is returned
         // (status interrupted, samples and events up to that time) with a RuntimeWarning, as solve keeps what it
         // found (it raised KeyboardInterrupt, losing a long simulation)
-        ProgressHook hook(py::none(), "simulate");
+        ProgressHook hook(py::none(), "simulate", control.cancel);
         o.progress = [&hook] { return hook.keep_going(); };
         spp::SimulationResult r;
         {
@@ -151,10 +154,12 @@ void bind_simulation(py::module_& m) {
       },
       "system"_a, "x0"_a, "v0"_a, "duration"_a = py::none(), "restitution"_a = py::none(), "samples_per_unit"_a = 100.0,
       "options"_a = py::none(),
-      "Exact event-driven simulation from (x0, v0), shapes (n,): simulate(system, x0, v0, duration, restitution=0, "
-      "samples_per_unit=100), or with a SimulateOptions and any field also as a keyword (sample_times=[...] replaces "
-      "the uniform samples). Ctrl-C stops it: the samples and events so far are returned (status interrupted) with a "
-      "RuntimeWarning. Raises ValueError.");
+      (std::string("Exact event-driven simulation from (x0, v0), shapes (n,): simulate(system, x0, v0, duration, "
+                   "restitution=0, samples_per_unit=100), or with a SimulateOptions and any field also as a keyword "
+                   "(sample_times=[...] replaces the uniform samples). Ctrl-C or cancel=spp.Cancel() stops it: the "
+                   "samples and events so far are returned (status interrupted) with a RuntimeWarning.") +
+       kThreadRule + " Raises ValueError.")
+          .c_str());
 
   py::class_<spp::SppCheck>(m, "SppCheck")
       .def_property_readonly("t1", [](const spp::SppCheck& c) { return c.spp.t1(); })
@@ -230,7 +235,10 @@ void bind_simulation(py::module_& m) {
   m.def(
       "verify",
       [](const spp::System& s, const py::object& result, const py::object& options, const py::kwargs& fields) {
-        spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, fields, "verify", "VerifyOptions");
+        py::dict rest;
+        const RunControl control = take_run_control(fields, rest, false);
+        spp::VerifyOptions o = with_fields<spp::VerifyOptions>(options, py::reinterpret_borrow<py::kwargs>(rest),
+                                                               "verify", "VerifyOptions");
         o.validate();
         if (!py::isinstance<spp::SolveResult>(result))
           detail::invalid("verify: result must be a SolveResult (of solve() or load_result()), got " +
@@ -245,7 +253,7 @@ void bind_simulation(py::module_& m) {
               "expected the system of the result, got another");
         // Ctrl-C checked before each SPP and every 256 events: the SPPs checked before it are returned (unchecked
         // counts the others) with a RuntimeWarning, as solve keeps what it found (it raised KeyboardInterrupt)
-        ProgressHook hook(py::none(), "verify");
+        ProgressHook hook(py::none(), "verify", control.cancel);
         o.progress = [&hook] { return hook.keep_going(); };
         spp::VerifyResult v;
         {
@@ -261,10 +269,13 @@ void bind_simulation(py::module_& m) {
         return v;
       },
       "system"_a, "result"_a, "options"_a = py::none(),
-      "Re-simulates every solution of a solve() result: verify(system, result, periods=3, perturbation=1e-6, ...), "
-      "or with a VerifyOptions and any field also as a keyword. Ctrl-C stops it: the SPPs checked so far are returned "
-      "(unchecked > 0 counts the others) with a RuntimeWarning. Raises ValueError (also for a result solved for "
-      "another system than `system`).");
+      (std::string("Re-simulates every solution of a solve() result: verify(system, result, periods=3, "
+                   "perturbation=1e-6, ...), "
+                   "or with a VerifyOptions and any field also as a keyword. Ctrl-C or cancel=spp.Cancel() stops "
+                   "it: the SPPs checked so far are returned (unchecked > 0 counts the others) with a "
+                   "RuntimeWarning.") +
+       kThreadRule + " Raises ValueError (also for a result solved for another system than `system`).")
+          .c_str());
 }
 
 }  // namespace spp::python

@@ -7,6 +7,7 @@ RootMapOptions, ContinueOptions) or any of its fields as keywords; options and r
 invalid input raises ValueError with the C++ message.
 """
 from ._spp import __version__
+from ._spp import Cancel  # cancel= of every long call: stops it from any thread
 from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, ContinuationResult, ContinuationStatus,
                    ContinueOptions, Event, EventKind, NearestSpp, ParametricSystem, RootMap, RootMapCell,
                    RootMapOptions, RootMapProgress, SimulateOptions, SimulationResult, SimulationStatus, Solution, SolveOptions,
@@ -105,4 +106,4 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "BranchPoint", "ContinuationResult", "continue_branch", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
            "ContinuationStatus", "BranchEventKind", "monodromy", "StabilityVerdict", "MultiplierCrossing", "modes", "ModesResult", "ModeFamily",
-           "ModePoint", "ModeEvent", "ModeEventKind", "ModesStatus", "sweep", "solution_at", "SolutionAt", "__version__"]
+           "ModePoint", "ModeEvent", "ModeEventKind", "ModesStatus", "sweep", "solution_at", "SolutionAt", "Cancel", "__version__"]

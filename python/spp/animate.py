@@ -28,6 +28,7 @@ from matplotlib import animation
 
 from ._files import atomic_path
 from . import plot as _plot
+from . import _spp
 
 LAYOUTS = ("auto", "chain", "plane", "dofs", "fe")
 FIGSIZE_IN = (6.4, 4.8)  # every frame
@@ -381,6 +382,27 @@ class _Fe:
         return [self.cloud]
 
 
+def _frame_states(system, spp, times):
+    """Positions (frames x n) and contact forces (frames,) at `times` (from contact onset, any real), exact: the SPP's
+    own equations at those times (spp.trajectory(times=...)), or for a zero-gap SPP (g0 = 0, see
+    spp.plot._one_period) the exact simulator sampled at those times modulo the period."""
+    import warnings
+    T = spp.period
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the interrupted run's warning: raised below instead
+        if system.g0 != 0.0:
+            tr = _spp.trajectory(system, spp.t1, spp.t2, times=times)
+            if tr["interrupted"]:
+                raise KeyboardInterrupt(f"trajectory interrupted: {len(tr['t'])} of {len(times)} frames")
+            return tr["x"], tr["force"]
+        phase = np.mod(times, T)
+        sim = _spp.simulate(system, spp.x0, spp.v0, T, 0.0, sample_times=np.sort(phase), sample_events=False)
+    if sim.status == "interrupted":
+        raise KeyboardInterrupt("simulation interrupted")
+    at = np.searchsorted(sim.t, phase)  # (its rows: t = 0, the times asked for, t = T)
+    return sim.x[at], sim.force[at]
+
+
 def _figure(system, spp, frames, periods, kind, fig=None, fe_layout=None):
     """The animation's figure, its frame function and frame count: one period of the SPP from spp.plot's
     _one_period (the SPP's own equations), on the static figure's time axis [-2 t1, 2 t2] (flight before contact),
@@ -398,7 +420,8 @@ def _figure(system, spp, frames, periods, kind, fig=None, fe_layout=None):
         t = np.concatenate([t + k * T for k in range(periods)])
         x, gap, force = (np.concatenate([a] * periods) for a in (x, gap, force))
     times = -2 * t1 + np.arange(count) * (T / frames)
-    at = np.clip(np.searchsorted(t, times), 0, len(t) - 1)
+    # each frame's state exactly at its time (the nearest sample was off by up to half a sample: issue 13)
+    frame_x, frame_force = _frame_states(system, spp, times)
 
     if fig is None:
         fig = plt.figure(figsize=FIGSIZE_IN)
@@ -440,7 +463,7 @@ def _figure(system, spp, frames, periods, kind, fig=None, fe_layout=None):
     handles = hist.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
     hist.legend(handles=handles, fontsize=6, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=len(handles),
                 frameon=False, borderaxespad=0.1)
-    cursor = hist.axvline(t[at[0]], color="k", lw=1)
+    cursor = hist.axvline(times[0], color="k", lw=1)
     if spp.admissible:
         title = f"SPP $t_1$ = {spp.t1:.5g}, $t_2$ = {spp.t2:.5g}, $T$ = {T:.5g} (admissible)"
     else:  # what is shown is not a motion of the system: said in the title
@@ -450,9 +473,8 @@ def _figure(system, spp, frames, periods, kind, fig=None, fe_layout=None):
     fig.tight_layout()
 
     def update(k):
-        i = at[k]
-        cursor.set_xdata([t[i], t[i]])
-        return [cursor, *scene.draw(x[i], force[i])]
+        cursor.set_xdata([times[k], times[k]])
+        return [cursor, *scene.draw(frame_x[k], frame_force[k])]
 
     return fig, update, count
 

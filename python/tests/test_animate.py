@@ -112,6 +112,44 @@ def test_inadmissible_spp_is_animated_as_its_potential_orbit_on_the_figures_time
     animate.animate(s, sol, tmp_path / "i.gif", frames=4, dpi=40)
 
 
+# Issue 13: each frame showed the sample nearest its time (2000 a period: off by up to half a sample, ~1e-3 of the
+# motion); the frames are now the exact states at their times (spp.trajectory(times=...), the SPP's own flows), at
+# any fps. A frame between samples matches the exact simulator started at the SPP's onset state.
+@pytest.mark.parametrize("g0_zero", [False, True])
+def test_frames_are_the_exact_states_at_their_times(g0_zero):
+    import matplotlib.pyplot as plt
+    if g0_zero:  # a zero-gap SPP (paper 6.1): drawn from the simulator (trajectory cannot re-solve it)
+        ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+        closure = spp.continue_branches(ps, t1_max=3, t2_max=1).gap_closures()[0]
+        s, sol = ps.at(closure.mu), closure
+    else:
+        s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+        sol = first_admissible(s, 12, 12)
+    frames = 7
+    fig, update, count = animate._figure(s, sol, frames=frames, periods=1, kind="dofs")
+    try:
+        T = sol.period
+        for k in (1, 3, 6):
+            artists = update(k)
+            cursor, tops = artists[0], artists[-1]
+            time = -2 * sol.t1 + k * T / frames
+            assert cursor.get_xdata()[0] == pytest.approx(time, abs=1e-12)
+            ref = spp.simulate(s, sol.x0, sol.v0, T, 0.0, sample_times=[np.mod(time, T)], sample_events=False)
+            exact = ref.x[np.searchsorted(ref.t, np.mod(time, T))]
+            shown = np.asarray(tops.get_ydata(), dtype=float)
+            assert np.abs(shown - exact).max() <= 1e-10 * max(np.abs(exact).max(), 1.0), (k, shown - exact)
+    finally:
+        plt.close(fig)
+    if not g0_zero:  # trajectory(times=): the uniform samples at their times, any time modulo the period
+        tr = spp.trajectory(s, sol.t1, sol.t2, 11)
+        at = spp.trajectory(s, sol.t1, sol.t2, times=np.r_[tr["t"][3], tr["t"][3] + 2 * tr["period"], -tr["t"][7]])
+        assert np.allclose(at["x"][0], tr["x"][3], rtol=0, atol=1e-12) and np.allclose(at["x"][1], tr["x"][3], atol=1e-9)
+        assert np.allclose(at["x"][2], tr["x"][3], rtol=0, atol=1e-9)  # -7 T / 10 is 3 T / 10, a period on
+        assert list(at["t"]) == [tr["t"][3], tr["t"][3] + 2 * tr["period"], -tr["t"][7]]
+        with pytest.raises(ValueError, match="trajectory: times must be a non-empty vector of finite numbers"):
+            spp.trajectory(s, sol.t1, sol.t2, times=[np.nan])
+
+
 # Found by the same attack: the docs' GIFs were 384 x 288 (dpi 60), their text unreadable.
 def test_docs_gifs_are_web_sized_and_small():
     for name in ("chain5_spp1.gif", "rod4_spp.gif"):

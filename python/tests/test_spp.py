@@ -843,6 +843,87 @@ def test_ctrl_c_inside_a_slow_progress_callback_keeps_the_partial_result():
     assert secs < 15, secs
 
 
+# Issue 13: a run on a thread other than the main one (threading.Thread, a ThreadPoolExecutor, a Jupyter widget's
+# callback, a Dask worker) never sees Ctrl-C (CPython delivers signals to the main thread only), so it could not be
+# stopped at all. cancel=spp.Cancel(): its cancel(), called from any thread, stops the run where Ctrl-C would, and the
+# run returns what it has done, as after Ctrl-C, with a RuntimeWarning saying "(cancelled)".
+def test_cancel_from_another_thread_stops_a_solve_in_a_worker_thread():
+    import concurrent.futures
+    import threading
+    import warnings
+    s = spp.chain(20)
+    t1, t2 = spp.fundamental_box(s)
+    c = spp.Cancel()
+    started = threading.Event()
+
+    def run():
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter("always")
+            r = spp.solve(s, t1_max=t1, t2_max=t2, cancel=c, progress=lambda p: started.set())
+        return r, [str(x.message) for x in w]
+
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        future = pool.submit(run)
+        assert started.wait(120)  # (the solve is running: it has reported once)
+        assert not c.cancelled
+        c.cancel()
+        r, messages = future.result(timeout=120)  # (a guard against a hang, not a measure)
+    assert c.cancelled and repr(c) == "<spp.Cancel cancelled>"
+    assert r.status == "incomplete" and r.stats["unsearched_cells"] > 0
+    assert any("solve interrupted (cancelled)" in m for m in messages), messages
+    c.reset()
+    assert not c.cancelled
+
+
+def test_cancel_stops_every_long_call_keeping_what_it_did():
+    import warnings
+    s, r = _chain5_result()
+    ps = spp.ParametricSystem.from_json(os.path.join(SRC, "examples", "two_dof_zero_gap.json"))
+    c = spp.Cancel()
+    c.cancel()  # (cancelled before the run: each stops at its first check)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        solved = spp.solve(s, t1_max=12, t2_max=12, cancel=c)
+        s20 = spp.chain(20)  # (a search long enough to report: the token is checked at each report, every 0.2 s)
+        box = spp.fundamental_box(s20)
+        near = spp.nearest_spp(s20, box[0] / 2, box[1] / 2, radius=0.9, cancel=c)
+        rm = spp.root_map(s, 12, 12, cancel=c)
+        cont = spp.continue_branches(ps, t1_max=3, t2_max=1, cancel=c)
+        gapped = spp.ParametricSystem(np.eye(2), np.zeros((0, 0)), np.array([[1.0, 0], [0, 0]]),
+                                      np.array([[1.0, -1], [-1, 1]]), np.array([0.0, -1]), np.zeros(0), 1.0, "k2",
+                                      1.0, 10.0)  # (g0 = 1: continue_branch's own case)
+        one = spp.continue_branch(gapped, 4.9, spp.solve(gapped.at(4.9), t1_max=8, t2_max=3).solutions[0],
+                                  t1_max=8, t2_max=3, cancel=c)
+        v = spp.verify(s, r, cancel=c)
+        mo = spp.modes(s, k=1, energy_max=5, cancel=c)
+        sim = spp.simulate(s, np.zeros(5), np.ones(5), 100.0, cancel=c)
+    assert solved.status == "incomplete" and solved.stats["unsearched_cells"] > 0
+    assert near.search_status == "incomplete"
+    assert rm.unsampled_cells > 0
+    assert cont.status == "incomplete" and cont.interrupted and one.interrupted
+    assert v.status == "interrupted" and v.unchecked == len(r.solutions)
+    assert mo.status == "incomplete" and mo.interrupted
+    assert sim.status == "interrupted"
+    messages = [str(x.message) for x in w]
+    for name in ("solve", "nearest_spp", "root_map", "continue_branches", "continue_branch", "verify", "modes",
+                 "simulate"):
+        assert any(m.startswith(name + " interrupted (cancelled)") for m in messages), (name, messages)
+    with pytest.raises(KeyboardInterrupt):  # before its samples, nothing to keep: as Ctrl-C there
+        spp.trajectory(s, r.solutions[0].t1, r.solutions[0].t2, cancel=c)
+    c.reset()  # the same token, reset: runs to the end
+    assert spp.simulate(s, np.zeros(5), np.ones(5), 10.0, cancel=c).status == "success"
+    assert not spp.trajectory(s, r.solutions[0].t1, r.solutions[0].t2, 11, cancel=c)["interrupted"]
+    with pytest.raises(TypeError, match=r"solve: cancel must be an spp.Cancel or None, got bool True"):
+        spp.solve(s, t1_max=12, t2_max=12, cancel=True)
+    with pytest.raises(TypeError, match=r"modes: cancel must be an spp.Cancel or None, got"):
+        spp.modes(s, k=1, energy_max=5, cancel=threading_event())
+
+
+def threading_event():
+    import threading
+    return threading.Event()
+
+
 # Found by the same attack: Solution could not be pickled (a multiprocessing Pool returning Solutions failed), and
 # neither could, nor did show themselves, the other result types.
 def _same_fields(a, b, names):
