@@ -182,6 +182,8 @@ int run(const ReduceArgs& a) {
     std::cout << "wrote " << out_name(a.out, results[i].modes, several) << "\n";
     if (!a.layout.empty()) {
       layout.basis = results[i].expansion;
+      // (a layout of another reduced model with as many dofs is then refused where it is drawn: animate --fe-layout)
+      layout.fingerprint = model_fingerprint(*results[i].reduced);
       const std::string name = layout_name(out_name(a.out, results[i].modes, several));
       write_file_atomic(name, fe_layout_json(layout));
       std::cout << "wrote " << name << " (" << layout.dofs.size() << " dofs of the model for python3 -m spp animate "

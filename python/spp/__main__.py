@@ -124,8 +124,10 @@ def _animate(a):
         raise ValueError(f"--solution {a.solution}: {a.result} has {len(spps)} solutions (0..{len(spps) - 1})")
     else:
         k = a.solution
+    # (read here to name the result file when the layout is not one of its system)
+    fe_layout = animate.FeLayout.read(a.fe_layout, system, a.result) if a.fe_layout else None
     frames = animate.animate(system, spps[k], a.out, frames=a.frames, periods=a.periods, fps=a.fps, dpi=a.dpi,
-                             layout=a.layout, fe_layout=a.fe_layout)
+                             layout=a.layout, fe_layout=fe_layout)
     layout = "fe" if a.fe_layout else animate.layout_of(system) if a.layout == "auto" else a.layout
     print(f"wrote {a.out}: solution {k}, {frames} frames, layout {layout}")
 

@@ -8,9 +8,9 @@ The picture follows the system's structure, read from M, K and w (no extra metad
     beside it, every dof as a bar;
   - "dofs": anything else: every dof's position as a stem plot;
   - "fe": given a finite-element layout (fe_layout=, a file of `spp generate bar` or `spp reduce --layout`, or one
-    written for any model: docs/files.md): the model itself, its nodes moved by the SPP's displacements (of a reduced
-    model: expanded to the full model's dofs by the reduction basis in the file); 1-D coordinates: the displacement
-    along the model against the position; 2-D (or the first two of 3-D): the deformed nodes over the undeformed ones,
+    written for any model: include/spp/io/layout_file.hpp): the model itself, its nodes moved by the SPP's
+    displacements (of a reduced model: expanded to the full model's dofs by the reduction basis in the file); 1-D
+    coordinates: the displacement along the model against the position; 2-D (or the first two of 3-D): the deformed nodes over the undeformed ones,
     displacements scaled to a tenth of the model's size; the obstacle where the contact dof is among the dofs drawn.
 Below each picture, gap (left axis) and contact force (right axis, its own scale) with a cursor. The curves are
 those of spp.plot.spp_figure: the SPP's own equations (spp.trajectory, exact flows), so that an inadmissible SPP is
@@ -209,74 +209,14 @@ class _Dofs:
         return [self.stems, self.tops]
 
 
-class FeLayout:
-    """A finite-element layout (io/layout_file.hpp, docs/files.md): dofs (0-based, of the full model), coordinates and
-    directions (one row per dof, 1 to 3 columns), basis (one row per dof, the reduced model's dofs columns) or None.
-    read(source, n): from a path or the file's dict, checked against a system of n dofs; ValueError naming what is
-    wrong."""
+# The layout reader is the C++ one (include/spp/io/layout_file.hpp), bound as spp.FeLayout: FeLayout.read(source,
+# system) reads a path or the file's dict and checks it against the system it is drawn over (dofs beyond the system's,
+# basis columns, the fingerprint of another reduced model: ValueError naming both). (A second reader here drifted
+# from it.) What the drawing needs of it is added below.
+FeLayout = _spp.FeLayout
 
-    def __init__(self, dofs, coordinates, directions, basis):
-        self.dofs, self.coordinates, self.directions, self.basis = dofs, coordinates, directions, basis
 
-    @classmethod
-    def read(cls, source, n):
-        import json
-        where = "fe_layout"
-        if isinstance(source, (str, os.PathLike)):
-            where = os.fspath(source)
-            try:
-                with open(source, encoding="utf-8") as f:
-                    source = json.load(f)
-            except (OSError, ValueError) as e:
-                raise ValueError(f"{where}: cannot read a layout file: {e}") from None
-        if not isinstance(source, dict):
-            raise ValueError(f"{where}: expected a layout (a path or a dict with dofs, coordinates, directions), got "
-                             f"{type(source).__name__}")
-        unknown = sorted(set(source) - {"dofs", "coordinates", "directions", "basis", "model_dofs"})
-        if unknown:
-            raise ValueError(f"{where}: unknown field(s) {', '.join(unknown)}: expected dofs, coordinates, directions "
-                             f"and optionally basis")
-
-        def array(key, ndim):
-            if key not in source:
-                raise ValueError(f"{where}: missing field {key!r}")
-            try:
-                a = np.asarray(source[key], dtype=float)
-            except (TypeError, ValueError):
-                raise ValueError(f"{where}: field {key!r}: expected numbers") from None
-            if a.ndim != ndim or not np.isfinite(a).all() or a.size == 0:
-                raise ValueError(f"{where}: field {key!r}: expected a non-empty {'list' if ndim == 1 else 'list of rows'} "
-                                 f"of finite numbers, got shape {a.shape}")
-            return a
-
-        raw = source.get("dofs")
-        if not isinstance(raw, list) or not all(isinstance(d, int) and not isinstance(d, bool) for d in raw):
-            raise ValueError(f"{where}: field 'dofs': expected a list of whole numbers (0-based dofs), got "
-                             f"{type(raw).__name__ if not isinstance(raw, list) else 'other items'}")
-        if len(set(raw)) != len(raw):
-            raise ValueError(f"{where}: field 'dofs': expected each dof once, got a dof twice")
-        if "model_dofs" in source and (not isinstance(source["model_dofs"], int) or source["model_dofs"] < 1):
-            raise ValueError(f"{where}: field 'model_dofs': expected a positive whole number")
-        dofs = array("dofs", 1)
-        coordinates, directions = array("coordinates", 2), array("directions", 2)
-        rows = len(dofs)
-        if coordinates.shape[0] != rows or directions.shape != coordinates.shape or not 1 <= coordinates.shape[1] <= 3:
-            raise ValueError(f"{where}: expected coordinates and directions of one shape, {rows} rows (one per dof) of "
-                             f"1 to 3 numbers, got {coordinates.shape} and {directions.shape}")
-        if (np.abs(directions).max(axis=1) == 0).any():
-            raise ValueError(f"{where}: field 'directions': expected no zero direction")
-        basis = None
-        if "basis" in source:
-            basis = array("basis", 2)
-            if basis.shape != (rows, n):
-                raise ValueError(f"{where}: field 'basis': expected {rows} rows of {n} numbers (the system's dofs), got "
-                                 f"{basis.shape}: the layout of another reduced model?")
-        full = n if basis is None else source.get("model_dofs", np.inf)
-        if (dofs != np.floor(dofs)).any() or (dofs < 0).any() or (dofs >= full).any():
-            raise ValueError(f"{where}: field 'dofs': expected 0-based dofs of the system (0 to {n - 1}), got "
-                             f"{dofs.min():g} to {dofs.max():g}")
-        return cls(dofs.astype(int), coordinates, directions, basis)
-
+class _FeLayoutDrawing:
     def displacements(self, x):
         """The listed dofs' displacements (samples x rows) from the system's positions x (samples x n)."""
         return x @ self.basis.T if self.basis is not None else x[:, self.dofs]
@@ -295,6 +235,10 @@ class FeLayout:
         if not len(hits):
             return None, None
         return int(hits[0]), -system.g0 / system.w[c]
+
+
+FeLayout.displacements = _FeLayoutDrawing.displacements
+FeLayout.contact_row = _FeLayoutDrawing.contact_row
 
 
 class _Fe:
@@ -511,8 +455,11 @@ def animation_of(system, spp, frames=120, periods=1, fps=25, layout="auto", fig=
     on bad arguments (those of animate but the path and dpi)."""
     check_options("animation.gif", frames=frames, periods=periods, fps=fps, layout=layout)
     _whole_figure(fig)
-    if fe_layout is not None and not isinstance(fe_layout, FeLayout):
-        fe_layout = FeLayout.read(fe_layout, system.n)
+    if fe_layout is not None:
+        if isinstance(fe_layout, FeLayout):
+            fe_layout.check(system)
+        else:
+            fe_layout = FeLayout.read(fe_layout, system)
     kind = _kind(system, layout, fe_layout)
     fig, update, count = _figure(system, spp, frames, periods, kind, fig, fe_layout)
     return animation.FuncAnimation(fig, update, frames=count, interval=1000.0 / fps, blit=False)

@@ -235,13 +235,46 @@ def test_fe_layout_draws_the_model_from_the_reduction_basis(tmp_path):
     import matplotlib.pyplot as plt
     plt.close(fig)
     # a layout of another model, or the wrong layout kind, is refused naming why
-    with pytest.raises(ValueError, match=r"expected 200 rows of 5 numbers .*got \(200, 4\): the layout of another"):
+    with pytest.raises(ValueError, match=r"r.layout.json is not a layout of the system given: field \"basis\": "
+                                         r"expected rows of 5 numbers .*got 4: the layout of another reduced model"):
         animate.animation_of(spp.chain(5), spp.solve(spp.chain(5), t1_max=12, t2_max=12).solutions[0],
                              fe_layout=tmp_path / "r.layout.json")
     with pytest.raises(ValueError, match="layout 'fe' needs fe_layout"):
         animate.animation_of(system, sol, layout="fe")
     with pytest.raises(ValueError, match="unknown field"):
-        animate.FeLayout.read({"dofs": [0], "coordinates": [[0]], "directions": [[1]], "nodes": 1}, 4)
+        animate.FeLayout.read({"dofs": [0], "coordinates": [[0]], "directions": [[1]], "nodes": 1}, spp.chain(4))
+
+
+# Issue 13: a layout of another reduced model with as many dofs (m) was caught by nothing (only the basis' shape was
+# checked): drawn over the wrong model. spp reduce --layout writes the reduced model's fingerprint (m and weighted
+# sums of M, K, w, and g0: they survive the files' round trips) into its layout; where it is drawn (Python fe_layout=,
+# spp animate --fe-layout), a layout whose fingerprint is another model's is refused naming both.
+def test_a_layout_of_another_reduced_model_with_as_many_dofs_is_refused_naming_both(tmp_path):
+    import json
+    import subprocess
+    cli = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(spp.__file__)))), "spp")
+    run = lambda *a, check=True: subprocess.run([cli, *a], check=check, capture_output=True, text=True, cwd=tmp_path)
+    for n, stem in ((200, "a"), (120, "b")):  # two bars, each reduced to m = 3: bases of one shape
+        run("generate", "bar", "--n", str(n), "--out", f"{stem}.json")
+        run("reduce", f"{stem}.json", "--modes", "3", "--out", f"r{stem}.json", "--layout", f"{stem}.layout.json")
+    fa = json.loads((tmp_path / "ra.layout.json").read_text())["model_fingerprint"]
+    assert len(fa) == 5 and fa[0] == 4
+    sa, sb = spp.System.from_json(str(tmp_path / "ra.json")), spp.System.from_json(str(tmp_path / "rb.json"))
+    assert animate.FeLayout.read(tmp_path / "ra.layout.json", sa).fingerprint[0] == 4  # its own model: taken
+    with pytest.raises(ValueError, match=r"rb.layout.json is not a layout of the system given: field "
+                                         r"\"model_fingerprint\": expected the fingerprint of this reduced model"):
+        animate.FeLayout.read(tmp_path / "rb.layout.json", sa)
+    sol = spp.solve(sa, t1_max=2.5, t2_max=2.5, admissible_only=True).solutions[0]
+    with pytest.raises(ValueError, match="model_fingerprint"):  # also a FeLayout read before, for another system
+        animate.animation_of(sa, sol, frames=4, fe_layout=animate.FeLayout.read(tmp_path / "rb.layout.json", sb))
+    # the command line, through a result file (the system read back from it): both files named
+    run("solve", "ra.json", "--t1-max", "2.5", "--t2-max", "2.5", "--admissible-only", "--json", "sa.json")
+    ok = run("animate", "sa.json", "--fe-layout", "ra.layout.json", "--frames", "3", "--dpi", "30", "--out", "a.gif")
+    assert "layout fe" in ok.stdout
+    bad = run("animate", "sa.json", "--fe-layout", "rb.layout.json", "--frames", "3", "--dpi", "30", "--out", "b.gif",
+              check=False)
+    assert bad.returncode != 0 and not (tmp_path / "b.gif").exists()
+    assert "rb.layout.json is not a layout of sa.json" in bad.stderr and "model_fingerprint" in bad.stderr, bad.stderr
 
 
 def test_fe_layout_in_two_dimensions_moves_each_node_by_its_dofs():
@@ -277,10 +310,13 @@ def test_fe_layout_out_of_plane_motion_and_loose_input():
     import matplotlib.pyplot as plt
     plt.close(anim._fig)
     base = {"coordinates": [[0], [1]], "directions": [[1], [1]]}
-    for dofs, match in (([0, 0], "each dof once"), (["0", 1], "whole numbers"), ([True, 1], "whole numbers")):
+    for dofs, match in (([0, 0], "each dof once"), (["0", 1], r'fe_layout: field "dofs"\[0\] must be a number'),
+                        ([True, 1], r'fe_layout: field "dofs"\[0\] must be a number'),
+                        ([0.5, 1], r'fe_layout: field "dofs"\[0\]: expected a whole number from 0 up')):
         with pytest.raises(ValueError, match=match):
-            animate.FeLayout.read(dict(base, dofs=dofs), 5)
-    assert animate.FeLayout.read(dict(base, dofs=[0, 1], directions=[[1e-300], [1]]), 5).dofs.tolist() == [0, 1]
+            animate.FeLayout.read(dict(base, dofs=dofs), spp.chain(5))
+    assert animate.FeLayout.read(dict(base, dofs=[0, 1], directions=[[1e-300], [1]]),
+                                 spp.chain(5)).dofs.tolist() == [0, 1]
     from spp import plot
     fig = plt.figure()
     with pytest.raises(ValueError, match="placed by add_axes"):

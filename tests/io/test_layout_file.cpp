@@ -72,3 +72,45 @@ TEST(LayoutFile, BadInputIsRefusedNamingTheField) {
   expect_refused(R"({"dofs": [0, 1], "model_dofs": 1000, )" + ok_tail, 2000,
                  "\"model_dofs\": expected the layout of this model of 2000 dofs, got the layout of a model of 1000");
 }
+
+// Issue 13: a reduced model's layout carries its fingerprint (spp reduce --layout), so that a layout of another
+// reduced model with as many dofs is refused where it is drawn (only the basis' shape was checked). The fingerprint
+// survives the system file's round trip (w normalised again when read) and tells two such models apart.
+TEST(LayoutFile, FingerprintTellsReducedModelsOfOneSizeApart) {
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(3, 3), K(3, 3);
+  K << 2, -1, 0, -1, 2, -1, 0, -1, 1;
+  const System a(M, K, Eigen::Vector3d(0.3, -0.7, 1.9), 0.37, "a");
+  Eigen::MatrixXd K2 = K;
+  K2(2, 2) = 1.0 + 1e-6;
+  const System b(M, K2, Eigen::Vector3d(0.3, -0.7, 1.9), 0.37, "b");
+  const System a_read = load_system(write_temp("fp_system", system_json(a)));
+  EXPECT_TRUE(same_fingerprint(model_fingerprint(a), model_fingerprint(a_read), a_read));
+  EXPECT_FALSE(same_fingerprint(model_fingerprint(a), model_fingerprint(b), b));
+
+  FeLayout l;
+  l.dofs = {0, 1};
+  l.coordinates = Eigen::MatrixXd::Zero(2, 1);
+  l.directions = Eigen::MatrixXd::Ones(2, 1);
+  l.basis = Eigen::MatrixXd::Ones(2, 3);
+  l.model_dofs = 50;
+  l.fingerprint = model_fingerprint(a);
+  const FeLayout back = read_fe_layout(write_temp("fp", fe_layout_json(l)), -1);  // (the full model's dofs unknown)
+  ASSERT_EQ(back.fingerprint.size(), 5);
+  EXPECT_EQ(back.fingerprint, l.fingerprint);
+  check_fe_layout(back, a_read, "a.layout.json", "a.json");  // its own model, read back: taken
+  try {
+    check_fe_layout(back, b, "a.layout.json", "b.json");
+    ADD_FAILURE() << "a layout of another reduced model was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("a.layout.json is not a layout of b.json: field \"model_fingerprint\""),
+              std::string::npos)
+        << e.what();
+  }
+  l.fingerprint.resize(0);  // without one (a hand-written layout): the shape alone
+  check_fe_layout(l, b, "l.json", "b.json");
+  EXPECT_THROW(
+      check_fe_layout(
+          l, System(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(1, 0), 1.0),
+          "l.json", "c.json"),
+      std::invalid_argument);
+}
