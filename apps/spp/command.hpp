@@ -74,6 +74,19 @@ CLI::Validator whole_number(double min, double max);
 /// Empty when `text` is a decimal number parse_number reads; else what is wrong with it ("expected a decimal number
 /// ..., got ..." or "... is beyond the range of a double ..."), for the messages of options and lists.
 std::string number_problem(const std::string& text);
+/// The progress line of a long run (spp solve, spp modes) on stderr, rewritten in place: only when stderr is a
+/// terminal and not --quiet, and only from 1 s on (short runs stay silent); " (stopping)" once Ctrl-C came. clear()
+/// blanks it once the run is over (blanks, then back to the line's start): the summary and the table replace it.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool quiet);
+  void show(const std::string& line, double seconds, bool stopping);
+  void clear();
+
+ private:
+  bool tty_ = false, shown_ = false;
+  int width_ = 0;  // the longest line written, so that clear() blanks it all
+};
 /// The largest count an option takes: every such count stays exact in a double.
 inline constexpr double kMaxCount = 1e15;
 

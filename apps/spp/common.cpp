@@ -1,5 +1,9 @@
+#include <unistd.h>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -109,6 +113,22 @@ std::vector<double> parse_list(const std::string& s, const char* opt) {
   }
   if (v.empty()) detail::invalid(std::string(opt) + ": expected at least one number");
   return v;
+}
+
+ProgressLine::ProgressLine(bool quiet) : tty_(!quiet && isatty(STDERR_FILENO) != 0) {}
+
+void ProgressLine::show(const std::string& line, double seconds, bool stopping) {
+  if (!tty_ || seconds < 1.0) return;
+  const std::string text = "  " + line + (stopping ? " (stopping)" : "") + "   ";
+  std::fprintf(stderr, "\r%s", text.c_str());
+  std::fflush(stderr);
+  width_ = std::max(width_, static_cast<int>(text.size()));
+  shown_ = true;
+}
+
+void ProgressLine::clear() {
+  if (shown_) std::fprintf(stderr, "\r%*s\r", width_, "");
+  std::fflush(stderr);
 }
 
 }  // namespace spp::cli

@@ -29,7 +29,7 @@ extern "C" void on_modes_interrupt(int) {
 struct ModesArgs {
   std::string system, k, json;
   modes::ModesOptions options;
-  bool no_branches = false;
+  bool no_branches = false, quiet = false;
 };
 
 /// "3" -> {3}; "1..4" -> {1, 2, 3, 4}; anything else is refused naming --k.
@@ -77,10 +77,20 @@ int run(ModesArgs& a) {
   a.options.validate();
   const System sys = load_system(a.system);
   g_modes_interrupted = 0;
-  a.options.progress = [] { return g_modes_interrupted == 0; };
+  // the progress line of spp solve (ProgressLine), rewritten at most every 0.2 s (the callback runs per point)
+  ProgressLine line(a.quiet);
+  double last = -1.0;
+  a.options.progress = [&line, &last](const modes::ModesProgress& p) {
+    if (p.seconds - last >= 0.2 || g_modes_interrupted != 0) {
+      line.show(p.line(), p.seconds, g_modes_interrupted != 0);
+      last = p.seconds;
+    }
+    return g_modes_interrupted == 0;
+  };
   std::signal(SIGINT, on_modes_interrupt);
   const modes::ModesResult r = naming_system_file(a.system, [&] { return modes::nonsmooth_modes(sys, a.options); });
   std::signal(SIGINT, SIG_DFL);
+  line.clear();
   const std::string json_text = a.json.empty() ? "" : modes_json(sys, r);
   std::cout << table(r) << r.brief_report() << "\n";
   if (!a.json.empty()) write_file_atomic(a.json, json_text);
@@ -103,6 +113,7 @@ Subcommand add_modes(CLI::App& app) {
   c->add_option("--energy-max", a->options.energy_max, "families end at this energy")->required();
   c->add_option("--json", a->json, "write families, points and events as JSON (docs/modes.md)");
   c->add_option("--max-step", a->options.max_step, "largest step in scaled arclength (default 0.05)");
+  c->add_flag("--quiet", a->quiet, "no progress line on stderr (shown when stderr is a terminal, from 1 s on)");
   c->add_flag("--no-branches", a->no_branches, "do not follow the genuine k-IPPs branching off the repetitions");
   c->add_option("--multiples", a->options.period_multiples,
                 "with k = 1: 1-IPP families also from each mode's grazing orbit seen with period j times its own, "

@@ -1,6 +1,4 @@
 // spp solve: every SPP of a window (or, for a parametric system with g0 = 0, of (t1, t2, parameter), paper §6.1).
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -48,29 +46,12 @@ extern "C" void on_interrupt(int sig) {
 }
 constexpr int kExitBySignal = 128;  // + the signal's number: the shell's convention
 
-// The progress callback of the CLI: a line on stderr, rewritten in place (only when stderr is a terminal and not
-// --quiet), and the Ctrl-C check.
-// `width` is the longest line written, so that clear_progress blanks it all.
-std::function<bool(const SolveProgress&)> cli_progress(bool quiet, bool& shown, int& width) {
-  const bool tty = !quiet && isatty(STDERR_FILENO) != 0;
-  return [tty, &shown, &width](const SolveProgress& p) {
-    if (tty && p.seconds >= 1.0) {  // short runs stay silent
-      const std::string line = "  " + p.line() + (g_interrupted ? " (stopping)" : "") + "   ";
-      std::fprintf(stderr, "\r%s", line.c_str());
-      std::fflush(stderr);
-      width = std::max(width, static_cast<int>(line.size()));
-      shown = true;
-    }
+// The progress callback of the CLI: the progress line (ProgressLine, command.hpp) and the Ctrl-C check.
+std::function<bool(const SolveProgress&)> cli_progress(ProgressLine& line) {
+  return [&line](const SolveProgress& p) {
+    line.show(p.line(), p.seconds, g_interrupted != 0);
     return g_interrupted == 0;
   };
-}
-
-// The progress line is blanked once the search is over (blanks, then back to the line's start): the summary and the
-// table replace it. Ended with a newline, it stayed on screen, "(stopping)" included, above the result (found by an
-// independent attack).
-void clear_progress(bool shown, int width) {
-  if (shown) std::fprintf(stderr, "\r%*s\r", width, "");
-  std::fflush(stderr);
 }
 
 // From this many dofs, spp solve announces its stages before the search (each O(n^3) stage takes seconds).
@@ -221,14 +202,13 @@ int run(SolveArgs& a) {
                 << "--max-cells to run it, or narrow the window)\n";
     return 0;
   }
-  bool shown = false;
-  int width = 0;
-  a.options.progress = cli_progress(a.quiet, shown, width);
+  ProgressLine line(a.quiet);
+  a.options.progress = cli_progress(line);
   const SolveResult res = naming_system_file(a.system, [&] { return solve_window(sys, modal, a.options); });
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (!root) return 0;  // rank 0 holds the merged result
-  clear_progress(shown, width);
+  line.clear();
   // prepare every output before writing any
   const std::string json_text = a.json.empty() ? "" : result_json(sys, res);
   const std::string csv_text = a.csv.empty() ? "" : result_to_csv(res);

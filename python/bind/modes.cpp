@@ -139,11 +139,20 @@ void bind_modes(py::module_& m) {
         const std::string prefix = "spp modes: ";  // (brief_report's, as SolveResult's repr drops "spp: ")
         return "<spp.ModesResult " + (report.rfind(prefix, 0) == 0 ? report.substr(prefix.size()) : report) + ">";
       });
+  py::class_<md::ModesProgress>(m, "ModesProgress",
+                                "What a running modes reports to its progress callback (modes(..., progress=f)).")
+      .def_readonly("k", &md::ModesProgress::k, "impacts per period of the families being traced now")
+      .def_readonly("k_last", &md::ModesProgress::k_last, "the largest k traced (every k from 1 to it is traced)")
+      .def_readonly("families", &md::ModesProgress::families, "families found so far (every k traced)")
+      .def_readonly("steps", &md::ModesProgress::steps, "family points tried so far")
+      .def_readonly("seconds", &md::ModesProgress::seconds, "time since modes started")
+      .def("line", &md::ModesProgress::line)
+      .def("__repr__", [](const md::ModesProgress& p) { return "<spp.ModesProgress " + p.line() + ">"; });
   m.def(
       "modes",
       [](const spp::System& s, const py::object& k, const py::object& energy_max, const py::object& max_step,
          const py::object& branch_points, const py::object& multiples, const py::object& through_inadmissible,
-         const py::object& cancel) {
+         const py::object& progress, const py::object& cancel) {
         md::ModesOptions o;
         o.k_values = k_values(k);
         o.energy_max = scalar_argument<double>(energy_max, "spp.modes: argument energy_max");
@@ -154,9 +163,15 @@ void bind_modes(py::module_& m) {
             scalar_argument<bool>(through_inadmissible, "spp.modes: argument through_inadmissible");
         o.validate();
         // Ctrl-C checked before each family point: stopped, the families traced so far are returned (status
-        // incomplete, interrupted) with a RuntimeWarning, as solve does
-        ProgressHook hook(py::none(), "modes", cancel);
-        o.progress = [&hook] { return hook.keep_going(); };
+        // incomplete, interrupted) with a RuntimeWarning, as solve does; the progress line or callable (solve's
+        // ProgressHook) every 0.2 s, as solve reports (the callback runs per point); cancel=spp.Cancel() as Ctrl-C
+        ProgressHook hook(progress, "modes", cancel);
+        double last = -1.0;
+        o.progress = [&hook, &last](const md::ModesProgress& p) {
+          if (p.seconds - last < 0.2) return hook.keep_going();
+          last = p.seconds;
+          return hook(p);
+        };
         md::ModesResult r;
         {
           py::gil_scoped_release release;
@@ -169,15 +184,16 @@ void bind_modes(py::module_& m) {
         return r;
       },
       "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true, "multiples"_a = 1,
-      "through_inadmissible"_a = false, "cancel"_a = py::none(),
+      "through_inadmissible"_a = false, "progress"_a = py::none(), "cancel"_a = py::none(),
       ("k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: the "
        "impacts per period, an int from 1 to 40 or a sequence of them (list, tuple, range(1, 4)); energy_max: a "
        "number > 0; multiples: J, an int from 1 to 100 (spp modes --multiples J): with k = 1, 1-IPP families also "
        "from each mode's grazing orbit seen with period j times its own, j = 2..J (1: none; docs/modes.md §3); "
        "through_inadmissible: follow each family through its inadmissible orbits to where it is admissible again "
-       "(spp modes --through-inadmissible; a new family there, event admissibility_regained). "
-       "Ctrl-C or cancel=spp.Cancel() stops it: the families traced so far are returned (status incomplete, "
-       "interrupted True) with a RuntimeWarning." +
+       "(spp modes --through-inadmissible; a new family there, event admissibility_regained). progress=True prints "
+       "the progress line on stderr (from 1 s on); progress=f calls f(ModesProgress) every 0.2 s (returning False "
+       "stops the tracing, as Ctrl-C). Ctrl-C or cancel=spp.Cancel() stops it: the families traced so far are "
+       "returned (status incomplete, interrupted True) with a RuntimeWarning." +
        std::string(kThreadRule) +
        " Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and ValueError for a "
        "value out of range.")

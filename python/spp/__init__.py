@@ -15,7 +15,7 @@ from ._spp import (Branch, BranchEvent, BranchEventKind, BranchPoint, Continuati
                    VerifyOptions, VerifyResult, VerifyStatus, chain, continue_branches, fundamental_box, load_result,
                    modal_frequencies, nearest_spp, rod_with_slip, root_map, simulate, trajectory, two_dof, verify)
 from ._spp import continue_branch  # the one branch through a given SPP
-from ._spp import ModeEvent, ModeEventKind, ModeFamily, ModePoint, ModesResult, ModesStatus, modes  # k-IPP families (docs/modes.md)
+from ._spp import ModeEvent, ModeEventKind, ModeFamily, ModePoint, ModesProgress, ModesResult, ModesStatus, modes  # k-IPP families (docs/modes.md)
 from ._spp import SolutionAt, solution_at  # the SPP at a given (t1, t2), no search
 from ._spp import monodromy  # linearised one-period map under an impact law (docs/stability.md)
 from ._spp import MultiplierCrossing, StabilityVerdict  # the verdict with its rounding bound; crossing kinds
@@ -106,4 +106,4 @@ __all__ = ["System", "Solution", "SolveOptions", "Symmetry", "SolveResult", "Eve
            "BranchPoint", "ContinuationResult", "continue_branch", "nearest_spp", "NearestSpp", "fundamental_box", "modal_frequencies",
            "trajectory", "SolveProgress", "SolveStatus", "SimulationStatus", "EventKind", "VerifyStatus", "Verdict",
            "ContinuationStatus", "BranchEventKind", "monodromy", "StabilityVerdict", "MultiplierCrossing", "modes", "ModesResult", "ModeFamily",
-           "ModePoint", "ModeEvent", "ModeEventKind", "ModesStatus", "sweep", "solution_at", "SolutionAt", "Cancel", "__version__"]
+           "ModePoint", "ModeEvent", "ModeEventKind", "ModesStatus", "ModesProgress", "sweep", "solution_at", "SolutionAt", "Cancel", "__version__"]

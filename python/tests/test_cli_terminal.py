@@ -71,3 +71,41 @@ def test_ctrl_c_progress_line_does_not_stay_on_screen(tmp_path):
     shown = screen(err.decode())
     assert not any("stopping" in line or line.lstrip().startswith("cells ") for line in shown), shown
     assert any(line.startswith("interrupted:") for line in shown), shown
+
+
+# Issue 15: spp modes ran silently (2-dof --k 1..12: 89 s): it now shows spp solve's progress line on a terminal
+# ("tracing k = ..."), and Ctrl-C stops it with the families traced so far (exit 130), the line cleared.
+@pytest.mark.skipif(not os.path.exists(CLI), reason="no spp executable beside the package (build tree)")
+def test_modes_shows_a_progress_line_and_stops_on_ctrl_c(tmp_path):
+    sys_file = tmp_path / "two_dof.json"
+    subprocess.run([CLI, "generate", "two-dof", "--out", str(sys_file)], check=True, capture_output=True)
+    master, slave = pty.openpty()
+    p = subprocess.Popen([CLI, "modes", str(sys_file), "--k", "1..12", "--energy-max", "20"], stdout=subprocess.PIPE,
+                         stderr=slave, stdin=subprocess.DEVNULL)
+    os.close(slave)
+    err = b""
+    start = time.monotonic()
+    try:
+        while b"tracing k = " not in err and time.monotonic() - start < 60 and p.poll() is None:
+            if select.select([master], [], [], 1.0)[0]:
+                err += os.read(master, 4096)
+        assert b"tracing k = " in err, ("no progress line within 60 s", err)
+        p.send_signal(signal.SIGINT)
+        out, _ = p.communicate(timeout=120)
+        while select.select([master], [], [], 1.0)[0]:
+            try:
+                chunk = os.read(master, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            err += chunk
+    finally:
+        os.close(master)
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == 130, (p.returncode, err)
+    shown = screen(err.decode())
+    assert not any("tracing k = " in line for line in shown), shown
+    assert any(line.startswith("interrupted:") for line in shown), shown
+    assert b"spp modes: incomplete" in out

@@ -194,7 +194,7 @@ def test_result_enums_have_every_cpp_value():
         "MultiplierCrossing": ["none", "plus_one", "minus_one", "complex_pair"],
         "ModeEventKind": ["grazing_start", "branch_start", "grazing_continuation", "branch_point", "impact_grazing",
                           "flight_grazing", "energy_max", "stalled", "no_admissible_side", "admissibility_regained",
-                          "interrupted"],
+                          "interrupted", "closed_loop"],
         "ModesStatus": ["not run", "traced", "incomplete"],
         "SolveStatus": ["not_run", "success", "incomplete"],
         "SimulationStatus": ["not_run", "success", "event_limit", "stalled", "interrupted"],
@@ -205,3 +205,23 @@ def test_result_enums_have_every_cpp_value():
     }
     for name, values in expected.items():
         assert [m.value for m in getattr(spp._spp, name)] == values, name
+
+
+# Issue 15: modes reported no progress (2-dof k = 1..12: 89 s silent). progress=f is called with a ModesProgress
+# (every 0.2 s, as solve's callback); returning False stops the tracing with the families traced so far.
+def test_progress_callable_sees_modes_progress_and_can_stop_it():
+    s = spp.two_dof(1, 1, 1, 1, 1)
+    seen = []
+
+    def report(p):
+        seen.append(p)
+        return len(seen) < 3
+
+    r = spp.modes(s, k=range(1, 13), energy_max=20, progress=report)
+    assert len(seen) == 3
+    assert all(isinstance(p, spp.ModesProgress) for p in seen)
+    assert seen[-1].k_last == 12 and 1 <= seen[-1].k <= 12 and seen[-1].seconds >= 0.4
+    assert "tracing k = " in seen[-1].line() and "tracing k = " in repr(seen[-1])
+    assert r.interrupted and r.status == "incomplete"
+    with pytest.raises(TypeError, match="progress"):
+        spp.modes(s, k=1, energy_max=1, progress=5)

@@ -27,6 +27,7 @@ const char* to_string(ModeEventKind kind) {
     case ModeEventKind::NoAdmissibleSide: return "no_admissible_side";
     case ModeEventKind::AdmissibilityRegained: return "admissibility_regained";
     case ModeEventKind::Interrupted: return "interrupted";
+    case ModeEventKind::ClosedLoop: return "closed_loop";
   }
   return "?";
 }
@@ -66,6 +67,15 @@ void ModesOptions::validate() const {
                            "in [1, " + std::to_string(kMaxPeriodMultiples) + "]");
   if (!(locate_tol > 0) || !(locate_tol < max_step))
     detail::invalid_option(where, "locate_tol", locate_tol, "in (0, max_step)");
+}
+
+std::string ModesProgress::line() const {
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(1);
+  os << "tracing k = " << k << " (k up to " << k_last << "): " << families << " families, " << steps << " steps, "
+     << seconds << " s elapsed";
+  return os.str();
 }
 
 std::string ModesResult::brief_report() const {
@@ -120,8 +130,19 @@ struct Tracer {
   int regained = 0;             // families started by follow_stretch (for their labels)
   static constexpr long kMaxStretches = 10000;  // a bound on the work of through_inadmissible
 
+  int current_k = 1, k_last = 1;  // for the progress reports
+  long steps = 0;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+
   bool keep_going() {
-    if (!stopped && options.progress && !options.progress()) stopped = true;
+    if (stopped || !options.progress) return !stopped;
+    ModesProgress p;
+    p.k = current_k;
+    p.k_last = k_last;
+    p.families = static_cast<long>(result.families.size());
+    p.steps = ++steps;
+    p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (!options.progress(p)) stopped = true;
     return !stopped;
   }
 
@@ -212,6 +233,7 @@ struct Tracer {
       return;
     }
     const KippShape& shape = st.shape;
+    current_k = shape.k;
     D = scales(shape);
     Eigen::VectorXd z = (st.y.array() / D.array()).matrix(), tau = st.tau, zn, tn;
     Eigen::MatrixXd Jn;
@@ -240,8 +262,13 @@ struct Tracer {
                   std::string(p0.margin <= 1e-6 ? "admissible" : "below energy_max") +
                       " again after a stretch of inadmissible orbits (or above energy_max) from " + st.from);
         const Eigen::VectorXd t0 = cont::curve_tangent(jacobian(shape, za), tau);
+        const long stalled = result.stalled_families;
         trace(g, shape, za, t0, nullptr);
         g.multiplicity = g.points.size() > 1 ? g.points[1].multiplicity : p0.multiplicity;
+        if (g.multiplicity == 1 && listed_already(g)) {  // reached from another side, or its time reverse
+          result.stalled_families = stalled;
+          return;
+        }
         std::ostringstream label;
         label << st.from << " regained #" << ++regained;
         g.label = label.str();
@@ -327,12 +354,14 @@ struct Tracer {
   // (z, the other branch's direction) when requested.
   void trace(ModeFamily& f, const KippShape& shape, const Eigen::VectorXd& z_start, const Eigen::VectorXd& tau0,
              std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>* branches) {
+    current_k = shape.k;
     Eigen::VectorXd z = z_start, tau = tau0, zn;
     double h = std::min(options.max_step, 0.01);
     // the sign of the bordered determinant is watched only where branch points are looked for (an O(N^3) LU and a
     // Jacobian per point were spent on every family before)
     double det_prev = branches ? bordered_det(shape, z, tau) : 1.0;
     ModePoint prev = f.points.back();
+    double travelled = 0.0;  // scaled arclength, for the closed-loop test
     for (int count = 1;; ++count) {
       if (!keep_going()) {
         // not a stall: the status is incomplete through `interrupted` (it read "stalled"; found by an attack)
@@ -407,6 +436,15 @@ struct Tracer {
         }
       }
       det_prev = det;
+      travelled += (zn - z).norm();
+      // Back at the first point, in the direction it left it (the criterion of the SPP branches' closed_loop,
+      // continuation.cpp): the first point lies between z and zn along the curve, zn is within a step of it. A closed
+      // loop was traced until max_points and reported stalled (chain5 --k 1..5: 3 families, 12 000 points).
+      if (travelled > 4.0 * h && (zn - z_start).norm() <= std::max(h, (zn - z).norm()) && tn.dot(tau0) > 0.9 &&
+          (z_start - z).dot(tau) >= 0 && (z_start - zn).dot(tn) <= 0) {
+        add_event(f, ModeEventKind::ClosedLoop, f.points.front(), "back at the first point: a closed loop");
+        return;
+      }
       f.points.push_back(p);
       prev = p;
       z = zn;
@@ -497,10 +535,18 @@ struct Tracer {
     add_event(g, ModeEventKind::GrazingContinuation, p0, "flight_grazing end of " + src.label);
     linearize(next, z0, F, J);
     const Eigen::VectorXd dir = cont::curve_tangent(J, energy_gradient(next, z0));
-    start_family(g, next, z0, dir, nullptr);
+    const long stalled = result.stalled_families;
+    // no admissible side: the grazing end itself, no family with k + 2 impacts (such one-point families were listed
+    // and counted as genuine); its inadmissible stretches are followed (start_family)
+    if (!start_family(g, next, z0, dir, nullptr)) return;
     g.multiplicity = g.points.size() > 1 ? g.points[1].multiplicity : p0.multiplicity;
+    if (g.multiplicity == 1 && listed_already(g)) {  // the same family reached from another grazing end
+      result.stalled_families = stalled;
+      return;
+    }
     std::ostringstream label;  // not string + string: GCC 12 reports a false -Wrestrict there
-    label << "k" << next.k << " " << to_string(next.symmetry) << " past grazing of #" << index;
+    // the source by its label: its index in the list changes with the k requested (the k not requested are dropped)
+    label << "k" << next.k << " " << to_string(next.symmetry) << " past grazing of " << src.label;
     g.label = label.str();
     result.families.push_back(g);
     note(result.families.size() - 1);
@@ -588,12 +634,20 @@ struct Tracer {
         add_event(g, ModeEventKind::BranchStart, pb, "branch point on " + f.label);
         const Eigen::VectorXd tau1 = sign * dir;
         if (!admissible_side(shape, zb, tau1)) {
-          add_event(g, ModeEventKind::NoAdmissibleSide, pb, "this side of the branch point is not admissible");
+          // not listed: a point of the repetition, no family (such one-point "families" were counted as genuine)
           follow_later(shape, zb, tau1, 1e-3, g);
-        } else {
-          trace(g, shape, zb, tau1, nullptr);
+          continue;
         }
-        g.multiplicity = g.points.size() > 1 ? g.points.back().multiplicity : pb.multiplicity;
+        const long stalled = result.stalled_families;
+        trace(g, shape, zb, tau1, nullptr);
+        // a branch that stalled at its first step is only the branch point, a point of the repetition: counted with
+        // it, not as a genuine family (it was, with the multiplicity computed at that point)
+        g.multiplicity = g.points.size() > 1 ? g.points.back().multiplicity : f.multiplicity;
+        // the same family from the branch point of its other symmetric point (a phase shift), or its time reverse
+        if (g.multiplicity == 1 && listed_already(g)) {
+          result.stalled_families = stalled;  // not listed: its stall (if any) is no listed family's
+          continue;
+        }
         std::ostringstream gl;
         gl << "k" << shape.k << " " << to_string(shape.symmetry) << " branch " << ++index << (sign > 0 ? "+" : "-")
            << " of mode " << mode;
@@ -613,42 +667,73 @@ struct Tracer {
     return d;
   }
 
-  // The largest difference between flight sequences a and b, minimised over the cyclic shifts of b and its time
-  // reverse.
-  static double pattern_distance(const std::vector<double>& a, const std::vector<double>& b) {
-    const size_t k = a.size();
-    double best = std::numeric_limits<double>::infinity();
-    if (b.size() != k) return best;
+  // One orbit's coordinates for comparing orbits up to phase shift and time reversal: (energy, period, the k flight
+  // durations) of p, scaled by p's energy and period (a point of a family's polyline of such vectors is compared
+  // with these). The time reverse of an orbit is an orbit with the same energy and period and its flights in reverse
+  // order; a phase shift (another impact taken as the first) shifts them cyclically: each of the 2k forms is one
+  // entry (issue 15: chain5 listed families that are the time reverses of others, and flight-flight families twice,
+  // from the branch points of their two symmetric points).
+  static std::vector<Eigen::VectorXd> orbit_forms(const ModePoint& p) {
+    const std::vector<double> d = flights(p);
+    const size_t k = d.size();
+    std::vector<Eigen::VectorXd> forms;
     for (int reverse = 0; reverse < 2; ++reverse)
       for (size_t shift = 0; shift < k; ++shift) {
-        double d = 0.0;
-        for (size_t i = 0; i < k; ++i) {
-          const size_t j = reverse ? (2 * k - 1 - i - shift) % k : (i + shift) % k;
-          d = std::max(d, std::abs(a[i] - b[j]));
-        }
-        best = std::min(best, d);
+        Eigen::VectorXd v(static_cast<Eigen::Index>(k) + 2);
+        v(0) = 1.0;
+        v(1) = 1.0;
+        for (size_t i = 0; i < k; ++i)
+          v(static_cast<Eigen::Index>(i) + 2) = d[reverse ? (2 * k - 1 - i - shift) % k : (i + shift) % k] / p.period;
+        forms.push_back(v);
       }
-    return best;
+    return forms;
   }
 
-  // Whether orbit p (k impacts) lies on a family already listed with k impacts: some segment of its points crosses
-  // p's energy with p's period (1e-4 relative) and flights (1e-3 T, up to cyclic shift and time reversal).
+  // Point a of a family in the coordinates of orbit_forms scaled by p's energy and period.
+  static Eigen::VectorXd scaled_like(const ModePoint& a, const ModePoint& p) {
+    const std::vector<double> d = flights(a);
+    Eigen::VectorXd v(static_cast<Eigen::Index>(d.size()) + 2);
+    v(0) = a.energy / p.energy;
+    v(1) = a.period / p.period;
+    for (size_t i = 0; i < d.size(); ++i) v(static_cast<Eigen::Index>(i) + 2) = d[i] / p.period;
+    return v;
+  }
+
+  // Whether orbit p (k impacts) lies on a family already listed with k impacts, up to phase shift and time reversal:
+  // within 1e-3 (largest component, relative to p's energy and period) of a segment of that family's polyline in the
+  // coordinates of orbit_forms. Before, p's energy was interpolated on each segment, which failed on families along
+  // which the energy hardly changes (chain5: a family and its time reverse at E 0.95642, both listed).
   bool on_listed_family(const ModePoint& p, int k) const {
-    const std::vector<double> fp = flights(p);
+    constexpr double kSameOrbit = 1e-3;
+    if (!(p.energy > 0) || !(p.period > 0)) return false;
+    const std::vector<Eigen::VectorXd> forms = orbit_forms(p);
     for (const ModeFamily& f : result.families) {
       if (f.k != k) continue;
       for (size_t i = 0; i + 1 < f.points.size(); ++i) {
         const ModePoint &a = f.points[i], &c = f.points[i + 1];
-        if ((a.energy - p.energy) * (c.energy - p.energy) > 0) continue;
-        const double s = c.energy == a.energy ? 0.5 : (p.energy - a.energy) / (c.energy - a.energy);
-        if (std::abs(a.period + s * (c.period - a.period) - p.period) > 1e-4 * p.period) continue;
-        std::vector<double> fa = flights(a), fc = flights(c);
-        if (fa.size() != fp.size() || fc.size() != fp.size()) continue;
-        for (size_t j = 0; j < fa.size(); ++j) fa[j] += s * (fc[j] - fa[j]);
-        if (pattern_distance(fp, fa) <= 1e-3 * p.period) return true;
+        if (a.impact_times.size() != p.impact_times.size() || c.impact_times.size() != p.impact_times.size()) continue;
+        const Eigen::VectorXd va = scaled_like(a, p), d = scaled_like(c, p) - va;
+        const double dd = d.squaredNorm();
+        for (const Eigen::VectorXd& v : forms) {
+          const double s = dd > 0 ? std::clamp((v - va).dot(d) / dd, 0.0, 1.0) : 0.0;
+          if ((v - va - s * d).lpNorm<Eigen::Infinity>() <= kSameOrbit) return true;
+        }
       }
     }
     return false;
+  }
+
+  // Whether family g (k impacts, at least 3 points) is one listed already, up to phase shift and time reversal, or a
+  // union of listed pieces: its interior points sampled at 1/6 .. 5/6 of its points all lie on listed families
+  // (on_listed_family). One sample is not enough: a family that crosses a listed one (a branch point) shares a point.
+  bool listed_already(const ModeFamily& g) const {
+    const size_t n = g.points.size();
+    if (n < 3) return false;
+    for (size_t j = 1; j <= 5; ++j) {
+      const size_t i = std::clamp<size_t>((j * (n - 1) + 3) / 6, 1, n - 2);
+      if (!on_listed_family(g.points[i], g.k)) return false;
+    }
+    return true;
   }
 
   // Point p of a family (its orbit has p.impact_times.size() / multiplicity impacts) repeated to k impacts, as the
@@ -692,7 +777,7 @@ struct Tracer {
         bool genuine = g.points.size() >= 3;  // multiplicity 1 past the start
         for (size_t i = 1; i < g.points.size(); ++i) genuine = genuine && g.points[i].multiplicity == 1;
         if (!genuine || on_listed_family(g.points[g.points.size() / 3], k) ||
-            on_listed_family(g.points[2 * g.points.size() / 3], k)) {
+            on_listed_family(g.points[2 * g.points.size() / 3], k) || listed_already(g)) {
           result.stalled_families = stalled;  // not listed: its stall (if any) is no listed family's
           continue;
         }
@@ -790,7 +875,7 @@ struct Tracer {
           std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> branches;
           const long stalled = result.stalled_families;
           trace(g, shape, z0, sign * dir, &branches);
-          if (g.points.size() < 3 || on_listed_family(g.points[g.points.size() / 2], k)) {
+          if (g.points.size() < 3 || on_listed_family(g.points[g.points.size() / 2], k) || listed_already(g)) {
             result.stalled_families = stalled;  // not listed
             continue;
           }
@@ -844,7 +929,7 @@ struct Tracer {
       if (shape.symmetry == KippSymmetry::None || (f.k == 1 && f.symmetry == KippSymmetry::FlightImpact))
         sources.push_back(f);
     for (const ModeFamily& f : result.families)
-      if (shape.symmetry == KippSymmetry::None ? f.symmetry != KippSymmetry::None || f.k < k
+      if (shape.symmetry == KippSymmetry::None ? f.k <= k && (f.symmetry != KippSymmetry::None || f.k < k)
                                                : f.k == 1 && f.symmetry == KippSymmetry::FlightImpact)
         sources.push_back(f);
     for (const ModeFamily& f : sources) {
@@ -883,16 +968,21 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
   ModesResult result;
   result.linear_frequencies = model.omega_all();
   Tracer tracer{model, options, result, {}, {}, {}, {}, false};
-  tracer.wanted.insert(options.k_values.begin(), options.k_values.end());
-  std::vector<int> ks = options.k_values;
-  std::sort(ks.begin(), ks.end());
+  // Every k from 1 to the largest requested is traced, those not requested are dropped at the end: the families with
+  // k impacts are reached from those with fewer (grazing continuations from k - 2 and k - 1 impacts, repetitions of
+  // the 1-IPPs), so the list for each k is the same whatever else is requested. Before, --k 2..3 and --k 1..3 listed
+  // different 3-IPPs (2-dof: 3 and 6 of the 14 an independent search found; issue 15).
+  const int k_last = *std::max_element(options.k_values.begin(), options.k_values.end());
+  std::vector<int> ks;
+  for (int k = 1; k <= k_last; ++k) ks.push_back(k);
+  tracer.k_last = k_last;
+  tracer.wanted.insert(ks.begin(), ks.end());
   for (int k : ks)
     for (KippSymmetry s : symmetries_for(k))
       for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j)
         tracer.run_start(KippShape{k, s, model.coupled_modes()}, j);
-  if (tracer.wanted.count(1))
-    for (int multiple = 2; multiple <= options.period_multiples; ++multiple)
-      for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j) tracer.run_multiple_start(j, multiple);
+  for (int multiple = 2; multiple <= options.period_multiples; ++multiple)
+    for (int j = 0; j < model.coupled_modes() && tracer.keep_going(); ++j) tracer.run_multiple_start(j, multiple);
   // grazing continuations and inadmissible stretches, each of which may add more of both
   for (size_t i = 0, j = 0; tracer.keep_going();) {
     if (i < tracer.pending.size()) {
@@ -904,25 +994,22 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
       break;
     }
   }
-  // k-IPPs with no symmetry assumed, from the branch points of the repetitions and of the symmetric families: the
-  // 1-IPP families are their sources also when k = 1 is not requested (computed here, not listed)
-  if (options.branch_points && ks.back() >= 2 && !tracer.stopped) {
-    std::vector<ModeFamily> ones;
-    if (!tracer.wanted.count(1)) {
-      ModesOptions o1 = options;
-      o1.k_values = {1};
-      ModesResult r1 = nonsmooth_modes(system, o1);
-      result.corrector_solves += r1.corrector_solves;
-      tracer.stopped = tracer.stopped || r1.interrupted;
-      ones = std::move(r1.families);
+  // k-IPPs with no symmetry assumed, from the branch points of the repetitions and of the symmetric families, k by k
+  // (those with k impacts are sought from families with k impacts or fewer only)
+  if (options.branch_points && k_last >= 2 && !tracer.stopped)
+    for (int k = 2; k <= k_last; ++k) {
+      for (KippSymmetry s : symmetries_for(k)) tracer.repetition_search(KippShape{k, s, model.coupled_modes()}, {});
+      tracer.general_from_tangencies(k, {});
+      tracer.repetition_search(KippShape{k, KippSymmetry::None, model.coupled_modes()}, {});
     }
-    for (int k : ks)
-      if (k >= 2) {
-        for (KippSymmetry s : symmetries_for(k)) tracer.repetition_search(KippShape{k, s, model.coupled_modes()}, ones);
-        tracer.general_from_tangencies(k, ones);
-        tracer.repetition_search(KippShape{k, KippSymmetry::None, model.coupled_modes()}, ones);
-      }
-  }
+  // the k not requested: traced as sources, not listed (nor their stalls counted)
+  const std::set<int> requested(options.k_values.begin(), options.k_values.end());
+  const auto unrequested = [&](const ModeFamily& f) { return requested.count(f.k) == 0; };
+  for (const ModeFamily& f : result.families)
+    if (unrequested(f) && !f.events.empty() && f.events.back().kind == ModeEventKind::Stalled)
+      --result.stalled_families;
+  result.families.erase(std::remove_if(result.families.begin(), result.families.end(), unrequested),
+                        result.families.end());
   result.interrupted = tracer.stopped;
   result.status = result.stalled_families > 0 || result.interrupted ? ModesStatus::Incomplete : ModesStatus::Traced;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -41,8 +41,22 @@ inline constexpr int kMaxPeriodMultiples = 100;
 /// rise above energy_max there and come back below it): a bound on the work.
 inline constexpr double kInadmissibleEnergyFactor = 10.0;
 
+/// What a running nonsmooth_modes() reports to ModesOptions::progress (before each family point).
+struct ModesProgress {
+  int k = 0;             ///< impacts per period of the families being traced now
+  int k_last = 0;        ///< the largest k traced (every k from 1 to it is traced)
+  long families = 0;     ///< families found so far (of every k traced, those not requested included)
+  long steps = 0;        ///< family points tried so far (calls of the callback)
+  double seconds = 0.0;  ///< since nonsmooth_modes() started
+  /// "tracing k = 3 (k up to 12): 57 families, 12345 steps, 12.3 s elapsed": the line the CLI and Python show.
+  std::string line() const;
+};
+
 struct ModesOptions {
-  std::vector<int> k_values;  ///< impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required)
+  /// impacts per period, each in [1, kMaxImpactsPerPeriod], no repeats (required). Every k from 1 to the largest is
+  /// traced (the families with k impacts are reached from those with fewer), only these are listed: the families
+  /// listed for a k do not depend on which other k are requested (--k 5 costs as much as --k 1..5).
+  std::vector<int> k_values;
   double energy_max = 0.0;    ///< families end where the energy reaches it (required, > 0)
   double max_step = 0.05;     ///< largest continuation step, in scaled arclength
   double min_step = 1e-9;     ///< a family whose step falls below this ends with a Stalled event
@@ -50,12 +64,12 @@ struct ModesOptions {
   int max_points = 4000;      ///< per family
   double locate_tol = 1e-12;  ///< events located to this, in scaled arclength
   /// Follow the genuine k-IPPs that branch off the k-fold repetitions; and, when some k >= 2 is requested, the k >= 2
-  /// searches of docs/modes.md §3: every 1-IPP family (computed, not listed, when k = 1 is not requested) repeated k
+  /// searches of docs/modes.md §3: every 1-IPP family repeated k
   /// times with its branch points, in the symmetric equations and with no symmetry assumed (KippSymmetry::None: the
   /// non-reversible k-IPPs), the symmetric families' symmetry-breaking branch points, and the families ending at one
   /// tangency continued with k + 1 impacts. Their cost: chain5 --k 1..5 --energy-max 150 took 46 s, 1.4 s without.
   bool branch_points = true;
-  /// When k = 1 is requested, 1-IPP families also start from the grazing orbit of each mode seen with period
+  /// 1-IPP families also start from the grazing orbit of each mode seen with period
   /// j * 2 pi / omega for j = 2..period_multiples (one impact every j touches, the others tangencies in flight;
   /// kipp.hpp grazing_start_multiple): every symmetric 1-IPP of period T lies on the family through the start of some
   /// mode and j <= T omega / (2 pi) + 1 (docs/modes.md §3). 1: only the grazing starts (j = 1). Both sides of such a
@@ -70,7 +84,7 @@ struct ModesOptions {
   /// Called before each family point, from the thread that called nonsmooth_modes() (so a Python callback may take
   /// the GIL): returning false stops the tracing; the families traced so far are kept (the one being traced ends
   /// with an Interrupted event) and the status is Incomplete with `interrupted` set. Empty: never called.
-  std::function<bool()> progress;
+  std::function<bool(const ModesProgress&)> progress;
   /// Throws std::invalid_argument naming the field, its value and the rule.
   void validate() const;
 };
@@ -91,16 +105,19 @@ enum class ModeEventKind {
   /// the family's first point: the flight_grazing end of a family with k - 2 impacts, whose tangency inside a flight
   /// (and its mirror image) are counted as two impacts of zero speed
   GrazingContinuation,
-  BranchPoint,      ///< a branch point met along the family (a family of genuine k-IPPs leaves it there)
-  ImpactGrazing,    ///< admissibility lost: an impact's incoming speed reaches 0 (the family ends)
-  FlightGrazing,    ///< admissibility lost: the gap touches 0 inside a flight, an extra contact (the family ends)
-  EnergyMax,        ///< the energy reached energy_max (the family ends)
-  Stalled,          ///< the step fell below min_step or max_points was reached (the family ends)
+  BranchPoint,       ///< a branch point met along the family (a family of genuine k-IPPs leaves it there)
+  ImpactGrazing,     ///< admissibility lost: an impact's incoming speed reaches 0 (the family ends)
+  FlightGrazing,     ///< admissibility lost: the gap touches 0 inside a flight, an extra contact (the family ends)
+  EnergyMax,         ///< the energy reached energy_max (the family ends)
+  Stalled,           ///< the step fell below min_step or max_points was reached (the family ends)
   NoAdmissibleSide,  ///< neither direction from the start is admissible (the family is its start only)
   /// the family's first point: the solution curve of an earlier family (ModesOptions::through_inadmissible), followed
   /// through inadmissible orbits from that family's admissibility event, is admissible again here
   AdmissibilityRegained,
-  Interrupted  ///< ModesOptions::progress stopped the tracing here (the family is not followed further)
+  Interrupted,  ///< ModesOptions::progress stopped the tracing here (the family is not followed further)
+  /// the family came back to its first point in the direction it left it: a closed loop, traced once (the family
+  /// ends; it was traced round and round until max_points and then reported as stalled)
+  ClosedLoop
 };
 const char* to_string(ModeEventKind kind);
 /// Its values: 0 .. 10 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
@@ -126,7 +143,8 @@ struct ModeFamily {
   std::vector<ModeEvent> events;
 };
 
-/// Traced: every family found was followed to a located end (an admissibility or energy_max event); Incomplete: some
+/// Traced: every family found was followed to a located end (an admissibility or energy_max event, or back to its
+/// first point: closed_loop); Incomplete: some
 /// stalled. Neither is a claim that every k-IPP family was found: only the families connected to the grazing starts
 /// are (docs/modes.md §5); an independent brute force found admissible 1-IPP branches of the 2-dof system and of the
 /// chain that are not connected to them (they leave grazing orbits at multiples of their period). Hence not "success".
