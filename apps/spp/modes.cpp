@@ -118,6 +118,9 @@ Subcommand add_modes(CLI::App& app) {
   c->add_option("--multiples", a->options.period_multiples,
                 "with k = 1: 1-IPP families also from each mode's grazing orbit seen with period j times its own, "
                 "j = 2..J (default 1: none; docs/modes.md §3)");
+  c->add_option("--seed-period-max", a->options.seed_period_max,
+                "also seed families from the plane of their two flight durations, periods up to this (symmetric "
+                "k = 2, 3, 4 with one impact inside the half orbit; docs/modes.md §3)");
   c->add_flag("--through-inadmissible", a->options.through_inadmissible,
               "follow each family's solution curve through its inadmissible orbits (not listed): where it is "
               "admissible again below --energy-max a new family starts (event admissibility_regained)");

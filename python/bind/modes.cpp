@@ -152,7 +152,7 @@ void bind_modes(py::module_& m) {
       "modes",
       [](const spp::System& s, const py::object& k, const py::object& energy_max, const py::object& max_step,
          const py::object& branch_points, const py::object& multiples, const py::object& through_inadmissible,
-         const py::object& progress, const py::object& cancel) {
+         const py::object& progress, const py::object& seed_period_max, const py::object& cancel) {
         md::ModesOptions o;
         o.k_values = k_values(k);
         o.energy_max = scalar_argument<double>(energy_max, "spp.modes: argument energy_max");
@@ -161,6 +161,7 @@ void bind_modes(py::module_& m) {
         o.period_multiples = whole_in("multiples", multiples, 1, md::kMaxPeriodMultiples);
         o.through_inadmissible =
             scalar_argument<bool>(through_inadmissible, "spp.modes: argument through_inadmissible");
+        o.seed_period_max = scalar_argument<double>(seed_period_max, "spp.modes: argument seed_period_max");
         o.validate();
         // Ctrl-C checked before each family point: stopped, the families traced so far are returned (status
         // incomplete, interrupted) with a RuntimeWarning, as solve does; the progress line or callable (solve's
@@ -184,7 +185,7 @@ void bind_modes(py::module_& m) {
         return r;
       },
       "system"_a, "k"_a, "energy_max"_a, "max_step"_a = 0.05, "branch_points"_a = true, "multiples"_a = 1,
-      "through_inadmissible"_a = false, "progress"_a = py::none(), "cancel"_a = py::none(),
+      "through_inadmissible"_a = false, "progress"_a = py::none(), "seed_period_max"_a = 0.0, "cancel"_a = py::none(),
       ("k-IPP families (nonsmooth modes, e = 1, docs/modes.md): modes(system, k=[1, 2, 3], energy_max=5). k: the "
        "impacts per period, an int from 1 to 40 or a sequence of them (list, tuple, range(1, 4)); energy_max: a "
        "number > 0; multiples: J, an int from 1 to 100 (spp modes --multiples J): with k = 1, 1-IPP families also "
@@ -192,8 +193,10 @@ void bind_modes(py::module_& m) {
        "through_inadmissible: follow each family through its inadmissible orbits to where it is admissible again "
        "(spp modes --through-inadmissible; a new family there, event admissibility_regained). progress=True prints "
        "the progress line on stderr (from 1 s on); progress=f calls f(ModesProgress) every 0.2 s (returning False "
-       "stops the tracing, as Ctrl-C). Ctrl-C or cancel=spp.Cancel() stops it: the families traced so far are "
-       "returned (status incomplete, interrupted True) with a RuntimeWarning." +
+       "stops the tracing, as Ctrl-C). seed_period_max: T > 0 also seeds families from the plane of their two "
+       "flight durations, periods up to T (spp modes --seed-period-max; docs/modes.md §3). Ctrl-C or "
+       "cancel=spp.Cancel() stops it: the families traced so far are returned (status incomplete, interrupted "
+       "True) with a RuntimeWarning." +
        std::string(kThreadRule) +
        " Raises TypeError for another type (a bool, a float, a string such as '1..3', None) and ValueError for a "
        "value out of range.")

@@ -194,7 +194,7 @@ def test_result_enums_have_every_cpp_value():
         "MultiplierCrossing": ["none", "plus_one", "minus_one", "complex_pair"],
         "ModeEventKind": ["grazing_start", "branch_start", "grazing_continuation", "branch_point", "impact_grazing",
                           "flight_grazing", "energy_max", "stalled", "no_admissible_side", "admissibility_regained",
-                          "interrupted", "closed_loop"],
+                          "interrupted", "closed_loop", "seeded"],
         "ModesStatus": ["not run", "traced", "incomplete"],
         "SolveStatus": ["not_run", "success", "incomplete"],
         "SimulationStatus": ["not_run", "success", "event_limit", "stalled", "interrupted"],
@@ -225,3 +225,17 @@ def test_progress_callable_sees_modes_progress_and_can_stop_it():
     assert r.interrupted and r.status == "incomplete"
     with pytest.raises(TypeError, match="progress"):
         spp.modes(s, k=1, energy_max=1, progress=5)
+
+
+# Issue 15: seed_period_max seeds families from the plane of the two flight durations (spp modes --seed-period-max).
+def test_seed_period_max_adds_seeded_families():
+    s = spp.System.from_json(os.path.join(SRC, "examples", "chain5.json"))
+    plain = spp.modes(s, k=2, energy_max=2.0)
+    seeded = spp.modes(s, k=2, energy_max=2.0, seed_period_max=40)
+    kinds = [e.kind for f in seeded.families for e in f.events]
+    seed = spp.ModeEventKind.seeded
+    assert seed not in [e.kind for f in plain.families for e in f.events]
+    assert kinds.count(seed) >= 3
+    assert all(f.mode == 0 for f in seeded.families if any(e.kind == seed for e in f.events))
+    with pytest.raises(ValueError, match="seed_period_max"):
+        spp.modes(s, k=2, energy_max=2.0, seed_period_max=-1)

@@ -28,6 +28,7 @@ const char* to_string(ModeEventKind kind) {
     case ModeEventKind::AdmissibilityRegained: return "admissibility_regained";
     case ModeEventKind::Interrupted: return "interrupted";
     case ModeEventKind::ClosedLoop: return "closed_loop";
+    case ModeEventKind::Seeded: return "seeded";
   }
   return "?";
 }
@@ -65,6 +66,8 @@ void ModesOptions::validate() const {
   if (period_multiples < 1 || period_multiples > kMaxPeriodMultiples)
     detail::invalid_option(where, "period_multiples", period_multiples,
                            "in [1, " + std::to_string(kMaxPeriodMultiples) + "]");
+  if (!(seed_period_max >= 0) || !std::isfinite(seed_period_max))
+    detail::invalid_option(where, "seed_period_max", seed_period_max, ">= 0 and finite");
   if (!(locate_tol > 0) || !(locate_tol < max_step))
     detail::invalid_option(where, "locate_tol", locate_tol, "in (0, max_step)");
 }
@@ -736,6 +739,109 @@ struct Tracer {
     return true;
   }
 
+  // ---- Seeds from the plane of the flight durations (ModesOptions::seed_period_max) ----
+
+  // det [A c] at durations taus (a symmetric shape with one impact inside the half orbit, m = 1): given the
+  // durations the equations are affine in the state s (the unknowns before the durations), F = A s + c, and [A c]
+  // is square. The k-IPPs with these durations are the kernel vectors of [A c] with a last entry != 0. Scaled as z.
+  double duration_det(const KippShape& shape, const Eigen::VectorXd& taus, Eigen::VectorXd* state) const {
+    const int t0 = shape.first_tau();
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(shape.unknowns()), F;
+    y.tail(taus.size()) = taus;
+    Eigen::MatrixXd J;
+    kipp_residual(model, shape, y, F, J);
+    Eigen::MatrixXd A(F.size(), t0 + 1);
+    A.leftCols(t0) = J.leftCols(t0) * D.head(t0).asDiagonal();  // in the scaled state
+    A.col(t0) = F;
+    if (state) {
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+      const Eigen::VectorXd v = svd.matrixV().col(t0);
+      *state = std::abs(v(t0)) > 1e-12 * v.norm() ? Eigen::VectorXd(v.head(t0) / v(t0)) : Eigen::VectorXd();
+    }
+    return A.partialPivLu().determinant();
+  }
+
+  // Families of k-IPPs seeded from the plane of their two durations (docs/modes.md §3, "Seeds"): the symmetric shapes
+  // with one impact inside the half orbit (k = 2 flight-flight, k = 3 flight-impact, k = 4 impact-impact). For each
+  // the k-IPPs of period <= seed_period_max are where det [A c]
+  // (duration_det) vanishes in the triangle of durations that period allows; each edge of a grid on it (kSeedGrid
+  // cells a side) whose ends differ in sign is bisected, the point corrected onto its curve and, when it is an
+  // admissible genuine k-IPP below energy_max on no family listed, its family is traced both ways from it (one
+  // family). A curve that crosses no grid edge (a loop inside a cell) is not seen.
+  void duration_seeds(const KippShape& shape) {
+    constexpr int kSeedGrid = 200;
+    const bool none = shape.symmetry == KippSymmetry::None;
+    // the sum of the two durations: the period (none) or half of it (the half orbit)
+    const double L = none ? options.seed_period_max : 0.5 * options.seed_period_max;
+    const double h = L / kSeedGrid;
+    std::vector<double> det((kSeedGrid + 1) * (kSeedGrid + 1), 0.0);
+    const auto at = [&](int i, int j) -> double& { return det[static_cast<size_t>(i * (kSeedGrid + 1) + j)]; };
+    const auto taus = [&](double a, double b) {
+      Eigen::VectorXd t(2);
+      t << a, b;
+      return t;
+    };
+    D = scales(shape);
+    for (int i = 1; i < kSeedGrid; ++i)
+      for (int j = 1; i + j <= kSeedGrid; ++j) at(i, j) = duration_det(shape, taus(i * h, j * h), nullptr);
+    int seeds = 0;
+    for (int i = 1; i < kSeedGrid && keep_going(); ++i)
+      for (int j = 1; i + j <= kSeedGrid && !stopped; ++j)
+        for (int dir = 0; dir < 2; ++dir) {
+          const int i2 = i + (dir == 0), j2 = j + (dir == 1);
+          if (i2 + j2 > kSeedGrid || i2 >= kSeedGrid) continue;
+          const double d1 = at(i, j), d2 = at(i2, j2);
+          if (!(d1 * d2 < 0)) continue;
+          // bisection along the edge
+          double lo = 0.0, hi = 1.0;
+          for (int it = 0; it < 60; ++it) {
+            const double s = 0.5 * (lo + hi);
+            const double d = duration_det(shape, taus((i + s * (i2 - i)) * h, (j + s * (j2 - j)) * h), nullptr);
+            ((d > 0) == (d1 > 0) ? lo : hi) = s;
+          }
+          const double s = 0.5 * (lo + hi);
+          const Eigen::VectorXd t = taus((i + s * (i2 - i)) * h, (j + s * (j2 - j)) * h);
+          Eigen::VectorXd state;
+          duration_det(shape, t, &state);
+          if (state.size() == 0 || !state.allFinite()) continue;
+          Eigen::VectorXd z(shape.unknowns());
+          z.head(shape.first_tau()) = state;
+          z.tail(2) = (t.array() / D.tail(2).array()).matrix();
+          seed_family(shape, z, ++seeds);
+        }
+  }
+
+  // The family through seed z (scaled unknowns, F(z) ~ 0) of duration_seeds, when its point is new (see there).
+  void seed_family(const KippShape& shape, const Eigen::VectorXd& z_seed, int seed) {
+    Eigen::VectorXd z;
+    const Eigen::VectorXd t0 = cont::curve_tangent(jacobian(shape, z_seed), energy_gradient(shape, z_seed));
+    if (!t0.allFinite() || !correct(shape, z_seed, t0, z)) return;
+    const ModePoint p = point(shape, z);
+    if (p.multiplicity != 1 || !(p.margin > 0) || p.energy > options.energy_max || on_listed_family(p, shape.k)) return;
+    const Eigen::VectorXd dir = cont::curve_tangent(jacobian(shape, z), t0);
+    if (!dir.allFinite()) return;
+    const long stalled = result.stalled_families;
+    ModeFamily back;  // the side traced first, then reversed
+    back.points.push_back(p);
+    trace(back, shape, z, -dir, nullptr);
+    ModeFamily g;
+    g.k = shape.k;
+    g.symmetry = shape.symmetry;
+    g.multiplicity = 1;
+    g.points.assign(back.points.rbegin(), back.points.rend());
+    g.events = back.events;  // the end of that side, now the family's first point
+    add_event(g, ModeEventKind::Seeded, p, "seeded from the plane of the flight durations");
+    if (back.events.empty() || back.events.back().kind != ModeEventKind::ClosedLoop) trace(g, shape, z, dir, nullptr);
+    if (g.points.size() < 3 || listed_already(g)) {
+      result.stalled_families = stalled;
+      return;
+    }
+    std::ostringstream label;
+    label << "k" << shape.k << " " << to_string(shape.symmetry) << " seeded " << seed;
+    g.label = label.str();
+    result.families.push_back(g);
+  }
+
   // Point p of a family (its orbit has p.impact_times.size() / multiplicity impacts) repeated to k impacts, as the
   // unknowns of the general equations (KippSymmetry::None). Empty when k is no multiple of its impacts.
   Eigen::VectorXd general_unknowns(const ModePoint& p, int k) const {
@@ -1001,6 +1107,12 @@ ModesResult nonsmooth_modes(const System& system, const ModesOptions& options) {
       for (KippSymmetry s : symmetries_for(k)) tracer.repetition_search(KippShape{k, s, model.coupled_modes()}, {});
       tracer.general_from_tangencies(k, {});
       tracer.repetition_search(KippShape{k, KippSymmetry::None, model.coupled_modes()}, {});
+    }
+  // seeds from the plane of the flight durations, for the shapes where it is square (docs/modes.md §3, "Seeds")
+  if (options.seed_period_max > 0)
+    for (int k = 2; k <= std::min(k_last, 4) && !tracer.stopped; ++k) {
+      for (KippSymmetry s : symmetries_for(k))
+        if (interior_impacts(k, s) == 1) tracer.duration_seeds(KippShape{k, s, model.coupled_modes()});
     }
   // the k not requested: traced as sources, not listed (nor their stalls counted)
   const std::set<int> requested(options.k_values.begin(), options.k_values.end());

@@ -25,3 +25,20 @@ def test_two_dof_every_admissible_two_ipp_found_is_listed(tmp_path):
     listed, found = counts[2]
     assert found >= 12  # measured: 12
     assert listed == found
+
+
+# Issue 15: the paper's chain (examples/chain5.json), k = 2, sampled at E = 1, 3, 5 (T <= 40): the independent search
+# finds 38 admissible genuine 2-IPPs; `spp modes --multiples 13 --through-inadmissible` listed 11 of them, with
+# `--seed-period-max 40` (families seeded from the plane of the two flight durations, docs/modes.md §3) 35. The orbits
+# still missed are printed (NOT LISTED): non-reversible ones (unequal impact speeds).
+def test_chain5_two_ipps_found_by_the_search_are_listed_with_seeds(capsys):
+    system = os.path.join(os.environ.get("SPP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..")),
+                          "examples", "chain5.json")
+    counts = scan.main([system, "--k", "2", "--energies", "1", "3", "5", "--period-max", "40", "--starts", "300",
+                        "--seed", "1", "--spp", SPP, "--spp-args",
+                        "--multiples 13 --through-inadmissible --seed-period-max 40"])
+    listed, found = counts[2]
+    missed = [line for line in capsys.readouterr().out.splitlines() if "NOT LISTED" in line]
+    print("\n".join(missed))
+    assert found >= 38  # measured: 38
+    assert listed >= 35, missed  # measured: 35 (11 without the seeds)

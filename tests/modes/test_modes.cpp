@@ -719,6 +719,54 @@ TEST(Modes, FamiliesOfAKDoNotDependOnTheOtherKRequested) {
   EXPECT_GE(a.size(), 7u);  // measured: 7 (8 with --k 2..3, 7 with --k 1..3 before)
 }
 
+// Issue 15: an independent search (tests/crosscheck/modes_k_ipp_scan.py, chain5, k = 2, E 0.5..5, T <= 40) found 66
+// admissible 2-IPPs, spp listed 25 (--multiples 13 --through-inadmissible): most missed ones are symmetric
+// (flight, flight) orbits on families connected to no grazing start or branch point. Seeded from the plane of the two
+// flight durations they are listed, e.g. E = 5, T 16.083423, flights 3.210311 and 12.873113.
+TEST(Modes, SeedsFromTheDurationPlaneReachFamiliesNoStartReaches) {
+  ModesOptions o;
+  o.k_values = {2};
+  o.energy_max = 5.25;
+  o.period_multiples = 13;
+  o.through_inadmissible = true;
+  const ModesResult plain = nonsmooth_modes(chain5(), o);
+  o.seed_period_max = 40.0;
+  const ModesResult seeded = nonsmooth_modes(chain5(), o);
+  // a segment of a genuine family crossing E = 5 there (period and shorter flight interpolated in energy, 1e-5 T)
+  const auto listed = [&](const ModesResult& r) {
+    for (const ModeFamily& f : r.families)
+      for (size_t i = 0; f.multiplicity == 1 && i + 1 < f.points.size(); ++i) {
+        const ModePoint &a = f.points[i], &c = f.points[i + 1];
+        if ((a.energy - 5.0) * (c.energy - 5.0) > 0 || a.energy == c.energy) continue;
+        const double s = (5.0 - a.energy) / (c.energy - a.energy);
+        const auto shorter = [](const ModePoint& q) {
+          return std::min(q.impact_times[1], q.period - q.impact_times[1]);
+        };
+        if (std::abs(a.period + s * (c.period - a.period) - 16.083423) < 2e-4 &&
+            std::abs(shorter(a) + s * (shorter(c) - shorter(a)) - 3.210311) < 2e-4)
+          return true;
+      }
+    return false;
+  };
+  EXPECT_FALSE(listed(plain));
+  EXPECT_TRUE(listed(seeded));
+  int seeds = 0;
+  for (const ModeFamily& f : seeded.families)
+    for (const ModeEvent& e : f.events) seeds += e.kind == ModeEventKind::Seeded;
+  EXPECT_GE(seeds, 10);  // measured: 12
+  EXPECT_EQ(seeded.status, ModesStatus::Traced);
+  // the seeded families' points return in the exact simulator with 2 impacts, as every family's
+  ModesResult only = seeded;
+  only.families.clear();
+  for (const ModeFamily& f : seeded.families)
+    if (f.mode == 0) only.families.push_back(f);
+  const ReturnCheck c = check_returns(chain5(), only, 8);
+  EXPECT_GE(c.points, 40);
+  EXPECT_EQ(c.impact_mismatches, 0);
+  EXPECT_LT(c.max_return_error, 1e-8);
+  EXPECT_LT(c.max_time_error, 1e-9);
+}
+
 TEST(Modes, FamiliesStartingAboveEnergyMaxAreNotListed) {
   // chain5's grazing energies omega_j^2 g0^2 / (2 b_j^2) grow with j; between the first two only mode 1 starts
   const System s = chain5();

@@ -18,6 +18,8 @@
 //     the symmetric families, traced in the symmetric equations and in equations with no symmetry assumed
 //     (KippSymmetry::None), their branch points switched; families ending at one tangency continued with k + 1
 //     impacts. A family found there is listed when genuine and on no family listed already.
+//   - Seeds (ModesOptions::seed_period_max > 0): the symmetric k-IPPs with one impact inside the half orbit (k = 2,
+//     3, 4) from the sign changes of det [A c] on a grid of their two flight durations; one family per new curve.
 //   - Events, located by bisection along the arclength: admissibility lost (an impact speed reaches 0: ImpactGrazing;
 //     the gap touches 0 inside a flight: FlightGrazing), energy_max reached; the family ends there.
 // Units: energy 1/2 v^T M v + 1/2 x^T K x, times and periods in the time unit of M and K, frequency 2 pi / T (rad per
@@ -81,6 +83,12 @@ struct ModesOptions {
   /// max_points steps and up to kInadmissibleEnergyFactor * energy_max. false: a family ends at its first
   /// admissibility event (docs/modes.md §5: admissible stretches beyond are then missed).
   bool through_inadmissible = false;
+  /// > 0: families also seeded from the plane of their two flight durations, for the k-IPPs whose durations given,
+  /// the equations are square in the state ([A c], docs/modes.md §3 "Seeds"): the symmetric ones with one impact
+  /// inside the half orbit (k = 2 flight-flight, k = 3 flight-impact, k = 4 impact-impact); every curve of
+  /// such k-IPPs of period <= seed_period_max that crosses an edge of a 200 x 200 grid there is found (one family
+  /// per curve, traced both ways from its seed). 0: no seeds.
+  double seed_period_max = 0.0;
   /// Called before each family point, from the thread that called nonsmooth_modes() (so a Python callback may take
   /// the GIL): returning false stops the tracing; the families traced so far are kept (the one being traced ends
   /// with an Interrupted event) and the status is Incomplete with `interrupted` set. Empty: never called.
@@ -115,9 +123,12 @@ enum class ModeEventKind {
   /// through inadmissible orbits from that family's admissibility event, is admissible again here
   AdmissibilityRegained,
   Interrupted,  ///< ModesOptions::progress stopped the tracing here (the family is not followed further)
+  /// a point of the family (not an end): its seed in the plane of the flight durations (ModesOptions::seed_period_max);
+  /// the family was traced both ways from it, its first event is the end of the side traced first
   /// the family came back to its first point in the direction it left it: a closed loop, traced once (the family
   /// ends; it was traced round and round until max_points and then reported as stalled)
-  ClosedLoop
+  ClosedLoop,
+  Seeded
 };
 const char* to_string(ModeEventKind kind);
 /// Its values: 0 .. 10 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
@@ -136,6 +147,7 @@ struct ModeFamily {
   KippSymmetry symmetry = KippSymmetry::FlightImpact;
   /// The linear mode of the grazing start (of the repetition it branches from), numbered from 1 (the lowest of all n
   /// frequencies, decoupled modes counted), as in the label, the JSON and Python (it was 0-based here, 1-based there).
+  /// 0: a seeded family (ModesOptions::seed_period_max), from no linear mode.
   int mode = 0;
   int multiplicity = 1;  ///< of its points past the start: k for a repetition of a 1-IPP, 1 for a genuine k-IPP
   std::string label;
