@@ -43,6 +43,14 @@ def summary(pattern, group=1):
     return read
 
 
+def summary_or(pattern, default):
+    """summary(pattern), or `default` when no output line matches (an event kind absent from the summary)."""
+    def read(out, _group):
+        m = re.search(pattern, out, re.M)
+        return m.group(1) if m else default
+    return read
+
+
 def row(index, column):
     """Column `column` (0-based, after '#') of the table row whose first field is `index`."""
     def read(out, _group):
@@ -97,7 +105,8 @@ CLAIMS = [
     # Nonsmooth modes (the CLI runs what README's Python line runs)
     (r"energy_max=150\)`: (\d+) families, (\d+) genuine, \S+ s, status `(\w+)`:$", "modes",
      [summary(r"^spp modes: (\w+), (\d+) families \((\d+) genuine", g) for g in (2, 3, 1)], ["exact"] * 3),
-    (r"^(\d+) families stalled; markers", "modes", [summary(r" stalled (\d+)")], ["exact"]),
+    (r"^(\d+) families end in closed loops, (\d+) stalled; markers", "modes",
+     [summary_or(r" closed_loop (\d+)", "0"), summary_or(r" stalled (\d+)", "0")], ["exact", "exact"]),
     # Sweeps
     (r"--values 1:10:0\.25 --t1-max 8 --t2-max 8 --out-dir runs   # (\d+) values", "sweep",
      [summary(r"^sweep over k2: (\d+) values, \1 done")], ["exact"]),
