@@ -626,16 +626,22 @@ bool on_family(const ModePoint& p, const ModeFamily& f, double tol) {
   return false;
 }
 
-// Issue 15 (attack): chain5 listed the same k = 2 families twice, from the branch points of their two symmetric
-// points (a phase shift: flight-flight branches 1+/2-, 3+/4-, of mode 2 1+/2-) and as time reverses of each other
-// (the two tangencies of a symmetric grazing end: "none past grazing" 13/14, 26/29). No genuine family has its
-// interior points (5 samples) all on other listed families, up to phase shift and time reversal.
-TEST(Modes, NoFamilyIsListedTwiceUpToPhaseShiftAndTimeReversal) {
+// chain5's 2-IPPs as the README's completeness table runs them (--multiples 13 --through-inadmissible, E 5.25).
+ModesOptions chain5_k2_options() {
   ModesOptions o;
   o.k_values = {2};
   o.energy_max = 5.25;
   o.period_multiples = 13;
   o.through_inadmissible = true;
+  return o;
+}
+
+// Issue 15 (attack): chain5 listed the same k = 2 families twice, from the branch points of their two symmetric
+// points (a phase shift: flight-flight branches 1+/2-, 3+/4-, of mode 2 1+/2-) and as time reverses of each other
+// (the two tangencies of a symmetric grazing end: "none past grazing" 13/14, 26/29). No genuine family has its
+// interior points (5 samples) all on other listed families, up to phase shift and time reversal.
+TEST(Modes, NoFamilyIsListedTwiceUpToPhaseShiftAndTimeReversal) {
+  ModesOptions o = chain5_k2_options();
   const ModesResult r = nonsmooth_modes(chain5(), o);
   int genuine = 0;
   for (size_t i = 0; i < r.families.size(); ++i) {
@@ -660,11 +666,7 @@ TEST(Modes, NoFamilyIsListedTwiceUpToPhaseShiftAndTimeReversal) {
 // repetition): not listed, or listed with the repetition's multiplicity (issue 15: such one-point "families" were
 // counted as genuine: random n 3, k 3; chain5 k 4).
 TEST(Modes, OnePointBranchFamiliesAreNotGenuine) {
-  ModesOptions o;
-  o.k_values = {4};
-  o.energy_max = 1.0;
-  o.branch_points = true;
-  const ModesResult r = nonsmooth_modes(chain5(), o);
+  const ModesResult r = run(chain5(), {4}, 1.0);  // branch points followed (the default)
   int branch_starts = 0;
   for (const ModeFamily& f : r.families) {
     branch_starts += f.events.front().kind == ModeEventKind::BranchStart;
@@ -678,10 +680,7 @@ TEST(Modes, OnePointBranchFamiliesAreNotGenuine) {
 // A family that comes back to its first point ends there with a closed_loop event (not traced round and round to
 // max_points and then reported stalled: chain5 k = 4 flight-flight branches of mode 1, E 0.1664..0.1668).
 TEST(Modes, ClosedLoopsEndWhereTheyStarted) {
-  ModesOptions o;
-  o.k_values = {4};
-  o.energy_max = 1.0;
-  const ModesResult r = nonsmooth_modes(chain5(), o);
+  const ModesResult r = run(chain5(), {4}, 1.0);
   int loops = 0;
   for (const ModeFamily& f : r.families) {
     EXPECT_NE(f.events.back().kind, ModeEventKind::Stalled) << f.label;
@@ -724,11 +723,7 @@ TEST(Modes, FamiliesOfAKDoNotDependOnTheOtherKRequested) {
 // (flight, flight) orbits on families connected to no grazing start or branch point. Seeded from the plane of the two
 // flight durations they are listed, e.g. E = 5, T 16.083423, flights 3.210311 and 12.873113.
 TEST(Modes, SeedsFromTheDurationPlaneReachFamiliesNoStartReaches) {
-  ModesOptions o;
-  o.k_values = {2};
-  o.energy_max = 5.25;
-  o.period_multiples = 13;
-  o.through_inadmissible = true;
+  ModesOptions o = chain5_k2_options();
   const ModesResult plain = nonsmooth_modes(chain5(), o);
   o.seed_period_max = 40.0;
   const ModesResult seeded = nonsmooth_modes(chain5(), o);
