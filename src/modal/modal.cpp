@@ -1,6 +1,7 @@
 #include "spp/modal/modal.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -64,12 +65,92 @@ void check_resolved_spectrum(const Eigen::VectorXd& omega2) {  // ascending
 // diag(lam) + A, coupling b = X^T w (a congruence: same multipliers), with B = X^T M X - I, A = X^T K X - diag(lam).
 // In M-orthonormal coordinates (I + B)^-1/2 q that is, to first order, the stiffness diag(lam) + dK with
 // dK = sym(X^T R), R = K X - M X diag(lam), and the coupling b - B b / 2. The modal form takes diag(lam) and the b it
-// rounded: its error is |dK| in the stiffness and |b_exact - B b / 2 - b_rounded| / |b| in u. Both are computed in long
-// double (64-bit mantissa): in double their own rounding, ~eps cond(M) omega_max^2, would be as large as what they
-// measure (the eigensolver's error is ~0.05 eps cond(M) omega_max^2 on the chain in dense coordinates: cond(M~) 2.6e5
-// and 2.6e7 gave 2.7e-12 and 3.3e-10 relative, against an mpmath eigensolve). Cost O(n^3) in long double, only when
-// M~ = D^-1/2 M D^-1/2 (D = diag M) has a condition number above kWellConditionedMass.
+// rounded: its error is |dK| in the stiffness and |b_exact - B b / 2 - b_rounded| / |b| in u. R is a cancellation
+// (~0.05 eps cond(M) omega_max^2 out of terms of ~omega_max^2): in double its own rounding would be as large as what
+// it measures. K X and M X are therefore formed to ~2^-63 relative by Ozaki's error-free splitting (exact_product,
+// BLAS products of slices whose products are exact in double), R from them in double-double arithmetic; X^T R, B b
+// and b need no more than double (X^T R) and long double O(n^2) products, and the rounding of each is bounded
+// elementwise and added. Before, every product was long double (O(n^3), unvectorised, one thread): 12.0 s of CPU at
+// n = 1000 against 0.5 s for the eigensolve (issue 14's attack).
+// Taken only when M~ = D^-1/2 M D^-1/2 (D = diag M) has a condition number above kWellConditionedMass.
 constexpr double kWellConditionedMass = 1e2;
+
+// The exact sum hi + lo of a + b (Knuth's TwoSum: no assumption on the magnitudes).
+inline void two_sum(double a, double b, double& hi, double& lo) {
+  hi = a + b;
+  const double bb = hi - a;
+  lo = (a - (hi - bb)) + (b - bb);
+}
+
+// A B (k the inner dimension) as the double-double hi + lo, with an elementwise bound err on |hi + lo - A B|.
+// Ozaki's error-free splitting: each row of A (each column of B) is cut into two slices of s bits, relative to the
+// row's (column's) largest entry 2^E <= max < 2^(E+1), and the remainder, |rem| <= 2^(E - 2s). A product of two s-bit
+// slices holds integers times one unit below 2^(2s) k <= 2^52 in every partial sum: BLAS computes it exactly in any
+// order. The products with a remainder are rounded, by at most gamma_k |slice| |rem|, ~k eps 2^-2s of the whole:
+// err bounds them (with the row sums and maxima, a rank-2 outer product) and the double-double sums.
+struct ExactProduct {
+  Eigen::MatrixXd hi, lo, err;
+};
+ExactProduct exact_product(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  const Eigen::Index k = A.cols();
+  const int s = (52 - static_cast<int>(std::ceil(std::log2(std::max<double>(2.0, static_cast<double>(k)))))) / 2;
+  // slices[0], slices[1]: s bits each; slices[2]: the remainder. by_rows: A's rows, else B's columns.
+  const auto split = [s](const Eigen::MatrixXd& X, bool by_rows, Eigen::VectorXd& top) {
+    std::array<Eigen::MatrixXd, 3> sl{X, X, X};
+    const Eigen::Index lines = by_rows ? X.rows() : X.cols();
+    top.resize(lines);
+    for (Eigen::Index i = 0; i < lines; ++i) {
+      const double mx = by_rows ? X.row(i).cwiseAbs().maxCoeff() : X.col(i).cwiseAbs().maxCoeff();
+      top(i) = mx;
+      const int e = mx > 0.0 ? std::ilogb(mx) : 0;
+      for (int part = 0; part < 2; ++part) {
+        // sigma + a stays in sigma's binade: its ulp 2^(e + 1 - (part + 1) s) is the slice's unit
+        const double sigma = 1.5 * std::ldexp(1.0, e + 53 - (part + 1) * s);
+        const Eigen::Index len = by_rows ? X.cols() : X.rows();
+        for (Eigen::Index j = 0; j < len; ++j) {
+          double& rem = by_rows ? sl[2](i, j) : sl[2](j, i);
+          double& cut = by_rows ? sl[part](i, j) : sl[part](j, i);
+          if (mx == 0.0) {
+            cut = 0.0;
+            continue;
+          }
+          const double up = rem + sigma;
+          cut = up - sigma;
+          rem -= cut;  // exact
+        }
+      }
+    }
+    return sl;
+  };
+  Eigen::VectorXd rowmax, colmax;
+  const std::array<Eigen::MatrixXd, 3> a = split(A, true, rowmax), b = split(B, false, colmax);
+  ExactProduct out{Eigen::MatrixXd::Zero(A.rows(), B.cols()), Eigen::MatrixXd::Zero(A.rows(), B.cols()),
+                   Eigen::MatrixXd()};
+  // smallest first: (2,2), (1,2), (2,1), (0,2), (1,1), (2,0), (0,1), (1,0), (0,0)
+  for (int level = 4; level >= 0; --level)
+    for (int i = 2; i >= 0; --i) {
+      const int j = level - i;
+      if (j < 0 || j > 2) continue;
+      const Eigen::MatrixXd p = detail::product(a[i], false, b[j], false);
+      for (Eigen::Index c = 0; c < p.cols(); ++c)
+        for (Eigen::Index r = 0; r < p.rows(); ++r) {
+          double h, l;
+          two_sum(out.hi(r, c), p(r, c), h, l);
+          out.hi(r, c) = h;
+          out.lo(r, c) += l;
+        }
+    }
+  // |A_i| |B_2| <= 2^(F_j + 1 - 2s) rowsum_i(|A| + 2^(E_i + 1)) (and the mirror): the rounded products, gamma_k each;
+  // the double-double's own sums: 9 terms, ~2^-104 of their absolute sum, taken as 16 eps^2 (|A| |B|)'s bound.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double gamma = 1.01 * static_cast<double>(k) * eps, unit = std::ldexp(1.0, 2 - 2 * s);
+  const Eigen::VectorXd rowsum = A.cwiseAbs().rowwise().sum() + static_cast<double>(k) * 2.0 * rowmax;
+  const Eigen::VectorXd colsum = B.cwiseAbs().colwise().sum().transpose() + static_cast<double>(k) * 2.0 * colmax;
+  out.err = (5.0 * gamma * unit + 16.0 * eps * eps) *
+            (rowsum * (2.0 * colmax).transpose() + (2.0 * rowmax) * colsum.transpose());
+  return out;
+}
+
 // Returns {data_error, frequency_error} (ModalForm's accessors).
 std::pair<double, double> modal_data_error(const System& system, const Eigen::MatrixXd& X, const Eigen::VectorXd& lam) {
   const Eigen::VectorXd s = system.M().diagonal().cwiseSqrt().cwiseInverse();
@@ -78,26 +159,74 @@ std::pair<double, double> modal_data_error(const System& system, const Eigen::Ma
   if (!me.ok || !(me.values(0) > 0.0)) return {kInf, kInf};
   const double cond = me.values(me.values.size() - 1) / me.values(0);
   if (cond <= kWellConditionedMass) return {0.0, 0.0};
-  using MatL = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  using VecL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
-  const MatL Xl = X.cast<long double>(), Kl = system.K().cast<long double>(), Ml = system.M().cast<long double>();
-  const VecL laml = lam.cast<long double>(), wl = system.w().cast<long double>();
-  const MatL MX = Ml * Xl;
-  const MatL R = Kl * Xl - MX * laml.asDiagonal();
-  const MatL XR = Xl.transpose() * R;
-  const MatL dK = (XR + XR.transpose()) / 2.0L;
-  const MatL B = Xl.transpose() * MX - MatL::Identity(X.cols(), X.cols());
-  const VecL b = Xl.transpose() * wl;
+  const Eigen::Index n = X.rows();
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  Eigen::MatrixXd KM(2 * n, n);
+  KM << system.K(), system.M();
+  const ExactProduct P = exact_product(KM, X);  // rows 0..n-1: K X, rows n..2n-1: M X
+  // R = K X - M X diag(lam) in double-double, rounded once; errR bounds its error elementwise
+  Eigen::MatrixXd R(n, n), errR(n, n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double q = P.hi(n + i, j) * lam(j), qe = std::fma(P.hi(n + i, j), lam(j), -q);  // q + qe exact
+      double h, l;
+      two_sum(P.hi(i, j), -q, h, l);
+      R(i, j) = h + (((l - qe) + P.lo(i, j)) - P.lo(n + i, j) * lam(j));
+      errR(i, j) = eps * std::abs(R(i, j)) + P.err(i, j) + std::abs(lam(j)) * P.err(n + i, j) +
+                   4.0 * eps * eps * (std::abs(P.hi(i, j)) + std::abs(q));
+    }
+  // X^T R in double: |fl - exact| <= gamma_n |X|^T |R|
+  const Eigen::MatrixXd absX = X.cwiseAbs();
+  const double gamma = 1.01 * static_cast<double>(n) * eps;
+  const Eigen::MatrixXd XR = detail::product(X, true, R, false);
+  const Eigen::MatrixXd XRerr = 1.01 * detail::product(absX, true, errR + gamma * R.cwiseAbs(), false);
+  const Eigen::MatrixXd dK = (XR + XR.transpose()) / 2.0, dKerr = (XRerr + XRerr.transpose()) / 2.0;
+  // the coupling: b = X^T w and B b = X^T (M (X b)) - b, each product error-free split (O(n^2)), the double-double
+  // parts carried; eb, ey, eq, ec bound their errors elementwise
+  const Eigen::MatrixXd Xt = X.transpose();
+  const ExactProduct Pb = exact_product(Xt, system.w());
+  const Eigen::VectorXd bh = Pb.hi.col(0), bl = Pb.lo.col(0), eb = Pb.err.col(0);
+  const ExactProduct Py = exact_product(X, bh);
+  const Eigen::VectorXd ylo = Py.lo.col(0) + X * bl;
+  const Eigen::VectorXd ey = Py.err.col(0) + absX * (eb + 2.0 * gamma * bl.cwiseAbs());
+  const ExactProduct Pq = exact_product(system.M(), Py.hi);
+  const Eigen::VectorXd qlo = Pq.lo.col(0) + system.M() * ylo;
+  const Eigen::VectorXd eq = Pq.err.col(0) + system.M().cwiseAbs() * (ey + 2.0 * gamma * ylo.cwiseAbs());
+  const ExactProduct Pc = exact_product(Xt, Pq.hi);
+  const Eigen::VectorXd clo = Pc.lo.col(0) + Xt * qlo;
+  const Eigen::VectorXd ec = Pc.err.col(0) + absX.transpose() * (eq + 2.0 * gamma * qlo.cwiseAbs());
   const Eigen::VectorXd b_rounded = X.transpose() * system.w();
-  const VecL db = b - B * b / 2.0L - b_rounded.cast<long double>();
-  const double stiffness = static_cast<double>(dK.norm()) / lam.maxCoeff();
-  const double coupling = static_cast<double>(db.norm() / b.norm());
-  // (and the long double rounding of both, ~n eps_ld cond(M~), and the first order's neglected B^2: x2)
-  double frequency = 0.0;  // each mode's row of dK over its own omega^2
-  for (Eigen::Index k = 0; k < dK.rows(); ++k)
-    frequency = std::max(frequency, static_cast<double>(dK.row(k).norm()) / lam(k));
-  const double floor = 2.0 * X.rows() * std::numeric_limits<long double>::epsilon() * cond;
-  return {2.0 * std::max(stiffness, coupling) + floor, 2.0 * frequency + floor};
+  Eigen::VectorXd db(n), db_err(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double h, l;
+    two_sum(Pc.hi(i, 0), -bh(i), h, l);  // B b = h + l + clo - bl
+    const double Bb = h + ((l + clo(i)) - bl(i));
+    const double d = (bh(i) - b_rounded(i)) + bl(i);  // (bh, b_rounded: two roundings of one value, Sterbenz)
+    db(i) = d - Bb / 2.0;
+    db_err(i) = eb(i) + ec(i) / 2.0 + 4.0 * eps * (std::abs(db(i)) + std::abs(Bb) + std::abs(d)) +
+                4.0 * eps * eps * (std::abs(Pc.hi(i, 0)) + std::abs(bh(i)));
+  }
+  const double bn = bh.norm() * (1.0 - 2.0 * gamma);
+  const double stiffness = (dK.norm() + dKerr.norm()) / lam.maxCoeff();
+  const double coupling = (db.norm() + db_err.norm()) / bn;
+  // Each omega_k^2 is an eigenvalue of diag(lam) + dK: the Rayleigh quotient of e_k moves it by dK_kk, and the rest of
+  // the row, of norm rho, by at most rho^2 / delta (Kato-Temple) where delta separates lam_k + dK_kk from the other
+  // eigenvalues (each within |dK|_2 of its lam_j, Weyl); by at most rho where that separation is not proved. The row
+  // norm alone (before) was 31-42 times the true errors of the chain x = (I + 0.83 superdiag) y, n 100 and 300.
+  const double dK2 = dK.norm() + dKerr.norm();  // >= |dK + error|_2
+  double frequency = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double diag = std::abs(dK(k, k)) + dKerr(k, k);
+    const double rho = std::sqrt(std::max(0.0, dK.row(k).squaredNorm() - dK(k, k) * dK(k, k))) + dKerr.row(k).norm();
+    double gap = std::numeric_limits<double>::infinity();
+    if (k > 0) gap = std::min(gap, lam(k) - lam(k - 1));
+    if (k + 1 < n) gap = std::min(gap, lam(k + 1) - lam(k));
+    const double delta = gap - dK2 - diag;
+    const double off = delta > dK2 + diag ? std::min(rho, rho * rho / delta) : rho;
+    frequency = std::max(frequency, (diag + off) / lam(k));
+  }
+  // (x2: the first order's neglected B^2)
+  return {2.0 * std::max(stiffness, coupling), 2.0 * frequency};
 }
 }  // namespace
 
