@@ -278,6 +278,27 @@ TEST(Cli, GenerateThenSolve) {
   EXPECT_FALSE(fs::exists(dir() / "bad.json"));
 }
 
+// Found by issue 14's attack: the table printed rho with 6 digits, so a stable margin of 1.8e-9 (the chain's stability
+// crossing in k5, 1e-9 away from it) read "1" beside "yes". Printed now with the digits that show 1 - rho.
+TEST(Cli, SolveTablePrintsTheRadiusWithItsDistanceToOne) {
+  const fs::path g = dir() / "k5_margin.json", res = dir() / "k5_margin_result.json";
+  ASSERT_EQ(run("generate chain --n 5 --masses 1 --stiffnesses 1,1,1,1,0.98357796928833 --g0 1 --side upper --out " +
+                g.string())
+                .code,
+            0);
+  const CliRun r =
+      run("solve " + g.string() + " --t1-min 5.65 --t1-max 5.75 --t2-min 2.45 --t2-max 2.55 --json " + res.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(res));
+  ASSERT_EQ(j["solutions"].size(), 1u);
+  const double rho = j["solutions"][0]["spectral_radius"].get<double>();
+  ASSERT_LT(std::abs(1.0 - rho), 1e-8);  // the case: a margin below the 6 digits
+  ASSERT_GT(std::abs(1.0 - rho), 1e-10);
+  std::ostringstream os;
+  os << std::setprecision(11) << rho;  // 2 digits beyond the margin's first
+  EXPECT_NE(r.out.find(" " + os.str() + " "), std::string::npos) << os.str() << "\n" << r.out;
+}
+
 // simulate: samples up to t = T exactly, events file, energy; bad input rejected without output.
 TEST(Cli, SimulateWritesSamplesAndEvents) {
   const fs::path csv = dir() / "sim.csv", ev = dir() / "ev.csv";

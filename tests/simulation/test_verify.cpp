@@ -384,6 +384,38 @@ TEST(Verify, PerturbationWithElasticImpactsWarnsThatFloquetDoesNotApply) {
   EXPECT_TRUE(verify(chain5(), {*it}, o).warnings.empty());
 }
 
+// Found by issue 14's attack: --perturb 1e-8 read a growth above 1 on a stable SPP without a word. Chain #2
+// (rho 0.9858) over 400 periods: the simulator's own error (unperturbed return error) reaches ~2.5e-11, so a 1e-12
+// perturbation measures rounding (warned as such), while 1e-8 is resolved and grows by ~1.002 per period through the
+// neutral energy direction (warned as beyond the linearisation); 1e-6 over 20 periods is not rounding.
+TEST(Verify, PerturbationWithinTheSimulatorsOwnErrorOrGrowingBesideAStableVerdictIsWarned) {
+  std::vector<Solution> all = spps_of(chain5(), 12.0, 12.0);
+  const auto it = std::find_if(all.begin(), all.end(), [](const Solution& c) {
+    return c.admissible() && std::abs(c.floquet.spectral_radius - 0.985756) < 1e-5;
+  });
+  ASSERT_NE(it, all.end());
+  ASSERT_TRUE(it->stable());
+  VerifyOptions o;
+  o.periods = 400;
+  o.perturbation = 1e-12;
+  VerifyResult r = verify(chain5(), {*it}, o);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("simulator's own error"), std::string::npos) << r.warnings[0];
+  o.perturbation = 1e-8;
+  r = verify(chain5(), {*it}, o);
+  ASSERT_EQ(r.checks.size(), 1u);
+  if (r.checks[0].growth_per_period > 1.0) {
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("beside a stable verdict"), std::string::npos) << r.warnings[0];
+  } else {
+    EXPECT_TRUE(r.warnings.empty());
+  }
+  o.periods = 20;
+  o.perturbation = 1e-6;
+  r = verify(chain5(), {*it}, o);
+  for (const std::string& w : r.warnings) EXPECT_EQ(w.find("rounding"), std::string::npos) << w;
+}
+
 // Found by the attack of issue 11: verify checked the potential orbit and the stability of axial SPPs only, so a
 // point-symmetric result with K, v0, x0, t1 or obstacle_velocity edited (and an axial one relabelled point) passed.
 TEST(Verify, EditedPointSymmetricSppsAreInconsistent) {
