@@ -335,7 +335,8 @@ SimulationResult Simulator::run(const Eigen::VectorXd& x0, const Eigen::VectorXd
   {
     const double g = system_.gap(x);
     constexpr double kInitialGapTol = 1e-9;  // penetration within ~5e6 eps of the gap's scale: on the obstacle
-    const double gtol = kInitialGapTol * (std::abs(system_.g0()) + x.norm());
+    // (or within the event tolerance, when it is larger: verify's, for a state known to less than 1e-9; issue 11)
+    const double gtol = std::max(kInitialGapTol, opt.event_rel_tol) * (std::abs(system_.g0()) + x.norm());
     if (g < -gtol) {
       std::ostringstream os;
       os << "simulate: the initial state penetrates the obstacle: gap w^T x0 + g0 = " << g
