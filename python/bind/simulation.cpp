@@ -36,7 +36,8 @@ void bind_simulation(py::module_& m) {
   bind_outcome<spp::VerifyStatus>(m, "VerifyStatus",
       "VerifyResult.status: inconsistent when the result disagrees with the simulation or the system (admissibility, "
       "claimed stability, x0/v0: the three counters), interrupted when Ctrl-C stopped it before every SPP was "
-      "checked (unchecked counts those left) and none checked disagrees, else success");
+      "checked (unchecked counts those left) and none checked disagrees, incomplete when an SPP's simulation would "
+      "pass the simulator's limit (beyond_simulator_limit, a warning each), else success");
   bind_outcome<spp::Verdict>(m, "Verdict", "SppCheck.verdict");
   py::class_<spp::Event>(m, "Event")
       .def_readonly("t", &spp::Event::t)
@@ -201,7 +202,10 @@ void bind_simulation(py::module_& m) {
       // was always True (found by issue 14's attack)
       .def_property_readonly("all_consistent", &spp::VerifyResult::all_consistent,
                              "True when every SPP checked is consistent (inconsistent == 0)")
-      .def_readonly("unchecked", &spp::VerifyResult::unchecked, "SPPs not checked (a stopped run)")
+      .def_readonly("unchecked", &spp::VerifyResult::unchecked,
+                    "SPPs not checked (a stopped run, or beyond_simulator_limit)")
+      .def_readonly("beyond_simulator_limit", &spp::VerifyResult::beyond_simulator_limit,
+                    "SPPs not checked because periods x period passes the simulator's limit (status incomplete)")
       .def_readonly("admissibility_mismatches", &spp::VerifyResult::admissibility_mismatches,
                     "SPPs whose simulation (returns or leaves) is not the solver's admissibility")
       .def_readonly("stability_mismatches", &spp::VerifyResult::stability_mismatches,

@@ -199,7 +199,7 @@ def test_result_enums_have_every_cpp_value():
         "SolveStatus": ["not_run", "success", "incomplete"],
         "SimulationStatus": ["not_run", "success", "event_limit", "stalled", "interrupted"],
         "EventKind": ["impact", "contact_onset", "release"],
-        "VerifyStatus": ["success", "inconsistent", "interrupted"],
+        "VerifyStatus": ["success", "inconsistent", "interrupted", "incomplete"],
         "Verdict": ["returns", "leaves"],
         "StabilityVerdict": ["not_computed", "stable", "unstable", "undecided", "neutral"],
     }

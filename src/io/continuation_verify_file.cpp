@@ -368,7 +368,8 @@ json verify_to_json(const VerifyResult& r) {
   out["admissibility_mismatches"] = r.admissibility_mismatches;
   out["stability_mismatches"] = r.stability_mismatches;
   out["state_mismatches"] = r.state_mismatches;
-  out["unchecked"] = r.unchecked;  // a stopped run's SPPs not checked (status interrupted)
+  out["unchecked"] = r.unchecked;  // a stopped run's SPPs not checked (status interrupted), and those beyond:
+  if (r.beyond_simulator_limit > 0) out["beyond_simulator_limit"] = r.beyond_simulator_limit;  // (status incomplete)
   if (!r.warnings.empty()) out["warnings"] = r.warnings;
   return out;
 }

@@ -564,3 +564,33 @@ TEST(Verify, SmallEditsOfAWellConditionedSppAreStateMismatches) {
   p.orbit.t1 += 1e-7;
   state_mismatch(chain5(), p, "point-symmetric t1 +1e-7");
 }
+
+// Found by the attack of issue 11: spp verify --periods 2200 aborted (exit 1) when one SPP's simulation passed the
+// simulator's limit of 1e8 periods of the fastest mode (a chain with a 1e-8 mass). It is reported as not checked.
+TEST(Verify, AnSppBeyondTheSimulatorsLimitIsNotCheckedAndSaysWhy) {
+  Eigen::MatrixXd M = chain5().M();
+  M(1, 1) = 1e-8;  // omega_max ~ 1.4e4: 1e8 periods of it last ~4.4e4
+  const System light(M, chain5().K(), chain5().w(), chain5().g0());
+  // a state on the obstacle at rest (its onset is what an axial SPP's must be; it is checked after the limit)
+  Solution c;
+  c.orbit.x0 = -light.g0() * light.w();
+  c.orbit.v0 = Eigen::VectorXd::Zero(5);
+  c.orbit.t1 = c.orbit.t2 = 3.0;
+  const double limit = Simulator(light).max_duration();
+  VerifyOptions o;
+  o.periods = static_cast<int>(limit / c.period()) + 1;
+  ASSERT_LE(o.periods, 100000);
+  const VerifyResult r = verify(light, {c}, o);
+  EXPECT_EQ(r.status, VerifyStatus::Incomplete) << r.brief_report();
+  EXPECT_EQ(r.beyond_simulator_limit, 1);
+  EXPECT_EQ(r.unchecked, 1);
+  EXPECT_TRUE(r.checks.empty());
+  EXPECT_FALSE(r.all_consistent());
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("solution 0 "), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("pass the simulator's limit"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.brief_report().find("1 not checked (their simulation would pass the simulator's limit)"),
+            std::string::npos)
+      << r.brief_report();
+  EXPECT_STREQ(to_string(VerifyStatus::Incomplete), "incomplete");
+}

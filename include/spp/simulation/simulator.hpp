@@ -26,8 +26,8 @@ struct SimulateOptions {
   bool sample_events = true;  ///< add a sample with the state just after each event
   long max_events = 10000000;
   /// Event tolerances, relative to the amplitude of the gap (flight) or force (contact) of the phase: an
-  /// excursion below zero shallower than this is not an event; a start penetrating the obstacle by less than it (or
-  /// 1e-9) relative to |g0| + |x0| is a start on it.
+  /// excursion below zero shallower than this is not an event; a start penetrating the obstacle by less than 100 times
+  /// it (or 1e-9) relative to |g0| + |x0| is a start on it.
   double event_rel_tol = 1e-13;
   /// An impact slower than this (relative to the bound sum |a_k| omega_k on the gap's velocity), or whose
   /// rebound would rise less than a few event tolerances, is plastic: it is where an accumulation of impacts
@@ -114,6 +114,10 @@ class Simulator {
                                                                         const Eigen::VectorXd& v0,
                                                                         double contact_time,
                                                                         double flight_time) const;
+
+  /// The longest duration run() accepts: 1e8 periods of the fastest mode of either phase (the event search steps
+  /// through each; ~2.4 us each on a 5-dof chain); infinity for a system without a positive frequency.
+  double max_duration() const;
 
   const System& system() const { return system_; }
   double energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
