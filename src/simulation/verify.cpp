@@ -345,6 +345,10 @@ std::string onset_mismatch(const System& system, const EquationSet& eq, const Or
 
 }  // namespace
 
+double expected_state_error(const System& system, const ModalForm& modal, double period) {
+  return error_model(system, modal).state_error(period);
+}
+
 VerifyResult verify(const System& system, const std::vector<Solution>& spps, const VerifyOptions& opt) {
   opt.validate();
   const Simulator sim(system);

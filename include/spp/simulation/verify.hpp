@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "spp/modal/modal.hpp"
 #include "spp/orbit/solution.hpp"
 #include "spp/simulation/simulator.hpp"
 
@@ -121,6 +122,12 @@ struct VerifyResult {
   /// its count) is not checked: only a re-solve checks it (docs/result-files.md).
   std::string brief_report() const;
 };
+
+/// The relative error expected of the state (x0, v0) of an SPP of period T of this system, as the solver computes it
+/// through the modal form `modal` (of `system`), and of the simulator's flows over T: eps_s = eps (max(cond M, cond K)
+/// + omega_max T) + data_error + frequency_error (docs/result-files.md, "Tolerances"; VerifyOptions). Cost O(n^3) (two
+/// Cholesky factorisations).
+double expected_state_error(const System& system, const ModalForm& modal, double period);
 
 /// Each SPP's onset state is first checked against its symmetry's equation set (make_equations; the first SPP builds
 /// the modal form, O(n^3)): x0 on the obstacle, the normal velocity w^T v0 the symmetry requires (0 axial, g0 / t2
