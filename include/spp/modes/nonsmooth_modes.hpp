@@ -123,17 +123,17 @@ enum class ModeEventKind {
   /// through inadmissible orbits from that family's admissibility event, is admissible again here
   AdmissibilityRegained,
   Interrupted,  ///< ModesOptions::progress stopped the tracing here (the family is not followed further)
-  /// a point of the family (not an end): its seed in the plane of the flight durations (ModesOptions::seed_period_max);
-  /// the family was traced both ways from it, its first event is the end of the side traced first
   /// the family came back to its first point in the direction it left it: a closed loop, traced once (the family
   /// ends; it was traced round and round until max_points and then reported as stalled)
   ClosedLoop,
+  /// a point of the family (not an end): its seed in the plane of the flight durations (ModesOptions::seed_period_max);
+  /// the family was traced both ways from it, its first event is the end of the side traced first
   Seeded
 };
 const char* to_string(ModeEventKind kind);
-/// Its values: 0 .. 10 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
+/// Its values: 0 .. Seeded (the last), each bound by python/bind (bind_outcome). Update with the enum.
 constexpr int value_count(ModeEventKind) {
-  return 11;
+  return static_cast<int>(ModeEventKind::Seeded) + 1;
 }
 
 struct ModeEvent {

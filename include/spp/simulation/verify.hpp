@@ -95,9 +95,9 @@ struct SppCheck {
 /// one such SPP of a chain with a 1e-8 mass; issue 11 finding). spp verify exits 3 unless Success.
 enum class VerifyStatus { Success, Inconsistent, Interrupted, Incomplete };
 const char* to_string(VerifyStatus s);
-/// Its values: 0 .. 2 (Interrupted last), each bound by python/bind (bind_outcome). Update with the enum.
+/// Its values: 0 .. 3 (Incomplete last), each bound by python/bind (bind_outcome). Update with the enum.
 constexpr int value_count(VerifyStatus) {
-  return 3;
+  return 4;
 }
 
 struct VerifyResult {
