@@ -58,7 +58,11 @@ std::string verify_table(const VerifyResult& r) {
   std::ostringstream os;
   const bool perturbed =
       std::any_of(r.checks.begin(), r.checks.end(), [](const SppCheck& c) { return !c.perturbed_distances.empty(); });
-  const int periods = r.checks.empty() ? 0 : static_cast<int>(r.checks[0].return_errors.size());
+  // the periods simulated: the longest list (an SPP that leaves at t = 0 has none: the table read back() of an empty
+  // list and crashed, issue 14's attack, spp verify --periods 2 of a random 12-dof system with cond M 4e8)
+  size_t periods_max = 0;
+  for (const SppCheck& c : r.checks) periods_max = std::max(periods_max, c.return_errors.size());
+  const int periods = static_cast<int>(periods_max);
   os << std::setw(4) << "#" << " " << std::setw(13) << "t1" << " " << std::setw(13) << "t2" << std::setw(12) << "admissible"
      << std::setw(14) << "return_err" << std::setw(9) << "verdict";
   if (periods > 1) os << std::setw(10) << "followed" << std::setw(14) << "err_last";
@@ -68,10 +72,19 @@ std::string verify_table(const VerifyResult& r) {
   for (const SppCheck& c : r.checks) {
     os << std::setw(4) << i++ << " " << std::setprecision(8) << std::setw(13) << c.spp.t1() << " " << std::setw(13)
        << c.spp.t2() << std::setw(12) << (c.spp.admissible() ? "yes" : "no") << std::setprecision(3)
-       << std::setw(14) << (c.return_errors.empty() ? 0.0 : c.return_errors[0]) << std::setw(9) << to_string(c.verdict);
-    if (periods > 1)
-      os << std::setw(10) << (std::to_string(c.periods_followed) + "/" + std::to_string(periods)) << std::setw(14)
-         << c.return_errors.back();
+       << std::setw(14);
+    if (c.return_errors.empty())
+      os << "-";  // no return measured (it left at t = 0): not a return error of 0
+    else
+      os << c.return_errors[0];
+    os << std::setw(9) << to_string(c.verdict);
+    if (periods > 1) {
+      os << std::setw(10) << (std::to_string(c.periods_followed) + "/" + std::to_string(periods)) << std::setw(14);
+      if (c.return_errors.empty())
+        os << "-";
+      else
+        os << c.return_errors.back();
+    }
     if (perturbed) {
       if (c.perturbed_distances.empty())
         os << std::setw(12) << "-";

@@ -565,15 +565,44 @@ TEST(Verify, SmallEditsOfAWellConditionedSppAreStateMismatches) {
   state_mismatch(chain5(), p, "point-symmetric t1 +1e-7");
 }
 
+// Found by the attack on issue 11: an onset state moved along the contact flow (x0 + c v0, v0 + c a0, with a0 the
+// acceleration, whose normal part is 0 at a genuine onset) keeps the gap and the normal velocity 0 and is a fixed
+// point of the potential map (the return error is second order in c), so it passed verify for c up to 1 on a
+// non-admissible chain SPP and for c = 1e-8 on admissible ones. Only its contact force at onset, c lambda'(0), is not
+// 0: checked, a state mismatch.
+TEST(Verify, AnOnsetStateMovedAlongTheOrbitIsAStateMismatch) {
+  const System sys = chain5();
+  const std::vector<Solution> spps = spps_of(sys, 12.0, 12.0);
+  ASSERT_GE(spps.size(), 3u);
+  const VerifyResult clean = verify(sys, spps, VerifyOptions{});
+  ASSERT_TRUE(clean.all_consistent()) << clean.brief_report();
+  for (const double c : {1e-8, 1e-6, 1.0}) {
+    for (size_t i = 0; i < 3; ++i) {
+      Solution s = spps[i];
+      const Eigen::VectorXd a0 = -sys.M().ldlt().solve(sys.K() * s.orbit.x0);
+      s.orbit.x0 += c * s.orbit.v0;
+      s.orbit.v0 += c * a0;
+      const VerifyResult r = verify(sys, {s}, VerifyOptions{});
+      EXPECT_EQ(r.state_mismatches, 1) << "c " << c << ", solution " << i << ": " << r.brief_report();
+      ASSERT_EQ(r.checks.size(), 1u);
+      EXPECT_NE(r.checks[0].departure.find("contact force at onset"), std::string::npos) << r.checks[0].departure;
+    }
+  }
+}
+
 // Found by the attack of issue 11: spp verify --periods 2200 aborted (exit 1) when one SPP's simulation passed the
 // simulator's limit of 1e8 periods of the fastest mode (a chain with a 1e-8 mass). It is reported as not checked.
 TEST(Verify, AnSppBeyondTheSimulatorsLimitIsNotCheckedAndSaysWhy) {
   Eigen::MatrixXd M = chain5().M();
   M(1, 1) = 1e-8;  // omega_max ~ 1.4e4: 1e8 periods of it last ~4.4e4
   const System light(M, chain5().K(), chain5().w(), chain5().g0());
-  // a state on the obstacle at rest (its onset is what an axial SPP's must be; it is checked after the limit)
+  // a state on the obstacle at rest with no contact force (the onset an axial SPP's must be: checked before the limit)
+  const Eigen::VectorXd q = light.K() * light.M().ldlt().solve(light.w());  // q^T x0 = w^T M^-1 K x0
+  Eigen::Matrix2d a;
+  a << light.w().dot(light.w()), light.w().dot(q), q.dot(light.w()), q.dot(q);
+  const Eigen::Vector2d ab = a.fullPivLu().solve(Eigen::Vector2d(-light.g0(), 0.0));
   Solution c;
-  c.orbit.x0 = -light.g0() * light.w();
+  c.orbit.x0 = ab(0) * light.w() + ab(1) * q;
   c.orbit.v0 = Eigen::VectorXd::Zero(5);
   c.orbit.t1 = c.orbit.t2 = 3.0;
   const double limit = Simulator(light).max_duration();
