@@ -160,8 +160,19 @@ void bind_orbit(py::module_& m) {
           before_sampling = !hook.keep_going();
           if (at.found && !before_sampling) os = sampled(md, at.solution.orbit, samples, hook, done, times);
         }
-        if (before_sampling) hook.raise_if_interrupted();
+        // Ctrl-C before the sampling: nothing to keep, KeyboardInterrupt. A cancelled token (another thread's
+        // cancel()) returns no samples instead, as every call taking cancel= returns (a KeyboardInterrupt raised in a
+        // worker thread reached the main thread through Future.result(); found by the attack on issue 13)
+        if (before_sampling && !hook.cancelled) hook.raise_if_interrupted();
         hook.finish();
+        if (before_sampling && !at.found) {
+          hook.warn("trajectory interrupted (Ctrl-C) before the SPP was polished: no samples (interrupted True)");
+          const double nan = std::numeric_limits<double>::quiet_NaN();
+          return py::dict("t"_a = Eigen::VectorXd(0), "x"_a = Eigen::MatrixXd(0, s.n()),
+                          "v"_a = Eigen::MatrixXd(0, s.n()), "gap"_a = Eigen::VectorXd(0),
+                          "force"_a = Eigen::VectorXd(0), "t1"_a = t1, "t2"_a = t2, "period"_a = nan,
+                          "admissible"_a = py::none(), "interrupted"_a = true);
+        }
         if (!at.found) throw py::value_error("trajectory: " + at.brief_report());
         const bool cut = done < samples;
         hook.warn(cut ? "trajectory interrupted (Ctrl-C): " + std::to_string(done) + " of " + std::to_string(samples) +
@@ -177,7 +188,8 @@ void bind_orbit(py::module_& m) {
       ("One period of the SPP at (t1, t2) (polished there first), from its own equations, as spp trajectory writes it: "
        "dict of t (N,) from contact onset, x, v (N, n), gap, force (N,), and the polished t1, t2, period, "
        "admissible, and interrupted (Ctrl-C during the sampling: the samples so far, with a RuntimeWarning; before it, "
-       "KeyboardInterrupt). Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 "
+       "KeyboardInterrupt; cancel=spp.Cancel() cancelled before it: no samples, and when the SPP was not polished "
+       "yet the given t1, t2, period nan and admissible None). Unlike simulate, it follows an inadmissible SPP too (the potential orbit, gap < 0 "
        "somewhere). "
        "times=[...]: the rows at those times instead (from contact onset, any real, taken modulo the period; "
        "samples is then ignored), exact at any time (an animation's frames). cancel=spp.Cancel() stops it as Ctrl-C "

@@ -170,6 +170,11 @@ void bind_simulation(py::module_& m) {
       .def_readonly("consistent", &spp::SppCheck::consistent)
       .def_readonly("return_errors", &spp::SppCheck::return_errors)
       .def_readonly("potential_return_error", &spp::SppCheck::potential_return_error)
+      .def_readonly("state_tolerance", &spp::SppCheck::state_tolerance,
+                    "this SPP's tolerance on its onset state and potential orbit (from the problem's own error, "
+                    "docs/result-files.md, Tolerances)")
+      .def_readonly("return_tolerance", &spp::SppCheck::return_tolerance,
+                    "this SPP's tolerance on the simulated return after one period")
       .def_readonly("periods_followed", &spp::SppCheck::periods_followed)
       .def_readonly("departure_time", &spp::SppCheck::departure_time)
       .def_readonly("departure", &spp::SppCheck::departure)
@@ -212,6 +217,9 @@ void bind_simulation(py::module_& m) {
                     "SPPs whose claimed stability the Floquet multipliers recomputed from (t1, t2) contradict")
       .def_readonly("state_mismatches", &spp::VerifyResult::state_mismatches,
                     "SPPs whose x0, v0 are not the orbit at (t1, t2)")
+      .def_readonly("warnings", &spp::VerifyResult::warnings,
+                    "what the verification warns of (the JSON's warnings): SPPs beyond the simulator's limit, a "
+                    "perturbation within the simulator's own error, growth above 1 beside a stable verdict")
       .def("brief_report", &spp::VerifyResult::brief_report)
       .def(py::pickle([](const spp::VerifyResult& x) { return state::of(x); },
                       [](const py::tuple& t) { return state::verify_result(t); }))

@@ -221,10 +221,10 @@ inline py::tuple of(const spp::SppCheck& c) {
   return py::make_tuple(of(c.spp), static_cast<int>(c.verdict), c.consistent, c.return_errors, c.potential_return_error,
                         c.periods_followed, c.departure_time, c.departure,
                         py::make_tuple(c.impacts, c.contact_onsets, c.releases), c.perturbed_distances,
-                        c.growth_per_period);
+                        c.growth_per_period, py::make_tuple(c.state_tolerance, c.return_tolerance));
 }
 inline spp::SppCheck spp_check(const py::tuple& t) {
-  sized(t, 11, "SppCheck");
+  sized(t, 12, "SppCheck");
   spp::SppCheck c;
   c.spp = solution(t[0].cast<py::tuple>());
   c.verdict = static_cast<spp::Verdict>(t[1].cast<int>());
@@ -240,16 +240,20 @@ inline spp::SppCheck spp_check(const py::tuple& t) {
   c.releases = n[2].cast<long>();
   c.perturbed_distances = t[9].cast<std::vector<double>>();
   c.growth_per_period = t[10].cast<double>();
+  const py::tuple tol = sized(t[11].cast<py::tuple>(), 2, "SppCheck (tolerances)");
+  c.state_tolerance = tol[0].cast<double>();
+  c.return_tolerance = tol[1].cast<double>();
   return c;
 }
 inline py::tuple of(const spp::VerifyResult& r) {
   py::list checks;
   for (const spp::SppCheck& c : r.checks) checks.append(of(c));
   return py::make_tuple(static_cast<int>(r.status), checks, r.returned, r.left, r.inconsistent, r.unchecked,
-                        r.admissibility_mismatches, r.stability_mismatches, r.state_mismatches);
+                        r.admissibility_mismatches, r.stability_mismatches, r.state_mismatches,
+                        r.beyond_simulator_limit, r.warnings);
 }
 inline spp::VerifyResult verify_result(const py::tuple& t) {
-  sized(t, 9, "VerifyResult");
+  sized(t, 11, "VerifyResult");
   spp::VerifyResult r;
   r.status = static_cast<spp::VerifyStatus>(t[0].cast<int>());
   for (const py::handle c : t[1]) r.checks.push_back(spp_check(c.cast<py::tuple>()));
@@ -260,6 +264,8 @@ inline spp::VerifyResult verify_result(const py::tuple& t) {
   r.admissibility_mismatches = t[6].cast<int>();
   r.stability_mismatches = t[7].cast<int>();
   r.state_mismatches = t[8].cast<int>();
+  r.beyond_simulator_limit = t[9].cast<long>();
+  r.warnings = t[10].cast<std::vector<std::string>>();
   return r;
 }
 

@@ -354,6 +354,8 @@ json verify_to_json(const VerifyResult& r) {
               {"releases", c.releases}};
     o["periods_followed"] = c.periods_followed;
     if (std::isfinite(c.potential_return_error)) o["potential_return_error"] = c.potential_return_error;
+    o["state_tolerance"] = c.state_tolerance;  // the tolerances it was checked with (docs/result-files.md)
+    o["return_tolerance"] = c.return_tolerance;
     if (!c.departure.empty()) o["departure"] = {{"t", c.departure_time}, {"what", c.departure}};
     if (!c.perturbed_distances.empty()) {
       o["perturbed_distances"] = c.perturbed_distances;
