@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "continuation/corrector.hpp"
+#include "paper_examples.hpp"
 #include "spp/continuation/continuation.hpp"
 #include "spp/modal/modal.hpp"
 #include "spp/orbit/orbit.hpp"
@@ -25,17 +26,7 @@ ParametricSystem paper_61(double g0, double lo, double hi) {
   return ParametricSystem(Eigen::MatrixXd::Identity(2, 2), {}, K0, K1, Eigen::Vector2d(0, -1), {}, g0, {"k2", lo, hi},
                           "paper 6.1");
 }
-// The §5.2 chain (M = I, unit springs, obstacle on the last mass, g0 = 1) with the last spring's stiffness k5 as the
-// parameter, k5 in [lo, hi].
-ParametricSystem paper_chain_k5(double lo, double hi) {
-  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
-  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
-  K1(3, 3) = K1(4, 4) = 1;
-  K1(3, 4) = K1(4, 3) = -1;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = -1;
-  return ParametricSystem(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", lo, hi});
-}
+using spp::test::paper_chain_k5;  // §5.2's chain, k5 in [lo, hi] (tests/paper_examples.hpp)
 }  // namespace
 
 // The two roots of ω2/ω1 = r (r odd) for eq. (6.1): ω^2 = ((1 + 2k) ± sqrt(1 + 4k^2)) / 2, so with

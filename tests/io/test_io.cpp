@@ -8,6 +8,7 @@
 #include <random>
 
 #include "io/json.hpp"
+#include "paper_examples.hpp"
 #include "spp/core/generators.hpp"
 #include "spp/io.hpp"
 #include "spp/modal/modal.hpp"
@@ -28,32 +29,25 @@ void write(const fs::path& p, const std::string& s) {
 }
 // The message with which a reader refuses a JSON text (named r.json / c.json in its messages), or "(accepted)": the
 // refusal tests of the result and continuation readers below.
-std::string result_refusal(const io::json& j) {
+template <class Parse>
+std::string refusal(Parse parse, const io::json& j, const char* name) {
   try {
-    parse_result_file(j.dump(), "r.json");
+    parse(j.dump(), name);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
   return "(accepted)";
 }
+std::string result_refusal(const io::json& j) {
+  return refusal([](const std::string& t, const char* n) { return parse_result_file(t, n); }, j, "r.json");
+}
 std::string continuation_refusal(const io::json& j) {
-  try {
-    parse_continuation_file(j.dump(), "c.json");
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "(accepted)";
+  return refusal([](const std::string& t, const char* n) { return parse_continuation_file(t, n); }, j, "c.json");
 }
 
 // The chain's branch through its SPP near (5.707, 2.510) for k5 in [0.9, 1] (the continuation file tests).
 ParametricSystem chain_k5() {
-  Eigen::MatrixXd K0(5, 5), K1 = Eigen::MatrixXd::Zero(5, 5);
-  K0 << 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 2, -1, 0, 0, 0, -1, 1, 0, 0, 0, 0, 0, 0;
-  K1(3, 3) = K1(4, 4) = 1;
-  K1(3, 4) = K1(4, 3) = -1;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = -1;
-  return ParametricSystem(Eigen::MatrixXd::Identity(5, 5), {}, K0, K1, w, {}, 1.0, {"k5", 0.9, 1.0});
+  return spp::test::paper_chain_k5(0.9, 1.0);
 }
 ContinuationResult chain_k5_branch(const ParametricSystem& ps) {
   const SolutionAt seed = solution_at(ps.at(0.98), 5.703374, 2.514785);
